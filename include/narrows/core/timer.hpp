@@ -1,0 +1,20 @@
+// Wall-clock timing for the loop summary and benchmarks.
+#pragma once
+
+#include <chrono>
+
+namespace narrows {
+
+class Stopwatch {
+public:
+  Stopwatch() : start_(std::chrono::steady_clock::now()) {}
+  void restart() { start_ = std::chrono::steady_clock::now(); }
+  double seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+private:
+  std::chrono::steady_clock::time_point start_;
+};
+
+} // namespace narrows

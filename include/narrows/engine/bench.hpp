@@ -1,0 +1,17 @@
+// `narrows bench`: throughput of the hot kernels on this machine, next to a memory-bandwidth
+// bound measured here (STREAM triad). Prints figures; never asserts a time.
+#pragma once
+
+#include <ostream>
+
+namespace narrows::engine {
+
+struct BenchOptions {
+  bool json = false;
+  double particles = 1.0e6; // per case
+  int steps = 100;          // timed steps per case (after a warm-up)
+};
+
+void run_bench(const BenchOptions &options, std::ostream &out);
+
+} // namespace narrows::engine

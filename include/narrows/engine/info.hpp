@@ -1,0 +1,18 @@
+// What a scene will do, before it runs: pipeline, sizes, and the dimensionless numbers.
+#pragma once
+
+#include "narrows/scene/scene.hpp"
+
+#include <string>
+#include <vector>
+
+namespace narrows::engine {
+
+// Lines describing the run: pipeline of stages, particle count, memory estimate, mean free
+// path, theory viscosity and Sc, and Ma/Re when a body force is set.
+std::vector<std::string> describe_scene(const scene::Scene &scene);
+
+// Warnings about the physical regime (Ma > 0.2, unbounded acceleration...).
+std::vector<std::string> regime_warnings(const scene::Scene &scene);
+
+} // namespace narrows::engine

@@ -1,0 +1,68 @@
+// The MPCD simulation: state plus the pipeline of stages built once from the scene. Only the
+// effects the scene asks for become stages; each stage calls a kernel chosen for its case.
+#pragma once
+
+#include "narrows/mpcd/cell_grid.hpp"
+#include "narrows/mpcd/cell_sort.hpp"
+#include "narrows/mpcd/collision.hpp"
+#include "narrows/mpcd/fluid.hpp"
+#include "narrows/scene/scene.hpp"
+
+#include <mpi.h>
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace narrows::engine {
+
+struct Stage {
+  std::string name;
+  std::function<void(std::uint64_t step)> run;
+};
+
+class MpcdSimulation {
+public:
+  // Builds the pipeline and, if `allocate`, the fluid (ids 0..N-1, zero total momentum) and
+  // the cell grid. Without it only the pipeline exists (for `narrows info` and `check`).
+  MpcdSimulation(const scene::Scene &scene, MPI_Comm comm, bool allocate = true);
+  MpcdSimulation(const MpcdSimulation &) = delete;
+  MpcdSimulation &operator=(const MpcdSimulation &) = delete;
+
+  // One MPCD step: every stage in order, then the step counter advances.
+  void advance();
+
+  std::int64_t step() const { return step_; }
+  double time() const { return static_cast<double>(step_) * scene_.fluid.dt; }
+  const std::vector<Stage> &stages() const { return stages_; }
+  const scene::Scene &scene() const { return scene_; }
+  const mpcd::Box &box() const { return box_; }
+  mpcd::Fluid &fluid() { return fluid_; }
+  const mpcd::Fluid &fluid() const { return fluid_; }
+  const mpcd::CellGrid &grid() const { return grid_; }
+  MPI_Comm comm() const { return comm_; }
+
+private:
+  void build_pipeline();
+
+  scene::Scene scene_;
+  MPI_Comm comm_;
+  mpcd::Box box_;
+  mpcd::Fluid fluid_;
+  mpcd::CellGrid grid_;
+  mpcd::CollisionScratch collision_scratch_;
+  mpcd::SortScratch sort_scratch_;
+  std::vector<Stage> stages_;
+  std::int64_t step_ = 0;
+};
+
+mpcd::Box make_box(const scene::Scene &scene);
+
+// Memory the run will need, without building it: bytes per particle times N plus cell arrays.
+std::size_t estimate_memory(const scene::Scene &scene);
+
+// Number of fluid particles the scene creates.
+std::uint64_t particle_count(const scene::Scene &scene);
+
+} // namespace narrows::engine

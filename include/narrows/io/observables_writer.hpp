@@ -1,0 +1,61 @@
+// observables.h5: H5MD-style time series /observables/<name>/{step, time, value[, bins]}.
+#pragma once
+
+#include "narrows/io/hdf5.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace narrows::io {
+
+// Serial writer of the observables file; only rank 0 creates one. Every series is a set of
+// chunked datasets with an unlimited first (time) dimension, extended by one row per append.
+// Errors throw narrows::Error (ExitCode::other) naming the file.
+class ObservablesWriter {
+public:
+  // Creates (truncates) `path`; writes /h5md (version = [1, 1], /h5md/creator with name and
+  // version) and /parameters/scene (the scene text).
+  ObservablesWriter(const std::string &path, const std::string &scene_text);
+
+  // One sample of a scalar: value shape [T].
+  void append_scalar(const std::string &name, std::int64_t step, double time, double value);
+  // One sample of a vector of k >= 1 components: value shape [T][k].
+  void append_vector(const std::string &name, std::int64_t step, double time,
+                     std::span<const double> v);
+  // One sample of a profile over bins.size() bins, `values` row-major [bins][components]:
+  // value shape [T][bins][components], or [T][bins] when components == 1. The bin centres
+  // are stored once, at the first append, in /observables/<name>/bins.
+  void append_profile(const std::string &name, std::int64_t step, double time,
+                      std::span<const double> bins, std::span<const double> values,
+                      std::size_t components);
+
+  // H5Fflush: what was appended so far survives a crash of the run.
+  void flush();
+
+  const std::string &path() const { return path_; }
+
+private:
+  enum class Kind { scalar, vector, profile };
+  struct Series {
+    Kind kind;
+    std::vector<hsize_t> sample_shape; // shape of one sample (value without the T axis)
+    hsize_t samples = 0;
+    h5::Dataset step, time, value;
+  };
+
+  Series &series(const std::string &name, Kind kind, std::vector<hsize_t> sample_shape,
+                 std::span<const double> bins);
+  void append(Series &s, const std::string &name, std::int64_t step, double time,
+              const double *value);
+
+  std::string path_;
+  h5::File file_;
+  h5::Group observables_;
+  std::map<std::string, Series> series_;
+};
+
+} // namespace narrows::io

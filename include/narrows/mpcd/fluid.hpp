@@ -1,0 +1,39 @@
+// The MPCD fluid as a structure of arrays, and the periodic box it lives in.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace narrows::mpcd {
+
+// Periodic box of whole collision cells (cell size a = 1). z is unused in 2D.
+struct Box {
+  int dim = 2;
+  std::array<int, 3> cells{1, 1, 1};
+  std::array<double, 3> length{1.0, 1.0, 1.0};
+  std::size_t num_cells() const {
+    return static_cast<std::size_t>(cells[0]) * cells[1] * (dim == 3 ? cells[2] : 1);
+  }
+};
+
+// Positions x[k], velocities v[k] (k < dim; the z arrays stay empty in 2D), 64-bit global
+// ids, and the cell of each particle in the current shifted grid (recomputed every step,
+// never trusted across steps).
+struct Fluid {
+  int dim = 2;
+  std::array<std::vector<double>, 3> x, v;
+  std::vector<std::uint64_t> id;
+  std::vector<std::uint32_t> cell;
+
+  std::size_t size() const { return id.size(); }
+  void resize(std::size_t n);
+};
+
+// Fills the box with round(density * volume) particles with ids 0..N-1: positions uniform,
+// velocities Maxwell-Boltzmann at kT (mass 1), then the mean velocity removed so the total
+// momentum is zero. Each particle's draw depends only on (seed, id).
+void init_fluid(Fluid &fluid, const Box &box, double density, double kT, std::uint64_t seed);
+
+} // namespace narrows::mpcd

@@ -1,0 +1,127 @@
+// `narrows info` / `check`: describe the pipeline and the physical regime of a scene.
+#include "narrows/engine/info.hpp"
+
+#include "narrows/engine/mpcd_simulation.hpp"
+#include "narrows/mpcd/transport_theory.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+namespace narrows::engine {
+
+namespace {
+
+std::string fmt(const char *format, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+struct Regime {
+  std::optional<mpcd::Viscosity> nu;
+  double sound_speed = 0.0;
+  double u0 = 0.0; // flow scale (sine force), 0 if none
+  double mach = 0.0, reynolds = 0.0;
+};
+
+Regime regime(const scene::Scene &s) {
+  Regime r;
+  const int d = s.run.dimensions;
+  const double angle = s.fluid.angle_deg * std::numbers::pi / 180.0;
+  r.nu = mpcd::viscosity(s.fluid.collision, d, s.fluid.density, s.fluid.dt, angle, s.fluid.kT);
+  // Ideal gas: c_s = sqrt(gamma kT/m), gamma = (d + 2)/d.
+  r.sound_speed = std::sqrt((d + 2.0) / d * s.fluid.kT);
+  if (s.body_force && s.body_force->kind == scene::ForceKind::sine && r.nu) {
+    const double L = s.domain.size[1];
+    r.u0 = std::abs(s.body_force->amplitude) * L * L / (4.0 * std::numbers::pi * std::numbers::pi *
+                                                         r.nu->total());
+    r.mach = r.u0 / r.sound_speed;
+    r.reynolds = r.u0 * L / r.nu->total();
+  }
+  return r;
+}
+
+} // namespace
+
+std::vector<std::string> describe_scene(const scene::Scene &s) {
+  std::vector<std::string> out;
+  const int d = s.run.dimensions;
+  std::string box = "box ";
+  for (int k = 0; k < d; ++k)
+    box += fmt("%g", s.domain.size[k]) + (k + 1 < d ? " x " : " cells, periodic");
+  out.push_back(std::string("engine mpcd, ") + std::to_string(d) + "D, " + box + ", seed " +
+                std::to_string(s.run.seed) + ", " + std::to_string(s.run.steps) + " steps");
+  out.push_back("pipeline (per step):");
+  MpcdSimulation plan(s, MPI_COMM_SELF, false);
+  int i = 1;
+  for (const Stage &stage : plan.stages())
+    out.push_back("  " + std::to_string(i++) + ". " + stage.name);
+  std::string obs;
+  for (const auto &o : s.output.observables)
+    obs += (obs.empty() ? "" : ", ") + o;
+  out.push_back("  then every " + std::to_string(s.output.every) +
+                " steps: observables [" + obs + "] and invariant checks");
+  out.push_back("particles: " + std::to_string(particle_count(s)) + " fluid (density " +
+                fmt("%g", s.fluid.density) + " per cell)");
+  out.push_back("memory: " + fmt("%.1f", estimate_memory(s) / 1048576.0) + " MiB (estimate)");
+  out.push_back("mean free path lambda = dt sqrt(kT/m) = " +
+                fmt("%.4g", s.fluid.dt * std::sqrt(s.fluid.kT)) + " a");
+  const Regime r = regime(s);
+  if (r.nu) {
+    std::string line = "viscosity (kinetic theory): nu = " + fmt("%.5g", r.nu->total()) +
+                       " (kinetic " + fmt("%.5g", r.nu->kinetic) + ", collisional " +
+                       fmt("%.5g", r.nu->collisional) + ")";
+    if (s.fluid.collision == scene::Collision::srd) {
+      const double D = mpcd::srd_self_diffusion(d, s.fluid.density, s.fluid.dt,
+                                                s.fluid.angle_deg * std::numbers::pi / 180.0,
+                                                s.fluid.kT);
+      line += ", self-diffusion D = " + fmt("%.5g", D) + ", Sc = nu/D = " +
+              fmt("%.3g", r.nu->total() / D);
+    }
+    out.push_back(line);
+  } else {
+    out.push_back("viscosity: no kinetic-theory formula for this rule in " + std::to_string(d) +
+                  "D");
+  }
+  if (s.body_force) {
+    if (s.body_force->kind == scene::ForceKind::sine && r.nu) {
+      out.push_back("Kolmogorov flow: u0 = F0 L^2/(4 pi^2 nu) = " + fmt("%.4g", r.u0) +
+                    ", Ma = u0/c_s = " + fmt("%.3g", r.mach) + " (c_s = " +
+                    fmt("%.4g", r.sound_speed) + "), Re = u0 L_y/nu = " + fmt("%.3g", r.reynolds));
+    } else if (s.body_force->kind == scene::ForceKind::constant) {
+      double g = 0.0;
+      for (int k = 0; k < d; ++k)
+        g += s.body_force->value[k] * s.body_force->value[k];
+      g = std::sqrt(g);
+      const double t_end = s.run.steps * s.fluid.dt;
+      out.push_back("constant force |g| = " + fmt("%.4g", g) +
+                    " in a periodic box: the fluid accelerates uniformly, Ma at the end = " +
+                    fmt("%.3g", g * t_end / r.sound_speed));
+    }
+  }
+  return out;
+}
+
+std::vector<std::string> regime_warnings(const scene::Scene &s) {
+  std::vector<std::string> w;
+  const Regime r = regime(s);
+  if (r.mach > 0.2)
+    w.push_back("Ma = " + fmt("%.3g", r.mach) +
+                " > 0.2: compressibility effects are not negligible (seed 001 section 4.3)");
+  if (s.body_force && s.body_force->kind == scene::ForceKind::constant) {
+    double g2 = 0.0;
+    for (int k = 0; k < s.run.dimensions; ++k)
+      g2 += s.body_force->value[k] * s.body_force->value[k];
+    const double ma_end = std::sqrt(g2) * s.run.steps * s.fluid.dt / r.sound_speed;
+    if (ma_end > 0.2)
+      w.push_back("constant force without walls: the mean flow reaches Ma = " +
+                  fmt("%.3g", ma_end) + " by the end of the run");
+  }
+  if (s.fluid.dt * std::sqrt(s.fluid.kT) < 0.5 && r.nu)
+    w.push_back("mean free path " + fmt("%.3g", s.fluid.dt * std::sqrt(s.fluid.kT)) +
+                " < 0.5 a: kinetic-theory transport coefficients may be off by up to ~15 %");
+  return w;
+}
+
+} // namespace narrows::engine

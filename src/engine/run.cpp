@@ -1,0 +1,159 @@
+// The run loop: step the pipeline, observe on a schedule, check invariants, report progress.
+#include "narrows/engine/run.hpp"
+
+#include "narrows/analysis/fluid_observables.hpp"
+#include "narrows/core/error.hpp"
+#include "narrows/core/timer.hpp"
+#include "narrows/engine/info.hpp"
+#include "narrows/engine/invariants.hpp"
+#include "narrows/engine/log.hpp"
+#include "narrows/engine/mpcd_simulation.hpp"
+#include "narrows/io/observables_writer.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+
+namespace narrows::engine {
+
+namespace {
+
+bool wants(const scene::Scene &s, const std::string &name) {
+  const auto &o = s.output.observables;
+  return std::find(o.begin(), o.end(), name) != o.end();
+}
+
+std::string duration(double seconds) {
+  char buf[32];
+  const long s = static_cast<long>(seconds + 0.5);
+  if (s >= 3600)
+    std::snprintf(buf, sizeof buf, "%ldh%02ldm", s / 3600, (s / 60) % 60);
+  else if (s >= 60)
+    std::snprintf(buf, sizeof buf, "%ldm%02lds", s / 60, s % 60);
+  else
+    std::snprintf(buf, sizeof buf, "%lds", s);
+  return buf;
+}
+
+// Everything written every `output.every` steps.
+class Observer {
+public:
+  Observer(const MpcdSimulation &sim, std::unique_ptr<io::ObservablesWriter> writer)
+      : sim_(sim), writer_(std::move(writer)), profiles_(sim.box()) {
+    const auto &s = sim.scene();
+    temperature_ = wants(s, "temperature");
+    momentum_ = wants(s, "momentum");
+    velocity_ = wants(s, "velocity_profile");
+    density_ = wants(s, "density_profile");
+  }
+  void every_step() {
+    if (velocity_ || density_)
+      profiles_.add(sim_.fluid());
+  }
+  void sample() {
+    const auto step = sim_.step();
+    const double t = sim_.time();
+    const MPI_Comm comm = sim_.comm();
+    if (temperature_) {
+      const double kT = analysis::temperature(sim_.fluid(), comm);
+      if (writer_)
+        writer_->append_scalar("temperature", step, t, kT);
+    }
+    if (momentum_) {
+      const auto p = analysis::total_momentum(sim_.fluid(), comm).value();
+      if (writer_)
+        writer_->append_vector("momentum", step, t, std::span(p.data(), sim_.box().dim));
+    }
+    if (velocity_ || density_) {
+      std::vector<double> v, rho;
+      if (profiles_.finish(comm, v, rho) && writer_) {
+        if (velocity_)
+          writer_->append_profile("velocity_profile", step, t, profiles_.bin_centres(), v,
+                                  sim_.box().dim);
+        if (density_)
+          writer_->append_profile("density_profile", step, t, profiles_.bin_centres(), rho, 1);
+      }
+    }
+    if (writer_)
+      writer_->flush();
+  }
+
+private:
+  const MpcdSimulation &sim_;
+  std::unique_ptr<io::ObservablesWriter> writer_;
+  analysis::ProfileAccumulator profiles_;
+  bool temperature_ = false, momentum_ = false, velocity_ = false, density_ = false;
+};
+
+} // namespace
+
+void run_scene(const scene::Scene &scene, const RunOptions &options, MPI_Comm comm) {
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  if (ranks > 1)
+    throw input_error("the MPCD engine runs on one rank in this version (MPI slabs are not "
+                      "built yet); found " +
+                      std::to_string(ranks) + " ranks; allowed: 1");
+
+  const std::string dir = options.out_dir.empty() ? scene.output.dir : options.out_dir;
+  if (rank == 0) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec)
+      throw input_error(dir + ": cannot create output directory (" + ec.message() + ")");
+  }
+  Log log(rank == 0, dir + "/log.txt");
+  log.line("narrows " NARROWS_VERSION " run " + scene.file + " on " + std::to_string(ranks) +
+           " rank(s), output in " + dir);
+  for (const auto &line : describe_scene(scene))
+    log.line(line);
+  for (const auto &w : regime_warnings(scene))
+    log.warn(w);
+
+  MpcdSimulation sim(scene, comm);
+  std::unique_ptr<io::ObservablesWriter> writer;
+  if (rank == 0)
+    writer = std::make_unique<io::ObservablesWriter>(dir + "/observables.h5", scene.text);
+  Observer observer(sim, std::move(writer));
+  const InvariantCheck invariants(sim);
+  const std::int64_t every = scene.output.every;
+  const auto n_particles = analysis::total_momentum(sim.fluid(), comm).count;
+
+  Stopwatch clock, since_progress;
+  const std::int64_t first = sim.step();
+  while (sim.step() < scene.run.steps) {
+    sim.advance();
+    observer.every_step();
+    if (sim.step() % every == 0 || sim.step() == scene.run.steps) {
+      invariants.check(sim);
+      observer.sample();
+    }
+    if (scene.output.progress && since_progress.seconds() > 10.0) {
+      since_progress.restart();
+      const double done = static_cast<double>(sim.step() - first);
+      const double left = static_cast<double>(scene.run.steps - sim.step());
+      const double rate = done / clock.seconds();
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "step %lld / %lld (%.1f %%), %.3g particle-steps/s, ETA %s",
+                    static_cast<long long>(sim.step()), static_cast<long long>(scene.run.steps),
+                    100.0 * sim.step() / scene.run.steps, rate * n_particles,
+                    duration(left / rate).c_str());
+      log.line(buf);
+    }
+  }
+  const double seconds = clock.seconds();
+  const auto steps = sim.step() - first;
+  char buf[200];
+  std::snprintf(buf, sizeof buf,
+                "Loop time of %.4g s on %d ranks for %lld steps with %llu particles (%.4g "
+                "particle-steps/s)",
+                seconds, ranks, static_cast<long long>(steps),
+                static_cast<unsigned long long>(n_particles),
+                seconds > 0 ? static_cast<double>(steps) * n_particles / seconds : 0.0);
+  log.line(buf);
+}
+
+} // namespace narrows::engine

@@ -1,0 +1,116 @@
+// The narrows command line: run, check, info, bench (DESIGN.md, "The user-facing contract").
+#include "narrows/core/error.hpp"
+#include "narrows/engine/bench.hpp"
+#include "narrows/engine/info.hpp"
+#include "narrows/engine/run.hpp"
+#include "narrows/scene/parse.hpp"
+
+#include <CLI/CLI.hpp>
+#include <mpi.h>
+
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace {
+
+int rank_of_world() {
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  return rank;
+}
+
+// First line only: every user-facing error is one line.
+std::string one_line(const std::string &s) {
+  const auto nl = s.find('\n');
+  return nl == std::string::npos ? s : s.substr(0, nl);
+}
+
+int main_inner(int argc, char **argv) {
+  CLI::App app{"narrows: hydrodynamics of colloids in narrow channels (MPCD, lattice gases)"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", std::string(NARROWS_VERSION));
+
+  std::string scene_file, out_dir, restart;
+  std::vector<std::string> sets;
+  auto *run = app.add_subcommand("run", "run a scene");
+  run->add_option("scene", scene_file, "scene file (TOML)")->required();
+  run->add_option("--set", sets, "override a scene key: key.path=value (repeatable)");
+  run->add_option("--restart", restart, "continue from a checkpoint file or directory");
+  run->add_option("--out", out_dir, "output directory (default: output.dir of the scene)");
+
+  auto *check = app.add_subcommand("check", "validate a scene and print its pipeline");
+  check->add_option("scene", scene_file, "scene file (TOML)")->required();
+  check->add_option("--set", sets, "override a scene key: key.path=value (repeatable)");
+
+  auto *info = app.add_subcommand("info", "pipeline, particle count, memory, Ma/Re/Sc");
+  info->add_option("scene", scene_file, "scene file (TOML)")->required();
+  info->add_option("--set", sets, "override a scene key: key.path=value (repeatable)");
+
+  narrows::engine::BenchOptions bench_opt;
+  auto *bench = app.add_subcommand("bench", "throughput of the hot kernels on this machine");
+  bench->add_flag("--json", bench_opt.json, "print JSON");
+  bench->add_option("--particles", bench_opt.particles, "particles per case (default 1e6)")
+      ->check(CLI::PositiveNumber);
+  bench->add_option("--steps", bench_opt.steps, "timed steps per case (default 100)")
+      ->check(CLI::PositiveNumber);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp &e) {
+    if (rank_of_world() == 0)
+      app.exit(e);
+    return 0;
+  } catch (const CLI::CallForVersion &e) {
+    if (rank_of_world() == 0)
+      app.exit(e);
+    return 0;
+  } catch (const CLI::ParseError &e) {
+    throw narrows::input_error("command line: " + one_line(e.what()) +
+                               " (see narrows --help)");
+  }
+
+  const bool root = rank_of_world() == 0;
+  if (*bench) {
+    if (root)
+      narrows::engine::run_bench(bench_opt, std::cout);
+    return 0;
+  }
+  const auto scene = narrows::scene::load_scene(scene_file, sets);
+  if (*check || *info) {
+    if (root) {
+      if (*check)
+        std::cout << scene_file << ": scene is valid\n";
+      for (const auto &line : narrows::engine::describe_scene(scene))
+        std::cout << line << '\n';
+      for (const auto &w : narrows::engine::regime_warnings(scene))
+        std::cout << "warning: " << w << '\n';
+    }
+    return 0;
+  }
+  if (!restart.empty())
+    throw narrows::input_error("--restart " + restart +
+                               ": checkpoint/restart is not available in this version yet");
+  narrows::engine::run_scene(scene, {out_dir}, MPI_COMM_WORLD);
+  return 0;
+}
+
+} // namespace
+
+int main(int argc, char **argv) {
+  MPI_Init(&argc, &argv);
+  int code = 0;
+  try {
+    code = main_inner(argc, argv);
+  } catch (const narrows::Error &e) {
+    if (rank_of_world() == 0)
+      std::cerr << "narrows: " << e.what() << std::endl;
+    code = static_cast<int>(e.code());
+  } catch (const std::exception &e) {
+    if (rank_of_world() == 0)
+      std::cerr << "narrows: internal error: " << one_line(e.what()) << std::endl;
+    code = 1;
+  }
+  MPI_Finalize();
+  return code;
+}

@@ -1,0 +1,209 @@
+// MPC-AT and MPC-AT+a (seed 001 eq 4.5-4.11; Noguchi & Gompper).
+#include "narrows/core/fixed_point.hpp"
+#include "narrows/core/rng.hpp"
+#include "narrows/mpcd/collision.hpp"
+
+#include <Eigen/Dense>
+
+#include <cmath>
+
+namespace narrows::mpcd {
+
+namespace {
+
+using fixed::from_double;
+using fixed::to_double;
+
+// Gaussian velocities xi_i at kT for every particle (keyed by particle id), and their
+// fixed-point sum per cell into sums[c * stride + 0 .. D-1].
+template <int D>
+void draw_noise(Fluid &f, CollisionScratch &s, std::size_t stride, double kT, std::uint64_t seed,
+                std::uint64_t step) {
+  const double sigma = std::sqrt(kT);
+  const std::size_t n = f.size();
+  for (int k = 0; k < D; ++k)
+    s.noise[k].resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto g = rng::gaussian4(rng::draw(seed, rng::Purpose::at_gaussian, step, f.id[i]));
+    std::int64_t *sum = &s.cell_fixed[static_cast<std::size_t>(f.cell[i]) * stride];
+    for (int k = 0; k < D; ++k) {
+      s.noise[k][i] = sigma * g[k];
+      sum[k] += from_double(s.noise[k][i]);
+    }
+  }
+}
+
+template <int D>
+void at_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, std::uint64_t seed,
+               std::uint64_t step) {
+  const std::size_t nc = g.size();
+  s.cell_fixed.assign(nc * D, 0);
+  draw_noise<D>(f, s, D, kT, seed, step);
+  // Per cell: delta = u - <xi>, so that v' = xi + delta keeps the cell momentum.
+  s.cell.resize(nc * D);
+  for (std::size_t c = 0; c < nc; ++c) {
+    const double inv_n = g.sums[c].n ? 1.0 / g.sums[c].n : 0.0;
+    for (int k = 0; k < D; ++k)
+      s.cell[c * D + k] = (to_double(g.sums[c].p[k]) - to_double(s.cell_fixed[c * D + k])) * inv_n;
+  }
+  const std::size_t n = f.size();
+  for (int k = 0; k < D; ++k) {
+    double *v = f.v[k].data();
+    const double *xi = s.noise[k].data();
+    for (std::size_t i = 0; i < n; ++i)
+      v[i] = xi[i] + s.cell[static_cast<std::size_t>(f.cell[i]) * D + k];
+  }
+}
+
+// Offset of a particle from the corner of its shifted cell, in [0, 1).
+inline double in_cell(double x, double shift) {
+  const double t = x - shift + 1.0; // > 0, see cell_grid.cpp
+  return t - std::floor(t);
+}
+
+// Fixed-point sums per cell for AT+a, laid out as
+//   2D: xi(2) rho(2) rho rho^T(xx, xy, yy) rho x v (1) rho x xi (1)          -> 9
+//   3D: xi(3) rho(3) rho rho^T(xx, xy, xz, yy, yz, zz) rho x v(3) rho x xi(3) -> 18
+template <int D> constexpr int sum_stride = D == 2 ? 9 : 18;
+template <int D> constexpr int par_stride = D == 2 ? 5 : 9; // delta(D) r_c(D) omega(1|3)
+
+template <int D> inline void cross(const double *a, const double *b, double *out) {
+  if constexpr (D == 2) {
+    out[0] = a[0] * b[1] - a[1] * b[0];
+  } else {
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+  }
+}
+
+template <int D>
+void at_a_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, std::uint64_t seed,
+                 std::uint64_t step) {
+  constexpr int SS = sum_stride<D>, PS = par_stride<D>, NL = D == 2 ? 1 : 3;
+  constexpr int NM = D == 2 ? 3 : 6; // entries of rho rho^T
+  const std::size_t nc = g.size(), n = f.size();
+  s.cell_fixed.assign(nc * SS, 0);
+  draw_noise<D>(f, s, SS, kT, seed, step);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::int64_t *sum = &s.cell_fixed[static_cast<std::size_t>(f.cell[i]) * SS];
+    double r[3], v[3], xi[3], l[3];
+    for (int k = 0; k < D; ++k) {
+      r[k] = in_cell(f.x[k][i], g.shift[k]);
+      v[k] = f.v[k][i];
+      xi[k] = s.noise[k][i];
+      sum[D + k] += from_double(r[k]);
+    }
+    std::int64_t *m = sum + 2 * D;
+    if constexpr (D == 2) {
+      m[0] += from_double(r[0] * r[0]);
+      m[1] += from_double(r[0] * r[1]);
+      m[2] += from_double(r[1] * r[1]);
+    } else {
+      m[0] += from_double(r[0] * r[0]);
+      m[1] += from_double(r[0] * r[1]);
+      m[2] += from_double(r[0] * r[2]);
+      m[3] += from_double(r[1] * r[1]);
+      m[4] += from_double(r[1] * r[2]);
+      m[5] += from_double(r[2] * r[2]);
+    }
+    cross<D>(r, v, l);
+    for (int k = 0; k < NL; ++k)
+      sum[2 * D + NM + k] += from_double(l[k]);
+    cross<D>(r, xi, l);
+    for (int k = 0; k < NL; ++k)
+      sum[2 * D + NM + NL + k] += from_double(l[k]);
+  }
+
+  s.cell.assign(nc * PS, 0.0);
+  for (std::size_t c = 0; c < nc; ++c) {
+    const std::int64_t *sum = &s.cell_fixed[c * SS];
+    double *par = &s.cell[c * PS];
+    const std::uint32_t cnt = g.sums[c].n;
+    if (cnt == 0)
+      continue;
+    const double inv_n = 1.0 / cnt;
+    double P[3], X[3], rc[3];
+    for (int k = 0; k < D; ++k) {
+      P[k] = to_double(g.sums[c].p[k]);
+      X[k] = to_double(sum[k]);
+      rc[k] = to_double(sum[D + k]) * inv_n;
+      par[k] = (P[k] - X[k]) * inv_n; // delta = u - <xi>
+      par[D + k] = rc[k];
+    }
+    // Angular momentum about the cell's centre of mass that the AT step would destroy:
+    // dL = sum (r - rc) x (v - xi) = [sum r x v - rc x P] - [sum r x xi - rc x X].
+    double rcP[3], rcX[3];
+    cross<D>(rc, P, rcP);
+    cross<D>(rc, X, rcX);
+    double dL[3];
+    for (int k = 0; k < NL; ++k)
+      dL[k] = (to_double(sum[2 * D + NM + k]) - rcP[k]) -
+              (to_double(sum[2 * D + NM + NL + k]) - rcX[k]);
+    if constexpr (D == 2) {
+      // I = sum |r - rc|^2 = sum(xx + yy) - n |rc|^2
+      const double I = to_double(sum[4]) + to_double(sum[6]) - cnt * (rc[0] * rc[0] + rc[1] * rc[1]);
+      par[4] = I > 1e-12 ? dL[0] / I : 0.0; // one particle, or all at one point: dL = 0
+    } else {
+      const std::int64_t *m = sum + 6;
+      Eigen::Matrix3d S; // second moment about rc
+      S(0, 0) = to_double(m[0]) - cnt * rc[0] * rc[0];
+      S(0, 1) = S(1, 0) = to_double(m[1]) - cnt * rc[0] * rc[1];
+      S(0, 2) = S(2, 0) = to_double(m[2]) - cnt * rc[0] * rc[2];
+      S(1, 1) = to_double(m[3]) - cnt * rc[1] * rc[1];
+      S(1, 2) = S(2, 1) = to_double(m[4]) - cnt * rc[1] * rc[2];
+      S(2, 2) = to_double(m[5]) - cnt * rc[2] * rc[2];
+      const Eigen::Matrix3d I = S.trace() * Eigen::Matrix3d::Identity() - S;
+      // Pseudo-inverse: with two particles (or collinear ones) I has a zero eigenvalue along
+      // their line, and dL has no component there, so dropping it is exact.
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+      eig.computeDirect(I);
+      const Eigen::Vector3d lam = eig.eigenvalues();
+      const double cut = 1e-10 * std::max(lam.cwiseAbs().maxCoeff(), 1e-300);
+      Eigen::Vector3d inv;
+      for (int k = 0; k < 3; ++k)
+        inv[k] = std::abs(lam[k]) > cut ? 1.0 / lam[k] : 0.0;
+      const Eigen::Vector3d w = eig.eigenvectors() * inv.asDiagonal() *
+                                eig.eigenvectors().transpose() * Eigen::Vector3d(dL[0], dL[1], dL[2]);
+      par[6] = w[0];
+      par[7] = w[1];
+      par[8] = w[2];
+    }
+  }
+
+  for (std::size_t i = 0; i < n; ++i) {
+    const double *par = &s.cell[static_cast<std::size_t>(f.cell[i]) * PS];
+    double r[3];
+    for (int k = 0; k < D; ++k)
+      r[k] = in_cell(f.x[k][i], g.shift[k]) - par[D + k];
+    if constexpr (D == 2) {
+      f.v[0][i] = s.noise[0][i] + par[0] - par[4] * r[1];
+      f.v[1][i] = s.noise[1][i] + par[1] + par[4] * r[0];
+    } else {
+      double wr[3];
+      cross<3>(par + 6, r, wr);
+      for (int k = 0; k < 3; ++k)
+        f.v[k][i] = s.noise[k][i] + par[k] + wr[k];
+    }
+  }
+}
+
+} // namespace
+
+void collide_at(Fluid &fluid, const CellGrid &grid, CollisionScratch &scratch, double kT,
+                std::uint64_t seed, std::uint64_t step) {
+  if (grid.dim == 3)
+    at_kernel<3>(fluid, grid, scratch, kT, seed, step);
+  else
+    at_kernel<2>(fluid, grid, scratch, kT, seed, step);
+}
+
+void collide_at_a(Fluid &fluid, const CellGrid &grid, CollisionScratch &scratch, double kT,
+                  std::uint64_t seed, std::uint64_t step) {
+  if (grid.dim == 3)
+    at_a_kernel<3>(fluid, grid, scratch, kT, seed, step);
+  else
+    at_a_kernel<2>(fluid, grid, scratch, kT, seed, step);
+}
+
+} // namespace narrows::mpcd

@@ -1,0 +1,889 @@
+// Reading a scene: TOML text -> validated scene::Scene.
+//
+// All validation lives here. Every problem becomes one narrows::input_error line of the form
+//   <source>: <key> ... found ...; allowed: ...
+// where <source> is the scene file, or "--set '<override>'" when the offending value came from
+// the command line.
+#include "narrows/scene/parse.hpp"
+
+#include "narrows/core/error.hpp"
+
+#include <toml.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace narrows::scene {
+namespace {
+
+using toml::value;
+
+// ---- the schema -------------------------------------------------------------------------------
+
+struct Section {
+  const char *name;
+  std::vector<const char *> keys; // in the order shown in messages
+};
+
+const std::vector<Section> &schema() {
+  static const std::vector<Section> s{
+      {"run", {"engine", "dimensions", "seed", "steps"}},
+      {"domain", {"size"}},
+      {"fluid", {"collision", "density", "dt", "angle", "kT", "sort_every"}},
+      {"body_force", {"kind", "value", "amplitude"}},
+      {"output", {"dir", "every", "observables", "checkpoint_every", "progress"}},
+  };
+  return s;
+}
+
+const Section *find_section(const std::string &name) {
+  for (const auto &sec : schema())
+    if (name == sec.name)
+      return &sec;
+  return nullptr;
+}
+
+constexpr std::int64_t max_cells_per_axis = std::int64_t{1} << 20;
+constexpr double max_particles = 1099511627776.0; // 2^40
+
+const char *const all_observables[] = {"temperature", "momentum", "velocity_profile",
+                                       "density_profile"};
+
+// ---- small text helpers -----------------------------------------------------------------------
+
+std::string join(const std::vector<std::string> &items, const char *sep = ", ") {
+  std::string out;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (i)
+      out += sep;
+    out += items[i];
+  }
+  return out;
+}
+
+std::string trim(std::string_view s) {
+  const auto first = s.find_first_not_of(" \t\r\n");
+  if (first == std::string_view::npos)
+    return {};
+  const auto last = s.find_last_not_of(" \t\r\n");
+  return std::string(s.substr(first, last - first + 1));
+}
+
+// Messages are one line whatever the input contains.
+std::string one_line(std::string s) {
+  for (char &ch : s)
+    if (ch == '\n' || ch == '\r')
+      ch = ' ';
+  return s;
+}
+
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j)
+    row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      const char ca = static_cast<char>(std::tolower(static_cast<unsigned char>(a[i - 1])));
+      const char cb = static_cast<char>(std::tolower(static_cast<unsigned char>(b[j - 1])));
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (ca == cb ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// The closest candidate within a small edit distance (case-insensitive), or "".
+std::string closest(const std::string &word, const std::vector<std::string> &candidates) {
+  std::string best;
+  std::size_t best_d = std::max<std::size_t>(1, std::min<std::size_t>(2, word.size() / 3)) + 1;
+  for (const auto &c : candidates) {
+    const std::size_t d = edit_distance(word, c);
+    if (d < best_d) {
+      best_d = d;
+      best = c;
+    }
+  }
+  return best;
+}
+
+const char *type_name(const value &v) {
+  switch (v.type()) {
+  case toml::value_t::empty:
+    return "empty";
+  case toml::value_t::boolean:
+    return "boolean";
+  case toml::value_t::integer:
+    return "integer";
+  case toml::value_t::floating:
+    return "float";
+  case toml::value_t::string:
+    return "string";
+  case toml::value_t::offset_datetime:
+    return "offset date-time";
+  case toml::value_t::local_datetime:
+    return "local date-time";
+  case toml::value_t::local_date:
+    return "local date";
+  case toml::value_t::local_time:
+    return "local time";
+  case toml::value_t::array:
+    return "array";
+  case toml::value_t::table:
+    return "table";
+  }
+  return "unknown";
+}
+
+std::string float_text(double x) {
+  if (std::isnan(x))
+    return "nan";
+  if (std::isinf(x))
+    return x > 0 ? "inf" : "-inf";
+  char buf[64];
+  const auto res = std::to_chars(buf, buf + sizeof buf, x);
+  std::string s(buf, res.ptr);
+  if (s.find_first_of(".e") == std::string::npos)
+    s += ".0";
+  return s;
+}
+
+std::string quote_string(const std::string &s) {
+  std::string out = "\"";
+  for (const char ch : s) {
+    switch (ch) {
+    case '"':
+      out += "\\\"";
+      break;
+    case '\\':
+      out += "\\\\";
+      break;
+    case '\n':
+      out += "\\n";
+      break;
+    case '\r':
+      out += "\\r";
+      break;
+    case '\t':
+      out += "\\t";
+      break;
+    default:
+      if (static_cast<unsigned char>(ch) < 0x20) {
+        char buf[8];
+        std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(ch));
+        out += buf;
+      } else {
+        out += ch;
+      }
+    }
+  }
+  return out + "\"";
+}
+
+// A short one-line rendering of a TOML value for messages.
+std::string repr(const value &v, int depth = 0) {
+  constexpr std::size_t max_items = 6;
+  switch (v.type()) {
+  case toml::value_t::boolean:
+    return v.as_boolean() ? "true" : "false";
+  case toml::value_t::integer:
+    return std::to_string(v.as_integer());
+  case toml::value_t::floating:
+    return float_text(v.as_floating());
+  case toml::value_t::string: {
+    std::string s = v.as_string().str;
+    if (s.size() > 60)
+      s = s.substr(0, 57) + "...";
+    return quote_string(s);
+  }
+  case toml::value_t::array: {
+    if (depth > 1)
+      return "[...]";
+    const auto &a = v.as_array();
+    std::vector<std::string> parts;
+    for (std::size_t i = 0; i < a.size() && i < max_items; ++i)
+      parts.push_back(repr(a[i], depth + 1));
+    if (a.size() > max_items)
+      parts.push_back("... (" + std::to_string(a.size()) + " entries)");
+    return "[" + join(parts) + "]";
+  }
+  case toml::value_t::table: {
+    if (depth > 1)
+      return "{...}";
+    std::map<std::string, const value *> sorted;
+    for (const auto &[k, x] : v.as_table())
+      sorted.emplace(k, &x);
+    std::vector<std::string> parts;
+    for (const auto &[k, x] : sorted) {
+      if (parts.size() == max_items) {
+        parts.push_back("...");
+        break;
+      }
+      parts.push_back(k + " = " + repr(*x, depth + 1));
+    }
+    return parts.empty() ? "{}" : "{ " + join(parts) + " }";
+  }
+  case toml::value_t::empty:
+    return "(empty)";
+  default: {
+    std::ostringstream os;
+    switch (v.type()) {
+    case toml::value_t::offset_datetime:
+      os << v.as_offset_datetime();
+      break;
+    case toml::value_t::local_datetime:
+      os << v.as_local_datetime();
+      break;
+    case toml::value_t::local_date:
+      os << v.as_local_date();
+      break;
+    default:
+      os << v.as_local_time();
+      break;
+    }
+    return one_line(os.str());
+  }
+  }
+}
+
+// ---- TOML syntax errors -------------------------------------------------------------------------
+
+// toml11's syntax_error what() is a multi-line annotated excerpt. Condense it to
+//   file: line N: TOML syntax error: <what>; found '<source line>' (<note>)
+std::string condense_syntax_error(const std::string &what, const std::string &file,
+                                  std::size_t fallback_line) {
+  std::istringstream in(what);
+  std::string line, headline, src_text, note;
+  std::size_t src_line = 0;
+  bool first = true;
+  while (std::getline(in, line)) {
+    // strip ANSI colour sequences, in case toml11 was built to colourise
+    std::string clean;
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      if (line[i] == '\x1b') {
+        while (i < line.size() && line[i] != 'm')
+          ++i;
+        continue;
+      }
+      clean += line[i];
+    }
+    if (first) {
+      headline = clean;
+      first = false;
+      continue;
+    }
+    const auto bar = clean.find(" | ");
+    const auto bar_end = clean.find(" |");
+    if (bar_end == std::string::npos)
+      continue;
+    const std::string lhs = trim(clean.substr(0, bar_end));
+    const std::string rhs = bar == std::string::npos ? "" : clean.substr(bar + 3);
+    if (!lhs.empty() &&
+        std::all_of(lhs.begin(), lhs.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+      src_line = std::stoul(lhs);
+      src_text = trim(rhs);
+      note.clear();
+    } else if (lhs.empty() && src_line != 0) {
+      // the marker line under the source line: "^--- note" or "~~~~ note"
+      const auto mark = rhs.find_first_not_of(" ^~-");
+      if (mark != std::string::npos)
+        note = trim(rhs.substr(mark));
+    }
+  }
+  // "[error] toml::parse_array: missing ..." -> "missing ..."
+  std::string msg = trim(headline);
+  if (msg.rfind("[error]", 0) == 0)
+    msg = trim(msg.substr(7));
+  while (msg.rfind("toml::", 0) == 0) {
+    const auto colon = msg.find(": ");
+    if (colon == std::string::npos)
+      break;
+    msg = trim(msg.substr(colon + 2));
+  }
+  while (!msg.empty() && (msg.back() == '.' || msg.back() == ' '))
+    msg.pop_back();
+  if (msg.empty())
+    msg = "invalid TOML";
+  if (src_line == 0)
+    src_line = fallback_line;
+  std::string out = file + ": line " + std::to_string(src_line) + ": TOML syntax error: " + msg;
+  if (!src_text.empty()) {
+    if (src_text.size() > 60)
+      src_text = src_text.substr(0, 57) + "...";
+    out += "; found '" + src_text + "'";
+    if (!note.empty() && note != "here")
+      out += " (" + note + ")";
+  }
+  return one_line(out);
+}
+
+value parse_toml(const std::string &text, const std::string &file) {
+  std::istringstream in(text);
+  try {
+    return toml::parse(in, file);
+  } catch (const toml::syntax_error &e) {
+    throw input_error(condense_syntax_error(e.what(), file, e.location().line()));
+  } catch (const toml::exception &e) {
+    throw input_error(condense_syntax_error(e.what(), file, e.location().line()));
+  } catch (const std::exception &e) {
+    throw input_error(one_line(file + ": TOML syntax error: " + e.what()));
+  }
+}
+
+// ---- validation context -------------------------------------------------------------------------
+
+class Ctx {
+public:
+  explicit Ctx(std::string file) : file_(std::move(file)) {}
+
+  // Remember that the value at `key` (section.key) came from `--set '<text>'`.
+  void from_override(const std::string &key, const std::string &text) { set_[key] = text; }
+
+  [[noreturn]] void fail(const std::string &key, const std::string &message) const {
+    // array entries ("domain.size[1]") come from where their array came from
+    const auto it = set_.find(key.substr(0, key.find('[')));
+    if (it != set_.end())
+      throw input_error(
+          one_line(set_source(it->second) + ": " + message + " (overriding " + file_ + ")"));
+    throw input_error(one_line(file_ + ": " + message));
+  }
+
+  [[noreturn]] void fail_set(const std::string &text, const std::string &message) const {
+    throw input_error(one_line(set_source(text) + ": " + message + " (overriding " + file_ + ")"));
+  }
+
+  [[noreturn]] void wrong_type(const std::string &key, const value &v,
+                               const std::string &allowed) const {
+    fail(key, key + ": found " + repr(v) + " (" + type_name(v) + "); allowed: " + allowed);
+  }
+
+  [[noreturn]] void out_of_range(const std::string &key, const value &v,
+                                 const std::string &allowed) const {
+    fail(key, key + " = " + repr(v) + " is out of range; allowed: " + allowed);
+  }
+
+  [[noreturn]] void missing(const std::string &key, const std::string &allowed) const {
+    fail(key, "missing required key '" + key + "'; allowed: " + allowed);
+  }
+
+  const std::string &file() const { return file_; }
+
+private:
+  static std::string set_source(const std::string &text) { return "--set '" + text + "'"; }
+
+  std::string file_;
+  std::map<std::string, std::string> set_;
+};
+
+// The unknown-key message for `key` in section `sec` (sec == nullptr: a top-level name).
+std::string unknown_key_message(const std::string &section, const std::string &key) {
+  const Section *sec = find_section(section);
+  std::vector<std::string> allowed(sec->keys.begin(), sec->keys.end());
+  std::string msg = "unknown key '" + section + "." + key + "'; allowed keys in [" + section +
+                    "]: " + join(allowed);
+  std::string hint = closest(key, allowed);
+  if (!hint.empty()) {
+    msg += "; did you mean '" + section + "." + hint + "'?";
+  } else {
+    for (const auto &other : schema())
+      for (const char *k : other.keys)
+        if (key == k && section != other.name) {
+          msg += "; did you mean '" + std::string(other.name) + "." + key + "' (in [" + other.name +
+                 "])?";
+          return msg;
+        }
+  }
+  return msg;
+}
+
+std::vector<std::string> section_names() {
+  std::vector<std::string> names;
+  for (const auto &sec : schema())
+    names.emplace_back(sec.name);
+  return names;
+}
+
+std::string walls_message(const std::string &what) {
+  return what +
+         " is not available yet in this version (walls come in a later version); "
+         "allowed sections: " +
+         join(section_names()) + " (the domain is periodic along every axis)";
+}
+
+std::string unknown_section_message(const std::string &name, const value &v) {
+  std::string msg = v.is_table() ? "unknown section [" + name + "]"
+                                 : "unknown key '" + name + "' at the top level";
+  msg += "; allowed sections: " + join(section_names());
+  const std::string hint = closest(name, section_names());
+  if (!hint.empty())
+    msg += "; did you mean [" + hint + "]?";
+  else
+    for (const auto &sec : schema())
+      for (const char *k : sec.keys)
+        if (name == k) {
+          msg += "; did you mean '" + std::string(sec.name) + "." + name + "' (in [" + sec.name +
+                 "])?";
+          return msg;
+        }
+  return msg;
+}
+
+// Keys of a table in the order they appear in the file (ties: by name).
+std::vector<std::pair<std::string, const value *>> in_file_order(const value &table) {
+  std::vector<std::pair<std::string, const value *>> items;
+  for (const auto &[k, v] : table.as_table())
+    items.emplace_back(k, &v);
+  std::sort(items.begin(), items.end(), [](const auto &a, const auto &b) {
+    const auto la = a.second->location().line(), lb = b.second->location().line();
+    return la != lb ? la < lb : a.first < b.first;
+  });
+  return items;
+}
+
+// ---- typed getters ------------------------------------------------------------------------------
+
+const value *find(const value *table, const char *key) {
+  if (table == nullptr)
+    return nullptr;
+  const auto &t = table->as_table();
+  const auto it = t.find(key);
+  return it == t.end() ? nullptr : &it->second;
+}
+
+// A number (integers accepted) that must be finite and satisfy ok(x).
+template <class Pred>
+double as_number(const Ctx &c, const value &v, const std::string &key, const std::string &allowed,
+                 Pred ok) {
+  double x = 0.0;
+  if (v.is_integer())
+    x = static_cast<double>(v.as_integer());
+  else if (v.is_floating())
+    x = v.as_floating();
+  else
+    c.wrong_type(key, v, allowed);
+  if (!std::isfinite(x) || !ok(x))
+    c.out_of_range(key, v, allowed);
+  return x;
+}
+
+template <class Pred>
+std::int64_t as_integer(const Ctx &c, const value &v, const std::string &key,
+                        const std::string &allowed, Pred ok) {
+  if (!v.is_integer())
+    c.wrong_type(key, v, allowed);
+  const std::int64_t n = v.as_integer();
+  if (!ok(n))
+    c.out_of_range(key, v, allowed);
+  return n;
+}
+
+std::string as_string(const Ctx &c, const value &v, const std::string &key,
+                      const std::string &allowed) {
+  if (!v.is_string())
+    c.wrong_type(key, v, allowed);
+  return v.as_string().str;
+}
+
+// A string naming one of `names`; returns its index.
+std::size_t as_choice(const Ctx &c, const value &v, const std::string &key, const char *what,
+                      const std::vector<std::string> &names) {
+  const std::string allowed = join(names);
+  const std::string s = as_string(c, v, key, "one of " + allowed);
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (s == names[i])
+      return i;
+  std::string msg = key + " = " + repr(v) + " is not " + what + "; allowed: " + allowed;
+  const std::string hint = closest(s, names);
+  if (!hint.empty())
+    msg += "; did you mean \"" + hint + "\"?";
+  c.fail(key, msg);
+}
+
+// ---- sections -----------------------------------------------------------------------------------
+
+const value *section(const Ctx &c, const value &root, const char *name) {
+  const value *sec = find(&root, name);
+  if (sec != nullptr && !sec->is_table())
+    c.wrong_type(name, *sec, std::string("a table [") + name + "]");
+  return sec;
+}
+
+void check_keys(const Ctx &c, const value *sec, const char *name) {
+  if (sec == nullptr)
+    return;
+  const Section *schema_sec = find_section(name);
+  for (const auto &[k, v] : in_file_order(*sec)) {
+    (void)v;
+    if (std::none_of(schema_sec->keys.begin(), schema_sec->keys.end(),
+                     [&k = k](const char *allowed) { return k == allowed; }))
+      c.fail(std::string(name) + "." + k, unknown_key_message(name, k));
+  }
+}
+
+Engine parse_engine(const Ctx &c, const value *run) {
+  const value *v = find(run, "engine");
+  if (v == nullptr)
+    return Engine::mpcd;
+  const std::vector<std::string> names{"mpcd", "lgca", "kmc", "continuum"};
+  const std::string s = as_string(c, *v, "run.engine", "one of " + join(names));
+  if (s == "mpcd")
+    return Engine::mpcd;
+  if (std::find(names.begin(), names.end(), s) != names.end())
+    c.fail("run.engine", "run.engine = " + repr(*v) +
+                             " is not available yet in this version; allowed (available): mpcd");
+  std::string msg = "run.engine = " + repr(*v) + " is not a known engine; allowed: mpcd (" +
+                    "lgca, kmc and continuum are not available yet in this version)";
+  const std::string hint = closest(s, names);
+  if (!hint.empty())
+    msg += "; did you mean \"" + hint + "\"?";
+  c.fail("run.engine", msg);
+}
+
+void parse_run(const Ctx &c, const value *run, Run &out) {
+  check_keys(c, run, "run");
+
+  const std::string dims_allowed = "2 or 3";
+  if (const value *v = find(run, "dimensions"))
+    out.dimensions =
+        static_cast<int>(as_integer(c, *v, "run.dimensions", "an integer, " + dims_allowed,
+                                    [](std::int64_t n) { return n == 2 || n == 3; }));
+  else
+    c.missing("run.dimensions", dims_allowed);
+
+  const std::string seed_allowed = "an integer >= 0";
+  if (const value *v = find(run, "seed"))
+    out.seed = static_cast<std::uint64_t>(
+        as_integer(c, *v, "run.seed", seed_allowed, [](std::int64_t n) { return n >= 0; }));
+
+  const std::string steps_allowed = "an integer >= 0 (the step at which the run ends)";
+  if (const value *v = find(run, "steps"))
+    out.steps =
+        as_integer(c, *v, "run.steps", steps_allowed, [](std::int64_t n) { return n >= 0; });
+  else
+    c.missing("run.steps", steps_allowed);
+}
+
+void parse_domain(const Ctx &c, const value *domain, int dims, Domain &out) {
+  check_keys(c, domain, "domain");
+  const std::string per_axis = "whole numbers of cells from 2 to " +
+                               std::to_string(max_cells_per_axis) +
+                               " (the collision cells have size 1)";
+  const std::string allowed = "an array of " + std::to_string(dims) + " " + per_axis;
+  const value *v = find(domain, "size");
+  if (v == nullptr)
+    c.missing("domain.size", allowed);
+  if (!v->is_array())
+    c.wrong_type("domain.size", *v, allowed);
+  const auto &a = v->as_array();
+  if (static_cast<int>(a.size()) != dims)
+    c.fail("domain.size", "domain.size = " + repr(*v) + " has " + std::to_string(a.size()) +
+                              (a.size() == 1 ? " entry" : " entries") +
+                              "; allowed: " + std::to_string(dims) +
+                              " entries (run.dimensions = " + std::to_string(dims) + ")");
+  out.size = {0.0, 0.0, 0.0};
+  for (int d = 0; d < dims; ++d) {
+    const std::string key = "domain.size[" + std::to_string(d) + "]";
+    const double x = as_number(c, a[d], key, per_axis, [](double) { return true; });
+    if (x != std::floor(x))
+      c.fail(key,
+             key + " = " + repr(a[d]) + " is not a whole number of cells; allowed: " + per_axis);
+    if (x < 2.0 || x > static_cast<double>(max_cells_per_axis))
+      c.out_of_range(key, a[d], per_axis);
+    out.size[d] = x;
+  }
+}
+
+void parse_fluid(const Ctx &c, const value *fluid, const Domain &domain, int dims, Fluid &out) {
+  const std::vector<std::string> rules{"srd", "at", "at+a", "random-permute", "random-maxwell"};
+  if (fluid == nullptr)
+    c.fail("fluid", "missing required section [fluid]; allowed keys in [fluid]: " +
+                        join(std::vector<std::string>(find_section("fluid")->keys.begin(),
+                                                      find_section("fluid")->keys.end())) +
+                        " (collision and dt are required)");
+  check_keys(c, fluid, "fluid");
+
+  if (const value *v = find(fluid, "collision")) {
+    const std::size_t i = as_choice(c, *v, "fluid.collision", "a known collision rule", rules);
+    constexpr std::array<Collision, 5> values{Collision::srd, Collision::at, Collision::at_a,
+                                              Collision::random_permute, Collision::random_maxwell};
+    out.collision = values[i];
+  } else {
+    c.missing("fluid.collision", join(rules));
+  }
+
+  const std::string density_allowed = "a number > 0 (mean particles per cell)";
+  if (const value *v = find(fluid, "density")) {
+    out.density =
+        as_number(c, *v, "fluid.density", density_allowed, [](double x) { return x > 0.0; });
+    double cells = 1.0;
+    for (int d = 0; d < dims; ++d)
+      cells *= domain.size[d];
+    const double total = out.density * cells;
+    if (!(total < max_particles)) {
+      std::ostringstream os;
+      os << "fluid.density = " << repr(*v) << " gives " << total << " particles in " << cells
+         << " cells; allowed: fewer than 2^40 (1099511627776) particles in total";
+      c.fail("fluid.density", os.str());
+    }
+  } else {
+    double cells = 1.0;
+    for (int d = 0; d < dims; ++d)
+      cells *= domain.size[d];
+    if (!(out.density * cells < max_particles))
+      c.fail("domain.size", "domain.size with the default fluid.density = 10 gives more than "
+                            "2^40 particles; allowed: fewer than 2^40 (1099511627776) in total");
+  }
+
+  const std::string dt_allowed = "a number > 0 (the collision time step)";
+  if (const value *v = find(fluid, "dt"))
+    out.dt = as_number(c, *v, "fluid.dt", dt_allowed, [](double x) { return x > 0.0; });
+  else
+    c.missing("fluid.dt", dt_allowed);
+
+  // The rotation angle only matters for srd; with the other rules it is accepted and ignored, so
+  // a sweep over collision rules can keep one scene.
+  if (const value *v = find(fluid, "angle"))
+    out.angle_deg = as_number(c, *v, "fluid.angle", "0 < angle < 360 (degrees)",
+                              [](double x) { return x > 0.0 && x < 360.0; });
+
+  if (const value *v = find(fluid, "kT"))
+    out.kT = as_number(c, *v, "fluid.kT", "a number > 0", [](double x) { return x > 0.0; });
+
+  if (const value *v = find(fluid, "sort_every"))
+    out.sort_every = static_cast<int>(
+        as_integer(c, *v, "fluid.sort_every", "an integer from 0 (never sort) to 2147483647",
+                   [](std::int64_t n) { return n >= 0 && n <= std::numeric_limits<int>::max(); }));
+}
+
+std::optional<BodyForce> parse_body_force(const Ctx &c, const value *bf, int dims) {
+  if (bf == nullptr)
+    return std::nullopt;
+  check_keys(c, bf, "body_force");
+  BodyForce out;
+  const value *kind = find(bf, "kind");
+  const value *val = find(bf, "value");
+  const value *amp = find(bf, "amplitude");
+  if (kind != nullptr) {
+    const std::size_t i =
+        as_choice(c, *kind, "body_force.kind", "a known body force kind", {"constant", "sine"});
+    out.kind = i == 0 ? ForceKind::constant : ForceKind::sine;
+  }
+  const std::string vec_allowed =
+      "an array of " + std::to_string(dims) + " finite numbers (the acceleration vector)";
+  if (out.kind == ForceKind::constant) {
+    if (amp != nullptr)
+      c.fail("body_force.amplitude",
+             "body_force.amplitude = " + repr(*amp) +
+                 " needs body_force.kind = \"sine\"; allowed: either value = [ax, ay" +
+                 (dims == 3 ? ", az" : "") + "] (constant) or kind = \"sine\", amplitude = A");
+    if (val == nullptr)
+      c.missing("body_force.value", vec_allowed + ", or kind = \"sine\" with amplitude");
+    if (!val->is_array())
+      c.wrong_type("body_force.value", *val, vec_allowed);
+    const auto &a = val->as_array();
+    if (static_cast<int>(a.size()) != dims)
+      c.fail("body_force.value",
+             "body_force.value = " + repr(*val) + " has " + std::to_string(a.size()) +
+                 (a.size() == 1 ? " entry" : " entries") + "; allowed: " + std::to_string(dims) +
+                 " entries (run.dimensions = " + std::to_string(dims) + ")");
+    for (int d = 0; d < dims; ++d)
+      out.value[d] = as_number(c, a[d], "body_force.value[" + std::to_string(d) + "]",
+                               "a finite number", [](double) { return true; });
+  } else {
+    if (val != nullptr)
+      c.fail("body_force.value", "body_force.value = " + repr(*val) +
+                                     " cannot be mixed with body_force.kind = \"sine\"; allowed: "
+                                     "either value = [...] (constant) or kind = \"sine\", "
+                                     "amplitude = A");
+    const std::string amp_allowed = "a finite number (a_x = amplitude * sin(2 pi y / L_y))";
+    if (amp == nullptr)
+      c.missing("body_force.amplitude", amp_allowed);
+    out.amplitude =
+        as_number(c, *amp, "body_force.amplitude", amp_allowed, [](double) { return true; });
+  }
+  return out;
+}
+
+void parse_output(const Ctx &c, const value *o, Output &out) {
+  check_keys(c, o, "output");
+  if (const value *v = find(o, "dir")) {
+    out.dir = as_string(c, *v, "output.dir", "a non-empty directory path");
+    if (out.dir.empty())
+      c.out_of_range("output.dir", *v, "a non-empty directory path");
+  }
+  if (const value *v = find(o, "every"))
+    out.every = as_integer(c, *v, "output.every", "an integer >= 1 (steps)",
+                           [](std::int64_t n) { return n >= 1; });
+  if (const value *v = find(o, "observables")) {
+    const std::vector<std::string> names(std::begin(all_observables), std::end(all_observables));
+    const std::string allowed = "an array of strings from: " + join(names);
+    if (!v->is_array())
+      c.wrong_type("output.observables", *v, allowed);
+    out.observables.clear();
+    const auto &a = v->as_array();
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      const std::string key = "output.observables[" + std::to_string(i) + "]";
+      const std::string s = names[as_choice(c, a[i], key, "a known observable", names)];
+      if (std::find(out.observables.begin(), out.observables.end(), s) != out.observables.end())
+        c.fail(key, key + " = " + repr(a[i]) +
+                        " is listed twice; allowed: each observable at most once");
+      out.observables.push_back(s);
+    }
+  }
+  if (const value *v = find(o, "checkpoint_every"))
+    out.checkpoint_every =
+        as_integer(c, *v, "output.checkpoint_every", "an integer >= 0 (0 = only at the end)",
+                   [](std::int64_t n) { return n >= 0; });
+  if (const value *v = find(o, "progress")) {
+    if (!v->is_boolean())
+      c.wrong_type("output.progress", *v, "true or false");
+    out.progress = v->as_boolean();
+  }
+}
+
+// ---- overrides ----------------------------------------------------------------------------------
+
+// Applies one "--set a.b=value" to the parsed scene.
+void apply_override(Ctx &c, value &root, const std::string &text) {
+  const auto eq = text.find('=');
+  std::vector<std::string> parts;
+  if (eq != std::string::npos) {
+    const std::string path = trim(std::string_view(text).substr(0, eq));
+    std::size_t start = 0;
+    while (true) {
+      const auto dot = path.find('.', start);
+      parts.push_back(trim(path.substr(start, dot == std::string::npos ? dot : dot - start)));
+      if (dot == std::string::npos)
+        break;
+      start = dot + 1;
+    }
+  }
+  if (eq == std::string::npos || parts.size() < 2 ||
+      std::any_of(parts.begin(), parts.end(), [](const std::string &p) { return p.empty(); }))
+    c.fail_set(text, "expected key.path=value (e.g. --set fluid.dt=0.05)");
+
+  const std::string key = parts[0] + "." + parts[1];
+  if (parts[0] == "walls")
+    c.fail_set(text, walls_message("section [walls]"));
+  const Section *sec = find_section(parts[0]);
+  if (sec == nullptr)
+    c.fail_set(text, "unknown key '" + join(parts, ".") +
+                         "'; allowed sections: " + join(section_names()) +
+                         (closest(parts[0], section_names()).empty()
+                              ? std::string()
+                              : "; did you mean [" + closest(parts[0], section_names()) + "]?"));
+  if (std::none_of(sec->keys.begin(), sec->keys.end(),
+                   [&](const char *k) { return parts[1] == k; }))
+    c.fail_set(text, unknown_key_message(parts[0], parts[1]));
+  if (parts.size() > 2)
+    c.fail_set(text, "unknown key '" + join(parts, ".") + "'; " + key +
+                         " has no sub-keys; allowed: --set " + key + "=value");
+
+  // The value: a TOML value if it parses as one, else the raw text as a string.
+  const std::string raw = trim(std::string_view(text).substr(eq + 1));
+  value parsed = raw;
+  try {
+    std::istringstream in("v = " + raw);
+    const value t = toml::parse(in, "--set");
+    if (t.is_table() && t.as_table().size() == 1 && t.contains("v"))
+      parsed = t.at("v");
+  } catch (const std::exception &) {
+    // not a TOML value: keep the bare word as a string
+  }
+
+  auto &table = root.as_table();
+  auto it = table.find(parts[0]);
+  if (it == table.end())
+    it = table.emplace(parts[0], toml::table{}).first;
+  if (!it->second.is_table())
+    c.fail_set(text, parts[0] + ": found " + repr(it->second) + " (" + type_name(it->second) +
+                         ") in the scene; allowed: a table [" + parts[0] + "]");
+  it->second.as_table()[parts[1]] = std::move(parsed);
+  c.from_override(key, text);
+}
+
+// ---- reading files ------------------------------------------------------------------------------
+
+std::string read_file(const std::string &path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw input_error(one_line(path + ": cannot open scene file (" + std::strerror(EISDIR) + ")"));
+  errno = 0;
+  std::FILE *f = std::fopen(path.c_str(), "rb");
+  if (f == nullptr)
+    throw input_error(one_line(path + ": cannot open scene file (" +
+                               std::strerror(errno ? errno : ENOENT) + ")"));
+  std::string text;
+  char buf[65536];
+  std::size_t n = 0;
+  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0)
+    text.append(buf, n);
+  const bool failed = std::ferror(f) != 0;
+  const int err = errno;
+  std::fclose(f);
+  if (failed)
+    throw input_error(
+        one_line(path + ": cannot read scene file (" + std::strerror(err ? err : EIO) + ")"));
+  return text;
+}
+
+} // namespace
+
+Scene load_scene(const std::string &path, const std::vector<std::string> &overrides) {
+  return parse_scene(read_file(path), path, overrides);
+}
+
+Scene parse_scene(const std::string &text, const std::string &file,
+                  const std::vector<std::string> &overrides) {
+  Ctx c(file);
+  value root = parse_toml(text, file);
+
+  Scene s;
+  s.file = file;
+  s.text = text;
+  for (const auto &o : overrides)
+    apply_override(c, root, o);
+  if (!overrides.empty()) {
+    if (!s.text.empty() && s.text.back() != '\n')
+      s.text += '\n';
+    for (const auto &o : overrides)
+      s.text += "# --set " + one_line(o) + "\n";
+  }
+
+  // The engine decides which sections exist, so it is checked first.
+  const value *run = section(c, root, "run");
+  s.run.engine = parse_engine(c, run);
+
+  for (const auto &[name, v] : in_file_order(root)) {
+    if (name == "walls")
+      c.fail("walls", walls_message("section [walls]"));
+    if (find_section(name) == nullptr)
+      c.fail(name, unknown_section_message(name, *v));
+  }
+
+  parse_run(c, run, s.run);
+  parse_domain(c, section(c, root, "domain"), s.run.dimensions, s.domain);
+  parse_fluid(c, section(c, root, "fluid"), s.domain, s.run.dimensions, s.fluid);
+  s.body_force = parse_body_force(c, section(c, root, "body_force"), s.run.dimensions);
+  parse_output(c, section(c, root, "output"), s.output);
+  return s;
+}
+
+} // namespace narrows::scene

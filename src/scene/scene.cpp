@@ -1,0 +1,36 @@
+// Names of the scene enums, as written in scene files and shown in messages.
+#include "narrows/scene/scene.hpp"
+
+namespace narrows::scene {
+
+const char *to_string(Engine e) {
+  switch (e) {
+  case Engine::mpcd:
+    return "mpcd";
+  case Engine::lgca:
+    return "lgca";
+  case Engine::kmc:
+    return "kmc";
+  case Engine::continuum:
+    return "continuum";
+  }
+  return "unknown";
+}
+
+const char *to_string(Collision c) {
+  switch (c) {
+  case Collision::srd:
+    return "srd";
+  case Collision::at:
+    return "at";
+  case Collision::at_a:
+    return "at+a";
+  case Collision::random_permute:
+    return "random-permute";
+  case Collision::random_maxwell:
+    return "random-maxwell";
+  }
+  return "unknown";
+}
+
+} // namespace narrows::scene

@@ -1,0 +1,115 @@
+// Two-rank tests of what every rank must agree on without talking (grid shift) and of the
+// reductions behind observables and invariant checks.
+#include "narrows/analysis/fluid_observables.hpp"
+#include "narrows/core/error.hpp"
+#include "narrows/engine/invariants.hpp"
+#include "narrows/engine/mpcd_simulation.hpp"
+#include "narrows/mpcd/cell_grid.hpp"
+
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <algorithm>
+#include <cstring>
+
+using namespace narrows;
+
+namespace {
+
+int rank() {
+  int r = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  return r;
+}
+int size() {
+  int s = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &s);
+  return s;
+}
+
+scene::Scene small_scene(int dim) {
+  scene::Scene s;
+  s.run.dimensions = dim;
+  s.run.seed = 9;
+  s.domain.size = {12.0, 8.0, dim == 3 ? 6.0 : 0.0};
+  s.fluid.density = 7.0;
+  s.fluid.dt = 0.5;
+  return s;
+}
+
+// Keeps the particles of `f` whose index i satisfies i % ranks == rank, reversed, so each
+// rank holds a share in an order unlike the serial one.
+void keep_share(mpcd::Fluid &f) {
+  mpcd::Fluid g;
+  g.dim = f.dim;
+  std::vector<std::size_t> mine;
+  for (std::size_t i = 0; i < f.size(); ++i)
+    if (static_cast<int>(i % size()) == rank())
+      mine.push_back(i);
+  std::reverse(mine.begin(), mine.end());
+  g.resize(mine.size());
+  for (std::size_t j = 0; j < mine.size(); ++j) {
+    for (int k = 0; k < f.dim; ++k) {
+      g.x[k][j] = f.x[k][mine[j]];
+      g.v[k][j] = f.v[k][mine[j]];
+    }
+    g.id[j] = f.id[mine[j]];
+  }
+  f = std::move(g);
+}
+
+} // namespace
+
+TEST(TwoRanks, RunsOnTwoRanks) { EXPECT_EQ(size(), 2); }
+
+TEST(TwoRanks, GridShiftAgreesWithoutMessages) {
+  for (std::uint64_t step : {0ull, 1ull, 77ull, 1ull << 33}) {
+    const auto s = mpcd::grid_shift(42, step, 3);
+    double all[6];
+    MPI_Allgather(s.data(), 3, MPI_DOUBLE, all, 3, MPI_DOUBLE, MPI_COMM_WORLD);
+    EXPECT_EQ(std::memcmp(all, all + 3, 3 * sizeof(double)), 0) << "step " << step;
+  }
+}
+
+TEST(TwoRanks, MomentumSumIsBitwiseRankIndependent) {
+  for (int dim : {2, 3}) {
+    engine::MpcdSimulation serial(small_scene(dim), MPI_COMM_SELF);
+    for (int i = 0; i < 5; ++i)
+      serial.advance();
+    const auto p1 = analysis::total_momentum(serial.fluid(), MPI_COMM_SELF);
+    mpcd::Fluid shared = serial.fluid();
+    keep_share(shared);
+    const auto p2 = analysis::total_momentum(shared, MPI_COMM_WORLD);
+    EXPECT_EQ(p1.count, p2.count);
+    for (int k = 0; k < 3; ++k)
+      EXPECT_EQ(p1.fixed[k], p2.fixed[k]) << "dim " << dim << " axis " << k;
+    const double t1 = analysis::temperature(serial.fluid(), MPI_COMM_SELF);
+    const double t2 = analysis::temperature(shared, MPI_COMM_WORLD);
+    EXPECT_NEAR(t1, t2, 1e-12 * t1);
+  }
+}
+
+TEST(TwoRanks, InvariantCheckSeesAParticleLostOnOneRank) {
+  engine::MpcdSimulation sim(small_scene(2), MPI_COMM_WORLD);
+  // Each rank keeps its share: together they hold the whole fluid once.
+  keep_share(sim.fluid());
+  const engine::InvariantCheck check(sim);
+  EXPECT_NO_THROW(check.check(sim));
+  if (rank() == 1) { // lose one particle on rank 1 only
+    auto &f = sim.fluid();
+    const std::size_t n = f.size() - 1;
+    for (int k = 0; k < f.dim; ++k) {
+      f.x[k].resize(n);
+      f.v[k].resize(n);
+    }
+    f.id.resize(n);
+    f.cell.resize(n);
+  }
+  try {
+    check.check(sim);
+    ADD_FAILURE() << "lost particle not detected";
+  } catch (const Error &e) {
+    EXPECT_EQ(e.code(), ExitCode::invariant);
+    EXPECT_NE(std::string(e.what()).find("particle count"), std::string::npos) << e.what();
+  }
+}

@@ -1,0 +1,367 @@
+// Scene reader: good scenes, defaults, --set overrides, and one-line errors for bad scenes.
+#include "narrows/core/error.hpp"
+#include "narrows/scene/parse.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace narrows;
+using namespace narrows::scene;
+
+const std::string good_scene = R"(
+[run]
+engine = "mpcd"
+dimensions = 2
+seed = 7
+steps = 20000
+
+[domain]
+size = [200.0, 20]
+
+[fluid]
+collision = "srd"
+density = 5
+dt = 0.1
+angle = 130.0
+kT = 1.0
+
+[body_force]
+value = [0.001, 0.0]
+
+[output]
+dir = "results"
+every = 50
+observables = ["temperature", "velocity_profile"]
+checkpoint_every = 1000
+progress = false
+)";
+
+const std::string minimal_scene = R"(
+[run]
+dimensions = 3
+steps = 10
+
+[domain]
+size = [8, 8, 8]
+
+[fluid]
+collision = "at+a"
+dt = 0.05
+)";
+
+// Parses `text` as file "bad.toml" and returns the error message; fails the test unless a
+// narrows::Error with ExitCode::bad_input is thrown whose message is one line naming the file
+// and every string in `must_contain`.
+std::string bad(const std::string &text, const std::vector<std::string> &must_contain,
+                const std::vector<std::string> &overrides = {},
+                const std::string &file = "run/bad.toml") {
+  try {
+    parse_scene(text, file, overrides);
+  } catch (const Error &e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(e.code(), ExitCode::bad_input) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+    EXPECT_EQ(msg.find('\r'), std::string::npos) << msg;
+    EXPECT_NE(msg.find(file), std::string::npos) << msg;
+    for (const auto &s : must_contain)
+      EXPECT_NE(msg.find(s), std::string::npos) << "missing '" << s << "' in: " << msg;
+    return msg;
+  } catch (const std::exception &e) {
+    ADD_FAILURE() << "wrong exception type: " << e.what();
+    return {};
+  }
+  ADD_FAILURE() << "no error for:\n" << text;
+  return {};
+}
+
+// The minimal scene with one line replaced (matched by its key) or appended.
+std::string with(const std::string &section, const std::string &line,
+                 const std::string &base = minimal_scene) {
+  const std::string header = "[" + section + "]\n";
+  std::string text = base;
+  const auto at = text.find(header);
+  if (at == std::string::npos)
+    return text + "\n" + header + line + "\n";
+  const auto key = line.substr(0, line.find(' '));
+  const auto body = at + header.size();
+  const auto end = text.find("\n[", body);
+  const auto found = text.find("\n" + key + " ", body - 1);
+  if (found != std::string::npos && (end == std::string::npos || found < end)) {
+    const auto eol = text.find('\n', found + 1);
+    text.replace(found + 1, eol - found - 1, line);
+  } else {
+    text.insert(body, line + "\n");
+  }
+  return text;
+}
+
+// ---- good scenes --------------------------------------------------------------------------------
+
+TEST(Scene, GoodSceneParsesWithItsValues) {
+  const Scene s = parse_scene(good_scene, "run/good.toml");
+  EXPECT_EQ(s.file, "run/good.toml");
+  EXPECT_EQ(s.text, good_scene);
+  EXPECT_EQ(s.run.engine, Engine::mpcd);
+  EXPECT_EQ(s.run.dimensions, 2);
+  EXPECT_EQ(s.run.seed, 7u);
+  EXPECT_EQ(s.run.steps, 20000);
+  EXPECT_DOUBLE_EQ(s.domain.size[0], 200.0);
+  EXPECT_DOUBLE_EQ(s.domain.size[1], 20.0);
+  EXPECT_DOUBLE_EQ(s.domain.size[2], 0.0);
+  EXPECT_EQ(s.fluid.collision, Collision::srd);
+  EXPECT_DOUBLE_EQ(s.fluid.density, 5.0);
+  EXPECT_DOUBLE_EQ(s.fluid.dt, 0.1);
+  EXPECT_DOUBLE_EQ(s.fluid.angle_deg, 130.0);
+  EXPECT_DOUBLE_EQ(s.fluid.kT, 1.0);
+  EXPECT_EQ(s.fluid.sort_every, 20);
+  ASSERT_TRUE(s.body_force.has_value());
+  EXPECT_EQ(s.body_force->kind, ForceKind::constant);
+  EXPECT_DOUBLE_EQ(s.body_force->value[0], 0.001);
+  EXPECT_DOUBLE_EQ(s.body_force->value[1], 0.0);
+  EXPECT_EQ(s.output.dir, "results");
+  EXPECT_EQ(s.output.every, 50);
+  EXPECT_EQ(s.output.observables, (std::vector<std::string>{"temperature", "velocity_profile"}));
+  EXPECT_EQ(s.output.checkpoint_every, 1000);
+  EXPECT_FALSE(s.output.progress);
+}
+
+TEST(Scene, DefaultsFillOptionalKeys) {
+  const Scene s = parse_scene(minimal_scene, "min.toml");
+  EXPECT_EQ(s.run.engine, Engine::mpcd);
+  EXPECT_EQ(s.run.dimensions, 3);
+  EXPECT_EQ(s.run.seed, 42u);
+  EXPECT_EQ(s.run.steps, 10);
+  EXPECT_DOUBLE_EQ(s.domain.size[2], 8.0);
+  EXPECT_EQ(s.fluid.collision, Collision::at_a);
+  EXPECT_DOUBLE_EQ(s.fluid.density, 10.0);
+  EXPECT_DOUBLE_EQ(s.fluid.dt, 0.05);
+  EXPECT_DOUBLE_EQ(s.fluid.angle_deg, 90.0);
+  EXPECT_DOUBLE_EQ(s.fluid.kT, 1.0);
+  EXPECT_EQ(s.fluid.sort_every, 20);
+  EXPECT_FALSE(s.body_force.has_value());
+  EXPECT_EQ(s.output.dir, "out");
+  EXPECT_EQ(s.output.every, 100);
+  EXPECT_EQ(s.output.observables.size(), 4u);
+  EXPECT_EQ(s.output.checkpoint_every, 0);
+  EXPECT_TRUE(s.output.progress);
+}
+
+TEST(Scene, SineBodyForce) {
+  const Scene s = parse_scene(minimal_scene + "\n[body_force]\nkind = \"sine\"\namplitude = 0.01\n",
+                              "sine.toml");
+  ASSERT_TRUE(s.body_force.has_value());
+  EXPECT_EQ(s.body_force->kind, ForceKind::sine);
+  EXPECT_DOUBLE_EQ(s.body_force->amplitude, 0.01);
+}
+
+TEST(Scene, AllCollisionRulesAndNames) {
+  for (const Collision c : {Collision::srd, Collision::at, Collision::at_a,
+                            Collision::random_permute, Collision::random_maxwell}) {
+    const Scene s =
+        parse_scene(minimal_scene, "c.toml", {std::string("fluid.collision=") + to_string(c)});
+    EXPECT_EQ(s.fluid.collision, c) << to_string(c);
+  }
+  EXPECT_STREQ(to_string(Engine::mpcd), "mpcd");
+  EXPECT_STREQ(to_string(Engine::continuum), "continuum");
+}
+
+TEST(Scene, LoadSceneReadsAFile) {
+  const auto path = std::filesystem::temp_directory_path() / "narrows_test_scene_load.toml";
+  {
+    std::ofstream out(path);
+    out << good_scene;
+  }
+  const Scene s = load_scene(path.string(), {"run.steps=5"});
+  std::filesystem::remove(path);
+  EXPECT_EQ(s.file, path.string());
+  EXPECT_EQ(s.run.steps, 5);
+  EXPECT_EQ(s.text.rfind(good_scene, 0), 0u);
+}
+
+// ---- overrides ----------------------------------------------------------------------------------
+
+TEST(SceneOverrides, NumberArrayBareWordAndBool) {
+  const Scene s =
+      parse_scene(good_scene, "run/good.toml",
+                  {"fluid.dt=0.05", "run.steps=2000", "domain.size=[32.0,64.0]",
+                   "fluid.collision=at+a", "output.progress=true", "fluid.density = 3"});
+  EXPECT_DOUBLE_EQ(s.fluid.dt, 0.05);
+  EXPECT_EQ(s.run.steps, 2000);
+  EXPECT_DOUBLE_EQ(s.domain.size[0], 32.0);
+  EXPECT_DOUBLE_EQ(s.domain.size[1], 64.0);
+  EXPECT_EQ(s.fluid.collision, Collision::at_a);
+  EXPECT_TRUE(s.output.progress);
+  EXPECT_DOUBLE_EQ(s.fluid.density, 3.0);
+}
+
+TEST(SceneOverrides, QuotedStringAndNewSection) {
+  const Scene s = parse_scene(minimal_scene, "min.toml",
+                              {"output.dir=\"sweep/a b\"", "body_force.kind=sine",
+                               "body_force.amplitude=0.02", "output.observables=[\"momentum\"]"});
+  EXPECT_EQ(s.output.dir, "sweep/a b");
+  ASSERT_TRUE(s.body_force.has_value());
+  EXPECT_EQ(s.body_force->kind, ForceKind::sine);
+  EXPECT_DOUBLE_EQ(s.body_force->amplitude, 0.02);
+  EXPECT_EQ(s.output.observables, std::vector<std::string>{"momentum"});
+}
+
+TEST(SceneOverrides, LaterOverrideWins) {
+  const Scene s = parse_scene(minimal_scene, "min.toml", {"run.seed=1", "run.seed=2"});
+  EXPECT_EQ(s.run.seed, 2u);
+}
+
+TEST(SceneOverrides, TextRecordsOverridesAsComments) {
+  const Scene s = parse_scene(minimal_scene, "min.toml", {"fluid.dt=0.05", "run.steps=7"});
+  EXPECT_EQ(s.text, minimal_scene + "# --set fluid.dt=0.05\n# --set run.steps=7\n");
+}
+
+// ---- bad scenes ---------------------------------------------------------------------------------
+
+TEST(SceneErrors, UnknownKeyWithHint) {
+  const auto msg = bad(with("fluid", "desnity = 3"), {"fluid.desnity", "allowed keys in [fluid]"});
+  EXPECT_NE(msg.find("did you mean 'fluid.density'"), std::string::npos) << msg;
+}
+
+TEST(SceneErrors, UnknownSection) { bad(minimal_scene + "\n[fluidd]\ndt = 1\n", {"fluidd"}); }
+
+TEST(SceneErrors, WrongTypeNamesTheTomlType) {
+  bad(with("fluid", "dt = \"fast\""), {"fluid.dt", "\"fast\"", "(string)"});
+  bad(with("output", "progress = 1"), {"output.progress", "(integer)"});
+}
+
+TEST(SceneErrors, FloatWhereIntegerExpected) {
+  bad(with("run", "steps = 2.5"), {"run.steps", "found 2.5 (float)", "allowed: an integer"});
+}
+
+TEST(SceneErrors, NegativeDensity) {
+  bad(with("fluid", "density = -1.0"), {"fluid.density = -1.0", "out of range", "> 0"});
+}
+
+TEST(SceneErrors, TooManyParticles) {
+  bad(with("fluid", "density = 1e9", with("domain", "size = [1000, 1000, 1000]")),
+      {"fluid.density", "2^40"});
+}
+
+TEST(SceneErrors, AngleOutOfRange) {
+  bad(with("fluid", "angle = 400.0"), {"fluid.angle = 400.0", "0 < angle < 360"});
+  bad(with("fluid", "angle = 0"), {"fluid.angle = 0", "0 < angle < 360"});
+}
+
+TEST(SceneErrors, DtNotPositive) {
+  bad(with("fluid", "dt = 0"), {"fluid.dt = 0", "> 0"});
+  bad(with("fluid", "dt = -0.1"), {"fluid.dt = -0.1", "> 0"});
+  bad(with("fluid", "dt = nan"), {"fluid.dt = nan"});
+}
+
+TEST(SceneErrors, DimensionsFour) { bad(with("run", "dimensions = 4"), {"run.dimensions = 4"}); }
+
+TEST(SceneErrors, SizeOfWrongLength) {
+  bad(with("domain", "size = [8, 8]"), {"domain.size", "2 entries", "3 entries"});
+}
+
+TEST(SceneErrors, NonIntegerSize) {
+  bad(with("domain", "size = [8, 8.5, 8]"), {"domain.size[1] = 8.5", "whole number"});
+  bad(with("domain", "size = [8, 1, 8]"), {"domain.size[1] = 1", "out of range"});
+  bad(with("domain", "size = [8, 8, \"8\"]"), {"domain.size[2]", "(string)"});
+}
+
+TEST(SceneErrors, UnknownCollisionRule) {
+  const auto msg =
+      bad(with("fluid", "collision = \"srdd\""), {"fluid.collision = \"srdd\"", "random-maxwell"});
+  EXPECT_NE(msg.find("did you mean \"srd\""), std::string::npos) << msg;
+}
+
+TEST(SceneErrors, MissingFluidSection) {
+  bad("[run]\ndimensions = 2\nsteps = 1\n[domain]\nsize = [4, 4]\n", {"[fluid]", "missing"});
+}
+
+TEST(SceneErrors, MissingSteps) {
+  bad("[run]\ndimensions = 2\n[domain]\nsize = [4, 4]\n[fluid]\ncollision = \"srd\"\ndt = 1\n",
+      {"run.steps", "missing"});
+}
+
+TEST(SceneErrors, NonExistentFile) {
+  const std::string path = "no/such/dir/scene.toml";
+  try {
+    load_scene(path);
+    FAIL() << "no error";
+  } catch (const Error &e) {
+    EXPECT_EQ(e.code(), ExitCode::bad_input);
+    EXPECT_EQ(std::string(e.what()), path + ": cannot open scene file (No such file or directory)");
+  }
+}
+
+TEST(SceneErrors, TomlSyntaxErrorCarriesLineNumber) {
+  const auto msg = bad("[run]\ndimensions = 2\nsteps = 10\n[fluid]\ndt = = 3\n", {"line 5"});
+  EXPECT_NE(msg.find("syntax"), std::string::npos) << msg;
+  bad("[run]\nsteps = 1\nsteps = 2\n", {"line 3", "steps"});
+  bad("[run]\nsize = [1,\n2\n", {"line "});
+}
+
+TEST(SceneErrors, BadSetPath) {
+  bad(minimal_scene, {"--set 'xyz': expected key.path=value"}, {"xyz"});
+  bad(minimal_scene, {"--set 'fluid.dt': expected key.path=value"}, {"fluid.dt"});
+  bad(minimal_scene, {"--set 'steps=3': expected key.path=value"}, {"steps=3"});
+  bad(minimal_scene, {"--set 'fluid..dt=3'"}, {"fluid..dt=3"});
+}
+
+TEST(SceneErrors, UnknownSetKeyNamesSet) {
+  const auto msg = bad(minimal_scene, {"--set 'fluid.desnity=3'", "unknown key 'fluid.desnity'"},
+                       {"fluid.desnity=3"});
+  EXPECT_EQ(msg.rfind("--set", 0), 0u) << msg;
+  bad(minimal_scene, {"--set 'fluidd.dt=3'", "fluidd.dt"}, {"fluidd.dt=3"});
+  bad(minimal_scene, {"--set 'fluid.dt.x=3'", "fluid.dt.x"}, {"fluid.dt.x=3"});
+}
+
+TEST(SceneErrors, BadSetValueNamesSet) {
+  const auto msg =
+      bad(minimal_scene, {"--set 'fluid.angle=400'", "fluid.angle = 400"}, {"fluid.angle=400"});
+  EXPECT_EQ(msg.rfind("--set", 0), 0u) << msg;
+  bad(minimal_scene, {"--set 'domain.size=[8,8]'", "domain.size"}, {"domain.size=[8,8]"});
+}
+
+TEST(SceneErrors, EngineNotAvailableYet) {
+  bad(with("run", "engine = \"lgca\""), {"run.engine = \"lgca\"", "not available yet", "mpcd"});
+  bad(with("run", "engine = \"lbm\""), {"run.engine = \"lbm\"", "mpcd"});
+}
+
+TEST(SceneErrors, WallsSectionNotAvailableYet) {
+  bad(minimal_scene + "\n[walls]\nslip = false\n", {"[walls]", "not available yet"});
+  bad(minimal_scene, {"[walls]", "not available yet"}, {"walls.slip=true"});
+}
+
+TEST(SceneErrors, BodyForceMixingValueAndSine) {
+  bad(minimal_scene + "\n[body_force]\nkind = \"sine\"\namplitude = 0.1\nvalue = [0, 0, 0]\n",
+      {"body_force.value", "sine"});
+  bad(minimal_scene + "\n[body_force]\nvalue = [0.1, 0]\n", {"body_force.value", "3 entries"});
+  bad(minimal_scene + "\n[body_force]\nkind = \"sine\"\n", {"body_force.amplitude", "missing"});
+  bad(minimal_scene + "\n[body_force]\nkind = \"swirl\"\n", {"body_force.kind", "sine"});
+}
+
+TEST(SceneErrors, BadOutputKeys) {
+  bad(with("output", "every = 0"), {"output.every = 0", ">= 1"});
+  bad(with("output", "observables = [\"pressure\"]"), {"output.observables[0]", "temperature"});
+  bad(with("output", "observables = \"temperature\""), {"output.observables", "(string)"});
+  bad(with("output", "checkpoint_every = -1"), {"output.checkpoint_every = -1"});
+}
+
+TEST(SceneErrors, BadRunKeys) {
+  bad(with("run", "seed = -1"), {"run.seed = -1", ">= 0"});
+  bad(with("run", "steps = -5"), {"run.steps = -5", ">= 0"});
+  bad(with("fluid", "sort_every = -1"), {"fluid.sort_every = -1"});
+  bad(with("fluid", "kT = 0"), {"fluid.kT = 0"});
+}
+
+TEST(SceneErrors, SectionThatIsNotATable) {
+  bad("fluid = 3\n" + minimal_scene.substr(0, minimal_scene.find("[fluid]")),
+      {"fluid", "(integer)", "a table"});
+}
+
+} // namespace

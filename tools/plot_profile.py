@@ -1,0 +1,202 @@
+#!/usr/bin/python3
+"""Plot the time-averaged x-velocity profile of a narrows run against Kolmogorov-flow theory.
+
+Usage: plot_profile.py OUTDIR [--png FILE]
+
+Reads OUTDIR/observables.h5: /observables/velocity_profile (value [T][bins][d], bin centres
+in .../bins), averaged over the second half of the samples, and the scene text in
+/parameters/scene. With a body force of kind "sine" (amplitude F0) the steady profile is
+u(y) = F0 L^2 / (4 pi^2 nu) sin(2 pi y / L), L = domain size along y; the script fits the
+amplitude of the measured profile, turns it into nu_measured and compares with the MPCD
+theory viscosity of the scene's collision rule. Writes a PNG (default OUTDIR/profile.png)
+and prints one line.
+"""
+
+import argparse
+import math
+import os
+import sys
+import tomllib
+
+import h5py
+import matplotlib
+import numpy as np
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402  (backend must be chosen first)
+
+
+class InputError(Exception):
+    pass
+
+
+def second_half(values):
+    """Samples T//2 ... T-1 (all of them if there is only one)."""
+    return values[len(values) // 2:] if len(values) > 1 else values
+
+
+def theory_viscosity(collision, dims, n, dt, angle_deg, kT):
+    """(nu, None) or (None, reason). MPCD units: cell size a = 1, particle mass m = 1."""
+    f = n - 1.0 + math.exp(-n)
+    alpha = math.radians(angle_deg)
+    if collision == "srd":
+        if dims == 2:
+            kinetic = 0.5 * kT * dt * (n / (f * math.sin(alpha) ** 2) - 1.0)
+            collisional = (1.0 / (12.0 * dt)) * (f / n) * (1.0 - math.cos(alpha))
+        else:
+            kinetic = 0.5 * kT * dt * (
+                5.0 * n / (f * (2.0 - math.cos(alpha) - math.cos(2.0 * alpha))) - 1.0)
+            collisional = (1.0 / (18.0 * dt)) * (f / n) * (1.0 - math.cos(alpha))
+        return kinetic + collisional, None
+    if collision == "at":
+        return kT * dt * (n / f - 0.5) + f / (12.0 * n * dt), None
+    if collision == "at+a":
+        if dims == 2:
+            return None, "no theory for at+a in 2D"
+        return kT * dt * (n / (n - 1.25) - 0.5) + (n - 1.4) / (24.0 * n * dt), None
+    return None, f"no theory for collision '{collision}'"
+
+
+def read_run(outdir):
+    path = os.path.join(outdir, "observables.h5")
+    if not os.path.isfile(path):
+        raise InputError(f"{path}: no such file")
+    if not h5py.is_hdf5(path):
+        raise InputError(f"{path}: not an HDF5 file")
+    with h5py.File(path, "r") as f:
+        if "observables/velocity_profile/value" not in f:
+            raise InputError(f"{path}: no /observables/velocity_profile (add it to "
+                             "output.observables)")
+        group = f["observables/velocity_profile"]
+        value = np.asarray(group["value"][()], dtype=float)
+        if value.shape[0] == 0:
+            raise InputError(f"{path}: /observables/velocity_profile has no samples")
+        if "bins" in group:
+            bins = np.asarray(group["bins"][()], dtype=float)
+        else:  # fall back to unit-width bins from y = 0
+            bins = np.arange(value.shape[1]) + 0.5
+        steps = np.asarray(group["step"][()]) if "step" in group else None
+        temperature = None
+        if "observables/temperature/value" in f:
+            t = np.asarray(f["observables/temperature/value"][()], dtype=float)
+            if t.shape and t.shape[0] > 0:
+                temperature = float(np.mean(second_half(t)))
+        scene_text = None
+        if "parameters/scene" in f:
+            scene_text = f["parameters/scene"][()]
+            if isinstance(scene_text, bytes):
+                scene_text = scene_text.decode("utf-8")
+    ux = value if value.ndim == 2 else value[..., 0]  # [T][bins]: x-velocity
+    samples = second_half(ux)
+    if steps is not None and len(steps) == len(ux):
+        used = second_half(steps)
+        averaged = f"steps {int(used[0])}-{int(used[-1])}, {len(used)} samples"
+    else:
+        averaged = f"{len(samples)} samples"
+    return path, bins, samples.mean(axis=0), temperature, scene_text, averaged
+
+
+def scene_parameters(scene_text, path):
+    """Dict of what the theory needs, or None if the scene has no sine body force."""
+    if not scene_text:
+        return None
+    try:
+        scene = tomllib.loads(scene_text)
+    except tomllib.TOMLDecodeError as e:
+        raise InputError(f"{path}: /parameters/scene is not valid TOML: {e}") from e
+    force = scene.get("body_force", {})
+    if force.get("kind") != "sine":
+        return None
+    try:
+        size = scene["domain"]["size"]
+        fluid = scene["fluid"]
+        return {
+            "F0": float(force["amplitude"]),
+            "L": float(size[1]),
+            "dims": int(scene.get("run", {}).get("dimensions", len(size))),
+            "collision": str(fluid["collision"]),
+            "n": float(fluid["density"]),
+            "dt": float(fluid["dt"]),
+            "angle": float(fluid.get("angle", 90.0)),
+            "kT": float(fluid.get("kT", 1.0)),
+        }
+    except (KeyError, IndexError, TypeError, ValueError) as e:
+        raise InputError(f"{path}: scene lacks what the theory needs ({e!r})") from e
+
+
+def main(argv):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("outdir", help="run output directory holding observables.h5")
+    parser.add_argument("--png", help="output image (default OUTDIR/profile.png)")
+    args = parser.parse_args(argv[1:])
+    png = args.png or os.path.join(args.outdir, "profile.png")
+
+    try:
+        path, y, u, temperature, scene_text, averaged = read_run(args.outdir)
+        params = scene_parameters(scene_text, path)
+    except InputError as e:
+        print(f"plot_profile: {e}", file=sys.stderr)
+        return 2
+
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    ax.plot(y, u, "o", ms=4, label=f"measured ({averaged})")
+    ax.set_xlabel("y")
+    ax.set_ylabel(r"$\langle u_x \rangle$")
+
+    if params is None:
+        ax.set_title("velocity profile (no sine body force: no theory)")
+        line = f"profile: no sine body force, no theory; plot in {png}"
+    else:
+        F0, L = params["F0"], params["L"]
+        # Amplitude of the sin(2 pi y / L) mode; bins are uniform, dy from their spacing.
+        dy = L / len(y) if len(y) < 2 else float(np.mean(np.diff(y)))
+        u_hat = 2.0 / L * float(np.sum(u * np.sin(2.0 * np.pi * y / L))) * dy
+        nu_measured = F0 * L**2 / (4.0 * np.pi**2 * u_hat) if u_hat != 0.0 else math.inf
+
+        kT = params["kT"]
+        kT_note = f"kT = {kT:g}"
+        if temperature is not None:
+            kT = temperature
+            kT_note = f"kinetic part at measured T = {temperature:.4g}"
+        nu_theory, reason = theory_viscosity(params["collision"], params["dims"], params["n"],
+                                             params["dt"], params["angle"], kT)
+
+        yy = np.linspace(0.0, L, 400)
+        ax.plot(yy, u_hat * np.sin(2.0 * np.pi * yy / L), "-", color="C0", lw=1, alpha=0.6,
+                label=rf"fit: $\nu_{{measured}}$ = {nu_measured:.4g}")
+        desc = f"{params['collision']} {params['dims']}D, n = {params['n']:g}, dt = {params['dt']:g}"
+        if params["collision"] == "srd":
+            desc += f", angle = {params['angle']:g}°"
+        if nu_theory is not None:
+            u_theory = F0 * L**2 / (4.0 * np.pi**2 * nu_theory)
+            ax.plot(yy, u_theory * np.sin(2.0 * np.pi * yy / L), "--", color="C3",
+                    label=rf"theory: $\nu$ = {nu_theory:.4g} ({kT_note})")
+            off = 100.0 * (nu_measured - nu_theory) / nu_theory
+            ax.set_title(f"Kolmogorov flow, {desc}\n"
+                         rf"$\nu_{{measured}}$ = {nu_measured:.4g}, "
+                         rf"$\nu_{{theory}}$ = {nu_theory:.4g} ({off:+.1f} %)", fontsize=10)
+            line = (f"profile: nu_measured = {nu_measured:.6g}, nu_theory = {nu_theory:.6g} "
+                    f"({off:+.2f} % off), plot in {png}")
+        else:
+            ax.plot([], [], " ", label=f"theory: none ({reason})")
+            ax.set_title(f"Kolmogorov flow, {desc}\n"
+                         rf"$\nu_{{measured}}$ = {nu_measured:.4g}, $\nu_{{theory}}$: n/a",
+                         fontsize=10)
+            line = (f"profile: nu_measured = {nu_measured:.6g}, nu_theory = n/a ({reason}), "
+                    f"plot in {png}")
+        ax.set_xlim(0.0, L)
+
+    ax.axhline(0.0, color="0.7", lw=0.5)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    try:
+        fig.savefig(png, dpi=120)
+    except OSError as e:
+        print(f"plot_profile: cannot write {png}: {e.strerror}", file=sys.stderr)
+        return 1
+    print(line)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
