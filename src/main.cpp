@@ -66,8 +66,7 @@ int main_inner(int argc, char **argv) {
       app.exit(e);
     return 0;
   } catch (const CLI::ParseError &e) {
-    throw narrows::input_error("command line: " + one_line(e.what()) +
-                               " (see narrows --help)");
+    throw narrows::input_error("command line: " + one_line(e.what()) + " (see narrows --help)");
   }
 
   const bool root = rank_of_world() == 0;

@@ -67,8 +67,7 @@ bool ProfileAccumulator::finish(MPI_Comm comm, std::vector<double> &velocity,
   MPI_Comm_rank(comm, &rank);
   std::vector<double> sv(sum_v_.size()), cnt(count_.size());
   MPI_Reduce(sum_v_.data(), sv.data(), static_cast<int>(sv.size()), MPI_DOUBLE, MPI_SUM, 0, comm);
-  MPI_Reduce(count_.data(), cnt.data(), static_cast<int>(cnt.size()), MPI_DOUBLE, MPI_SUM, 0,
-             comm);
+  MPI_Reduce(count_.data(), cnt.data(), static_cast<int>(cnt.size()), MPI_DOUBLE, MPI_SUM, 0, comm);
   const double samples = static_cast<double>(samples_);
   std::fill(sum_v_.begin(), sum_v_.end(), 0.0);
   std::fill(count_.begin(), count_.end(), 0.0);

@@ -91,15 +91,13 @@ void MpcdSimulation::build_pipeline() {
     std::string name = "stream (constant force [";
     for (int k = 0; k < dim; ++k)
       name += format_number(g[k]) + (k + 1 < dim ? ", " : "])");
-    stages_.push_back({name, [this, dt, g](std::uint64_t) {
-                         mpcd::stream_constant_force(fluid_, box_, dt, g);
-                       }});
+    stages_.push_back(
+        {name, [this, dt, g](std::uint64_t) { mpcd::stream_constant_force(fluid_, box_, dt, g); }});
   } else {
     const double A = scene_.body_force->amplitude;
-    stages_.push_back({"stream (sine force a_x = " + format_number(A) + " sin(2 pi y/L_y), exact)",
-                       [this, dt, A](std::uint64_t) {
-                         mpcd::stream_sine_force(fluid_, box_, dt, A);
-                       }});
+    stages_.push_back(
+        {"stream (sine force a_x = " + format_number(A) + " sin(2 pi y/L_y), exact)",
+         [this, dt, A](std::uint64_t) { mpcd::stream_sine_force(fluid_, box_, dt, A); }});
   }
 
   // 2. Random solvent (b) needs no cells at all.
@@ -130,10 +128,10 @@ void MpcdSimulation::build_pipeline() {
                        }});
     break;
   case scene::Collision::at:
-    stages_.push_back({"collide MPC-AT (kT " + format_number(kT) + ")",
-                       [this, kT, seed](std::uint64_t step) {
-                         mpcd::collide_at(fluid_, grid_, collision_scratch_, kT, seed, step);
-                       }});
+    stages_.push_back(
+        {"collide MPC-AT (kT " + format_number(kT) + ")", [this, kT, seed](std::uint64_t step) {
+           mpcd::collide_at(fluid_, grid_, collision_scratch_, kT, seed, step);
+         }});
     break;
   case scene::Collision::at_a:
     stages_.push_back({"collide MPC-AT+a (kT " + format_number(kT) + ", angular momentum)",

@@ -5,6 +5,7 @@
 #include "narrows/core/rng.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace narrows::mpcd {
 
@@ -23,10 +24,11 @@ std::array<double, 3> grid_shift(std::uint64_t seed, std::uint64_t step, int dim
 
 namespace {
 
-// Cell coordinate of position x along an axis of n cells with grid shift s. x lies in
-// [0, L) and s in [-1/2, 1/2), so x - s + 1 > 0 and truncation is floor.
+// Cell coordinate of position x along an axis of n cells with grid shift s: floor(x - s),
+// wrapped. x - s lies in (-1/2, L + 1/2), so one wrap each way suffices. (collision_at.cpp's
+// in_cell uses the same floor(x - s), so cell and offset always agree.)
 inline int cell_coordinate(double x, double s, int n) {
-  int i = static_cast<int>(x - s + 1.0) - 1;
+  int i = static_cast<int>(std::floor(x - s));
   i += (i < 0) ? n : 0;
   i -= (i >= n) ? n : 0;
   return i;

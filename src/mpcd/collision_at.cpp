@@ -57,7 +57,7 @@ void at_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, std:
 
 // Offset of a particle from the corner of its shifted cell, in [0, 1).
 inline double in_cell(double x, double shift) {
-  const double t = x - shift + 1.0; // > 0, see cell_grid.cpp
+  const double t = x - shift; // the same expression cell_grid.cpp bins with
   return t - std::floor(t);
 }
 
@@ -142,7 +142,8 @@ void at_a_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, st
               (to_double(sum[2 * D + NM + NL + k]) - rcX[k]);
     if constexpr (D == 2) {
       // I = sum |r - rc|^2 = sum(xx + yy) - n |rc|^2
-      const double I = to_double(sum[4]) + to_double(sum[6]) - cnt * (rc[0] * rc[0] + rc[1] * rc[1]);
+      const double I =
+          to_double(sum[4]) + to_double(sum[6]) - cnt * (rc[0] * rc[0] + rc[1] * rc[1]);
       par[4] = I > 1e-12 ? dL[0] / I : 0.0; // one particle, or all at one point: dL = 0
     } else {
       const std::int64_t *m = sum + 6;
@@ -156,15 +157,18 @@ void at_a_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, st
       const Eigen::Matrix3d I = S.trace() * Eigen::Matrix3d::Identity() - S;
       // Pseudo-inverse: with two particles (or collinear ones) I has a zero eigenvalue along
       // their line, and dL has no component there, so dropping it is exact.
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-      eig.computeDirect(I);
+      // compute(), not computeDirect(): the closed form loses ~8 digits on the double
+      // eigenvalue of two-particle cells. The absolute floor keeps round-off (~1e-12) in a
+      // null direction from being inverted into a spurious rotation.
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(I);
       const Eigen::Vector3d lam = eig.eigenvalues();
-      const double cut = 1e-10 * std::max(lam.cwiseAbs().maxCoeff(), 1e-300);
+      const double cut = std::max(1e-10 * lam.cwiseAbs().maxCoeff(), 1e-11);
       Eigen::Vector3d inv;
       for (int k = 0; k < 3; ++k)
         inv[k] = std::abs(lam[k]) > cut ? 1.0 / lam[k] : 0.0;
       const Eigen::Vector3d w = eig.eigenvectors() * inv.asDiagonal() *
-                                eig.eigenvectors().transpose() * Eigen::Vector3d(dL[0], dL[1], dL[2]);
+                                eig.eigenvectors().transpose() *
+                                Eigen::Vector3d(dL[0], dL[1], dL[2]);
       par[6] = w[0];
       par[7] = w[1];
       par[8] = w[2];

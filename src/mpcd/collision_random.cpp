@@ -7,8 +7,7 @@
 
 namespace narrows::mpcd {
 
-void permute_velocities(Fluid &fluid, CollisionScratch &, std::uint64_t seed,
-                        std::uint64_t step) {
+void permute_velocities(Fluid &fluid, CollisionScratch &, std::uint64_t seed, std::uint64_t step) {
   // Fisher-Yates over the local array, one counter-based draw per position. On one rank this
   // is a permutation of all fluid velocities; with slabs it will permute within each rank.
   const std::size_t n = fluid.size();

@@ -32,8 +32,8 @@ void init_fluid(Fluid &fluid, const Box &box, double density, double kT, std::ui
     const auto pos2 = rng::draw(seed, rng::Purpose::init_position, 1, i);
     const auto g = rng::gaussian4(rng::draw(seed, rng::Purpose::init_velocity, 0, i));
     for (int k = 0; k < box.dim; ++k) {
-      const double u = k < 2 ? rng::uniform53(pos[2 * k], pos[2 * k + 1])
-                             : rng::uniform53(pos2[0], pos2[1]);
+      const double u =
+          k < 2 ? rng::uniform53(pos[2 * k], pos[2 * k + 1]) : rng::uniform53(pos2[0], pos2[1]);
       fluid.x[k][i] = u * box.length[k];
       fluid.v[k][i] = sigma * g[k];
       momentum[k] += fixed::from_double(fluid.v[k][i]);

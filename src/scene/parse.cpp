@@ -861,10 +861,12 @@ Scene parse_scene(const std::string &text, const std::string &file,
   for (const auto &o : overrides)
     apply_override(c, root, o);
   if (!overrides.empty()) {
-    if (!s.text.empty() && s.text.back() != '\n')
-      s.text += '\n';
+    // Output files store the scene that ran: the overridden table, re-serialised (the
+    // file's comments are lost), headed by where it came from.
+    s.text = "# " + one_line(file) + " with overrides:\n";
     for (const auto &o : overrides)
       s.text += "# --set " + one_line(o) + "\n";
+    s.text += toml::format(root);
   }
 
   // The engine decides which sections exist, so it is checked first.

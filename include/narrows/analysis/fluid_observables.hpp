@@ -39,8 +39,8 @@ private:
   int dim_;
   double bin_width_, bin_volume_;
   std::vector<double> centres_;
-  std::vector<double> sum_v_;    // [bins][dim]
-  std::vector<double> count_;    // [bins]
+  std::vector<double> sum_v_; // [bins][dim]
+  std::vector<double> count_; // [bins]
   std::uint64_t samples_ = 0;
 };
 

@@ -12,13 +12,13 @@ namespace narrows::rng {
 
 // What a draw is for; part of the counter so different uses never share a stream.
 enum class Purpose : std::uint32_t {
-  grid_shift = 1,    // id unused: (seed, step)
-  srd_rotation = 2,  // id = global cell index
-  at_gaussian = 3,   // id = particle id
+  grid_shift = 1,     // id unused: (seed, step)
+  srd_rotation = 2,   // id = global cell index
+  at_gaussian = 3,    // id = particle id
   random_maxwell = 4, // id = particle id
   random_permute = 5, // id = position in the permutation
-  init_position = 6, // id = particle id
-  init_velocity = 7, // id = particle id
+  init_position = 6,  // id = particle id
+  init_velocity = 7,  // id = particle id
   test = 15,
 };
 
@@ -40,8 +40,8 @@ inline Block draw(std::uint64_t seed, Purpose purpose, std::uint64_t step, std::
                          static_cast<std::uint32_t>(step),
                          (static_cast<std::uint32_t>(purpose) << 24) |
                              static_cast<std::uint32_t>((step >> 32) & 0xFFFFFFu)};
-  return philox4x32_10(counter, {static_cast<std::uint32_t>(seed),
-                                 static_cast<std::uint32_t>(seed >> 32)});
+  return philox4x32_10(counter,
+                       {static_cast<std::uint32_t>(seed), static_cast<std::uint32_t>(seed >> 32)});
 }
 
 // Uniform in the open interval (0, 1) from 32 bits.

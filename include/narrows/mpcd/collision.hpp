@@ -12,9 +12,9 @@ namespace narrows::mpcd {
 
 // Scratch space the rules reuse between steps (no allocation in the step loop).
 struct CollisionScratch {
-  std::vector<double> cell;                   // per-cell parameters, rule-specific stride
-  std::array<std::vector<double>, 3> noise;   // per-particle Gaussian velocities (AT rules)
-  std::vector<std::int64_t> cell_fixed;       // per-cell fixed-point sums beyond momentum
+  std::vector<double> cell;                 // per-cell parameters, rule-specific stride
+  std::array<std::vector<double>, 3> noise; // per-particle Gaussian velocities (AT rules)
+  std::vector<std::int64_t> cell_fixed;     // per-cell fixed-point sums beyond momentum
 };
 
 // SRD: rotate velocities relative to the cell mean by +-alpha (2D, sign random per cell) or

@@ -26,8 +26,8 @@ struct Domain {
 
 struct Fluid {
   Collision collision = Collision::srd;
-  double density = 10.0;  // mean particles per cell
-  double dt = 0.1;        // collision time step
+  double density = 10.0;   // mean particles per cell
+  double dt = 0.1;         // collision time step
   double angle_deg = 90.0; // SRD rotation angle
   double kT = 1.0;
   int sort_every = 20; // counting sort by cell every this many steps (0 = never)

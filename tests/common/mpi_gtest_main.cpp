@@ -1,4 +1,5 @@
-// gtest main for the MPI tests: MPI_Init, results combined over ranks, output from rank 0.
+// gtest main for tests that need MPI (2-rank tests and validation): MPI_Init, results
+// combined over ranks, output from rank 0.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
