@@ -10,14 +10,10 @@
 namespace narrows::engine {
 
 mpcd::Box make_box(const scene::Scene &scene) {
-  mpcd::Box box;
-  box.dim = scene.run.dimensions;
-  for (int k = 0; k < 3; ++k) {
-    const bool used = k < box.dim;
-    box.length[k] = used ? scene.domain.size[k] : 1.0;
-    box.cells[k] = used ? static_cast<int>(std::lround(scene.domain.size[k])) : 1;
-  }
-  return box;
+  std::array<int, 3> cells{1, 1, 1};
+  for (int k = 0; k < scene.run.dimensions; ++k)
+    cells[k] = static_cast<int>(std::lround(scene.domain.size[k]));
+  return mpcd::make_periodic_box(scene.run.dimensions, cells);
 }
 
 std::uint64_t particle_count(const scene::Scene &scene) {

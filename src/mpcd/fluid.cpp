@@ -8,6 +8,16 @@
 
 namespace narrows::mpcd {
 
+Box make_periodic_box(int dim, std::array<int, 3> cells) {
+  Box b;
+  b.dim = dim;
+  for (int k = 0; k < 3; ++k) {
+    b.cells[k] = k < dim ? cells[k] : 1;
+    b.length[k] = b.cells[k];
+  }
+  return b;
+}
+
 void Fluid::resize(std::size_t n) {
   for (int k = 0; k < 3; ++k) {
     x[k].resize(k < dim ? n : 0);

@@ -21,14 +21,7 @@ namespace {
 using namespace narrows;
 using namespace narrows::mpcd;
 
-Box make_box(int dim, std::array<int, 3> cells) {
-  Box b;
-  b.dim = dim;
-  b.cells = cells;
-  for (int k = 0; k < 3; ++k)
-    b.length[k] = k < dim ? cells[k] : 1.0;
-  return b;
-}
+Box make_box(int dim, std::array<int, 3> cells) { return make_periodic_box(dim, cells); }
 
 // Random fluid with shuffled unique ids; includes x = 0 and x just below L on every axis.
 Fluid random_fluid(const Box &box, std::size_t n, std::uint64_t seed) {

@@ -40,14 +40,7 @@ constexpr double q = 0x1p-40; // fixed-point resolution; rounding of one term <=
 enum class Rule { srd, at, at_a };
 const char *name(Rule r) { return r == Rule::srd ? "srd" : r == Rule::at ? "at" : "at+a"; }
 
-Box make_box(int dim, std::array<int, 3> cells) {
-  Box b;
-  b.dim = dim;
-  b.cells = cells;
-  for (int k = 0; k < 3; ++k)
-    b.length[k] = k < dim ? cells[k] : 1.0;
-  return b;
-}
+Box make_box(int dim, std::array<int, 3> cells) { return make_periodic_box(dim, cells); }
 
 struct Scene {
   Box box;

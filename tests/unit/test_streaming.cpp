@@ -19,14 +19,7 @@ using namespace narrows::mpcd;
 
 constexpr double eps = std::numeric_limits<double>::epsilon();
 
-Box make_box(int dim, std::array<int, 3> cells) {
-  Box b;
-  b.dim = dim;
-  b.cells = cells;
-  for (int k = 0; k < 3; ++k)
-    b.length[k] = k < dim ? cells[k] : 1.0;
-  return b;
-}
+Box make_box(int dim, std::array<int, 3> cells) { return make_periodic_box(dim, cells); }
 
 // Correctly rounded periodic image in [0, L) of y (fmod is exact; only the final + L of a
 // negative remainder rounds). Independent of the library's subtract-first strategy.

@@ -18,6 +18,9 @@ struct Box {
   }
 };
 
+// A periodic box of the given whole cells per axis (entries beyond dim are ignored).
+Box make_periodic_box(int dim, std::array<int, 3> cells);
+
 // Positions x[k], velocities v[k] (k < dim; the z arrays stay empty in 2D), 64-bit global
 // ids, and the cell of each particle in the current shifted grid (recomputed every step,
 // never trusted across steps).
