@@ -80,7 +80,7 @@ int main_inner(int argc, char **argv) {
     if (root) {
       if (*check)
         std::cout << scene_file << ": scene is valid\n";
-      for (const auto &line : narrows::engine::describe_scene(scene))
+      for (const auto &line : narrows::engine::describe_scene(scene, MPI_COMM_WORLD))
         std::cout << line << '\n';
       for (const auto &w : narrows::engine::regime_warnings(scene))
         std::cout << "warning: " << w << '\n';

@@ -46,7 +46,7 @@ Regime regime(const scene::Scene &s) {
 
 } // namespace
 
-std::vector<std::string> describe_scene(const scene::Scene &s) {
+std::vector<std::string> describe_scene(const scene::Scene &s, MPI_Comm comm) {
   std::vector<std::string> out;
   const int d = s.run.dimensions;
   std::string box = "box ";
@@ -55,7 +55,7 @@ std::vector<std::string> describe_scene(const scene::Scene &s) {
   out.push_back(std::string("engine mpcd, ") + std::to_string(d) + "D, " + box + ", seed " +
                 std::to_string(s.run.seed) + ", " + std::to_string(s.run.steps) + " steps");
   out.push_back("pipeline (per step):");
-  MpcdSimulation plan(s, MPI_COMM_SELF, false);
+  MpcdSimulation plan(s, comm, false);
   int i = 1;
   for (const Stage &stage : plan.stages())
     out.push_back("  " + std::to_string(i++) + ". " + stage.name);
@@ -64,9 +64,14 @@ std::vector<std::string> describe_scene(const scene::Scene &s) {
     obs += (obs.empty() ? "" : ", ") + o;
   out.push_back("  then every " + std::to_string(s.output.every) + " steps: observables [" + obs +
                 "] and invariant checks");
+  int ranks = 1;
+  MPI_Comm_size(comm, &ranks);
   out.push_back("particles: " + std::to_string(particle_count(s)) + " fluid (density " +
                 fmt("%g", s.fluid.density) + " per cell)");
-  out.push_back("memory: " + fmt("%.1f", estimate_memory(s) / 1048576.0) + " MiB (estimate)");
+  out.push_back("memory: " + fmt("%.1f", estimate_memory(s) / 1048576.0) + " MiB (estimate" +
+                (ranks > 1 ? ", " + fmt("%.1f", estimate_memory(s) / 1048576.0 / ranks) +
+                                 " MiB per rank on " + std::to_string(ranks) + " ranks)"
+                           : ")"));
   out.push_back("mean free path lambda = dt sqrt(kT/m) = " +
                 fmt("%.4g", s.fluid.dt * std::sqrt(s.fluid.kT)) + " a");
   const Regime r = regime(s);

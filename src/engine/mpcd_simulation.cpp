@@ -17,11 +17,18 @@ mpcd::Box make_box(const scene::Scene &scene) {
 }
 
 std::uint64_t particle_count(const scene::Scene &scene) {
-  const mpcd::Box box = make_box(scene);
-  double volume = 1.0;
-  for (int k = 0; k < box.dim; ++k)
-    volume *= box.length[k];
-  return static_cast<std::uint64_t>(std::llround(scene.fluid.density * volume));
+  return mpcd::fluid_particle_count(make_box(scene), scene.fluid.density);
+}
+
+parallel::SoaView fluid_view(mpcd::Fluid &f) {
+  parallel::SoaView v;
+  for (int k = 0; k < f.dim; ++k)
+    v.reals.push_back(&f.x[k]);
+  for (int k = 0; k < f.dim; ++k)
+    v.reals.push_back(&f.v[k]);
+  v.words.push_back(&f.id);
+  v.halfwords.push_back(&f.cell);
+  return v;
 }
 
 namespace {
@@ -63,12 +70,50 @@ std::size_t estimate_memory(const scene::Scene &scene) {
 }
 
 MpcdSimulation::MpcdSimulation(const scene::Scene &scene, MPI_Comm comm, bool allocate)
-    : scene_(scene), comm_(comm), box_(make_box(scene)) {
+    : scene_(scene), comm_(comm), box_(make_box(scene)), slabs_(comm, box_.cells[0]),
+      exchange_(comm) {
   if (allocate) {
-    grid_ = mpcd::CellGrid(box_);
-    mpcd::init_fluid(fluid_, box_, scene.fluid.density, scene.fluid.kT, scene.run.seed);
+    grid_ = mpcd::CellGrid(box_, slabs_.first_column(), slabs_.local_columns());
+    // Ids in contiguous blocks per rank; the first migration sends each to its owner.
+    const std::uint64_t total = particle_count(scene);
+    const auto r = static_cast<std::uint64_t>(slabs_.rank());
+    const auto p = static_cast<std::uint64_t>(slabs_.ranks());
+    const std::uint64_t first = total * r / p, last = total * (r + 1) / p;
+    mpcd::init_fluid(fluid_, box_, scene.fluid.kT, scene.run.seed, first, last - first, total,
+                     comm);
   }
   build_pipeline();
+}
+
+void MpcdSimulation::migrate_to_owners() {
+  // Used where nothing is binned (random solvent b): one scan for particles outside the slab.
+  const std::size_t n = fluid_.size();
+  const double sx = grid_.shift[0];
+  const int columns = box_.cells[0], first = slabs_.first_column();
+  const auto width = static_cast<unsigned>(slabs_.local_columns());
+  strays_.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    const int column = mpcd::cell_coordinate(fluid_.x[0][i], sx, columns);
+    if (static_cast<unsigned>(column - first) >= width) {
+      strays_.index.push_back(i);
+      strays_.column.push_back(column);
+    }
+  }
+  stray_dest_.resize(strays_.column.size());
+  for (std::size_t j = 0; j < stray_dest_.size(); ++j)
+    stray_dest_[j] = slabs_.owner(strays_.column[j]);
+  exchange_.migrate(fluid_view(fluid_), strays_.index, stray_dest_);
+}
+
+void MpcdSimulation::migrate_strays_and_bin_arrivals() {
+  // Binning listed the particles whose shifted column left this slab (a thin band at each
+  // edge); they go to their owners, and what arrives is added to the cell sums.
+  stray_dest_.resize(strays_.column.size());
+  for (std::size_t j = 0; j < stray_dest_.size(); ++j)
+    stray_dest_[j] = slabs_.owner(strays_.column[j]);
+  const std::size_t staying = fluid_.size() - strays_.index.size();
+  exchange_.migrate(fluid_view(fluid_), strays_.index, stray_dest_);
+  mpcd::bin_more_particles(fluid_, grid_, staying);
 }
 
 void MpcdSimulation::build_pipeline() {
@@ -96,8 +141,19 @@ void MpcdSimulation::build_pipeline() {
          [this, dt, A](std::uint64_t) { mpcd::stream_sine_force(fluid_, box_, dt, A); }});
   }
 
-  // 2. Random solvent (b) needs no cells at all.
+  // 2. Shifted grid: the same on every rank without a message.
+  stages_.push_back({"grid shift", [this, seed, dim](std::uint64_t step) {
+                       grid_.shift = mpcd::grid_shift(seed, step, dim);
+                     }});
+  const bool slabs = slabs_.ranks() > 1;
+  const std::string ranks = std::to_string(slabs_.ranks());
+
+  // 3. Random solvent (b) needs no cells at all; with slabs, particles still go to the rank
+  // that owns their column.
   if (rule == scene::Collision::random_maxwell) {
+    if (slabs)
+      stages_.push_back({"migrate to slab owners (" + ranks + " ranks)",
+                         [this](std::uint64_t) { migrate_to_owners(); }});
     const double kT = f.kT;
     stages_.push_back({"draw Maxwell-Boltzmann velocities (random solvent)",
                        [this, kT, seed](std::uint64_t step) {
@@ -105,12 +161,17 @@ void MpcdSimulation::build_pipeline() {
                        }});
     return;
   }
-
-  // 3. Shifted grid and binning.
-  stages_.push_back({"grid shift + bin into cells", [this, seed, dim](std::uint64_t step) {
-                       grid_.shift = mpcd::grid_shift(seed, step, dim);
-                       mpcd::bin_particles(fluid_, grid_);
-                     }});
+  // Binning; with slabs it also lists the particles that left the slab, which then migrate
+  // to the ranks owning their columns, where they are binned on arrival.
+  if (slabs) {
+    stages_.push_back({"bin into cells, list particles leaving the slab",
+                       [this](std::uint64_t) { mpcd::bin_particles(fluid_, grid_, &strays_); }});
+    stages_.push_back({"migrate to slab owners (" + ranks + " ranks), bin arrivals",
+                       [this](std::uint64_t) { migrate_strays_and_bin_arrivals(); }});
+  } else {
+    stages_.push_back(
+        {"bin into cells", [this](std::uint64_t) { mpcd::bin_particles(fluid_, grid_); }});
+  }
 
   // 4. Collision.
   const double angle = f.angle_deg * std::numbers::pi / 180.0;
@@ -139,7 +200,9 @@ void MpcdSimulation::build_pipeline() {
     break;
   }
   if (rule == scene::Collision::random_permute)
-    stages_.push_back({"permute all velocities (random solvent)", [this, seed](std::uint64_t step) {
+    stages_.push_back({slabs_.ranks() > 1 ? "permute velocities within each rank (random solvent)"
+                                          : "permute all velocities (random solvent)",
+                       [this, seed](std::uint64_t step) {
                          mpcd::permute_velocities(fluid_, collision_scratch_, seed, step);
                        }});
 

@@ -9,6 +9,7 @@
 #include "narrows/engine/log.hpp"
 #include "narrows/engine/mpcd_simulation.hpp"
 #include "narrows/io/observables_writer.hpp"
+#include "narrows/parallel/slabs.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -93,22 +94,23 @@ void run_scene(const scene::Scene &scene, const RunOptions &options, MPI_Comm co
   int rank = 0, ranks = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &ranks);
-  if (ranks > 1)
-    throw input_error("the MPCD engine runs on one rank in this version (MPI slabs are not "
-                      "built yet); found " +
-                      std::to_string(ranks) + " ranks; allowed: 1");
+  // Refuse a decomposition the box cannot take before anything is written.
+  const parallel::Slabs slabs(comm, make_box(scene).cells[0]);
 
   const std::string dir = options.out_dir.empty() ? scene.output.dir : options.out_dir;
-  if (rank == 0) {
-    std::error_code ec;
+  // Rank 0 makes the directory; every rank learns whether that worked, so all stop together.
+  std::error_code ec;
+  if (rank == 0)
     std::filesystem::create_directories(dir, ec);
-    if (ec)
-      throw input_error(dir + ": cannot create output directory (" + ec.message() + ")");
-  }
+  int failed = ec ? 1 : 0;
+  MPI_Bcast(&failed, 1, MPI_INT, 0, comm);
+  if (failed)
+    throw input_error(dir + ": cannot create output directory" +
+                      (rank == 0 ? " (" + ec.message() + ")" : std::string()));
   Log log(rank == 0, dir + "/log.txt");
   log.line("narrows " NARROWS_VERSION " run " + scene.file + " on " + std::to_string(ranks) +
            " rank(s), output in " + dir);
-  for (const auto &line : describe_scene(scene))
+  for (const auto &line : describe_scene(scene, comm))
     log.line(line);
   for (const auto &w : regime_warnings(scene))
     log.warn(w);

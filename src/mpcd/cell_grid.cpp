@@ -1,17 +1,23 @@
 // The shifted collision grid and the binning kernel.
 #include "narrows/mpcd/cell_grid.hpp"
 
+#include "narrows/core/error.hpp"
 #include "narrows/core/fixed_point.hpp"
 #include "narrows/core/rng.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace narrows::mpcd {
 
-CellGrid::CellGrid(const Box &box) : dim(box.dim), cells(box.cells), sums(box.num_cells()) {
+CellGrid::CellGrid(const Box &box, int first, int columns)
+    : dim(box.dim), cells(box.cells), first_column(first), global_columns(box.cells[0]) {
+  if (columns >= 0)
+    cells[0] = columns;
   if (dim == 2)
     cells[2] = 1;
+  sums.resize(static_cast<std::size_t>(cells[0]) * cells[1] * cells[2]);
 }
 
 std::array<double, 3> grid_shift(std::uint64_t seed, std::uint64_t step, int dim) {
@@ -24,28 +30,29 @@ std::array<double, 3> grid_shift(std::uint64_t seed, std::uint64_t step, int dim
 
 namespace {
 
-// Cell coordinate of position x along an axis of n cells with grid shift s: floor(x - s),
-// wrapped. x - s lies in (-1/2, L + 1/2), so one wrap each way suffices. (collision_at.cpp's
-// in_cell uses the same floor(x - s), so cell and offset always agree.)
-inline int cell_coordinate(double x, double s, int n) {
-  int i = static_cast<int>(std::floor(x - s));
-  i += (i < 0) ? n : 0;
-  i -= (i >= n) ? n : 0;
-  return i;
-}
-
-template <int D> void bin_kernel(Fluid &f, CellGrid &g) {
-  std::fill(g.sums.begin(), g.sums.end(), CellSums{});
-  const int nx = g.cells[0], ny = g.cells[1], nz = g.cells[2];
+template <int D> void bin_kernel(Fluid &f, CellGrid &g, std::size_t first, Strays *strays) {
+  const int NX = g.global_columns, nx = g.cells[0], ny = g.cells[1], nz = g.cells[2];
+  const int x0 = g.first_column;
   const double sx = g.shift[0], sy = g.shift[1], sz = g.shift[2];
   const double *x = f.x[0].data(), *y = f.x[1].data(), *z = f.x[2].data();
   const double *vx = f.v[0].data(), *vy = f.v[1].data(), *vz = f.v[2].data();
   std::uint32_t *cell = f.cell.data();
   CellSums *sums = g.sums.data();
   const std::size_t n = f.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    std::size_t c = cell_coordinate(x[i], sx, nx) +
-                    static_cast<std::size_t>(nx) * cell_coordinate(y[i], sy, ny);
+  for (std::size_t i = first; i < n; ++i) {
+    const int column = cell_coordinate(x[i], sx, NX);
+    const int ix = column - x0;
+    if (static_cast<unsigned>(ix) >= static_cast<unsigned>(nx)) {
+      if (strays) {
+        strays->index.push_back(i);
+        strays->column.push_back(column);
+        continue;
+      }
+      throw invariant_error("particle id " + std::to_string(f.id[i]) + " at x = " +
+                            std::to_string(x[i]) + " is outside this rank's slab (columns " +
+                            std::to_string(x0) + " to " + std::to_string(x0 + nx - 1) + ")");
+    }
+    std::size_t c = ix + static_cast<std::size_t>(nx) * cell_coordinate(y[i], sy, ny);
     if constexpr (D == 3)
       c += static_cast<std::size_t>(nx) * ny * cell_coordinate(z[i], sz, nz);
     cell[i] = static_cast<std::uint32_t>(c);
@@ -58,13 +65,24 @@ template <int D> void bin_kernel(Fluid &f, CellGrid &g) {
   }
 }
 
+void bin_range(Fluid &fluid, CellGrid &grid, std::size_t first, Strays *strays) {
+  if (grid.dim == 3)
+    bin_kernel<3>(fluid, grid, first, strays);
+  else
+    bin_kernel<2>(fluid, grid, first, strays);
+}
+
 } // namespace
 
-void bin_particles(Fluid &fluid, CellGrid &grid) {
-  if (grid.dim == 3)
-    bin_kernel<3>(fluid, grid);
-  else
-    bin_kernel<2>(fluid, grid);
+void bin_particles(Fluid &fluid, CellGrid &grid, Strays *strays) {
+  std::fill(grid.sums.begin(), grid.sums.end(), CellSums{});
+  if (strays)
+    strays->clear();
+  bin_range(fluid, grid, 0, strays);
+}
+
+void bin_more_particles(Fluid &fluid, CellGrid &grid, std::size_t first) {
+  bin_range(fluid, grid, first, nullptr);
 }
 
 } // namespace narrows::mpcd

@@ -27,31 +27,37 @@ void Fluid::resize(std::size_t n) {
   cell.resize(n);
 }
 
-void init_fluid(Fluid &fluid, const Box &box, double density, double kT, std::uint64_t seed) {
+std::uint64_t fluid_particle_count(const Box &box, double density) {
   double volume = 1.0;
   for (int k = 0; k < box.dim; ++k)
     volume *= box.length[k];
-  const auto n = static_cast<std::size_t>(std::llround(density * volume));
+  return static_cast<std::uint64_t>(std::llround(density * volume));
+}
+
+void init_fluid(Fluid &fluid, const Box &box, double kT, std::uint64_t seed, std::uint64_t first_id,
+                std::uint64_t count, std::uint64_t total, MPI_Comm comm) {
   fluid.dim = box.dim;
-  fluid.resize(n);
+  fluid.resize(count);
   const double sigma = std::sqrt(kT);
-  std::array<std::int64_t, 3> momentum{0, 0, 0};
-  for (std::size_t i = 0; i < n; ++i) {
-    fluid.id[i] = i;
-    const auto pos = rng::draw(seed, rng::Purpose::init_position, 0, i);
-    const auto pos2 = rng::draw(seed, rng::Purpose::init_position, 1, i);
-    const auto g = rng::gaussian4(rng::draw(seed, rng::Purpose::init_velocity, 0, i));
+  std::array<std::int64_t, 3> local{0, 0, 0}, momentum{0, 0, 0};
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::uint64_t id = first_id + i;
+    fluid.id[i] = id;
+    const auto pos = rng::draw(seed, rng::Purpose::init_position, 0, id);
+    const auto pos2 = rng::draw(seed, rng::Purpose::init_position, 1, id);
+    const auto g = rng::gaussian4(rng::draw(seed, rng::Purpose::init_velocity, 0, id));
     for (int k = 0; k < box.dim; ++k) {
       const double u =
           k < 2 ? rng::uniform53(pos[2 * k], pos[2 * k + 1]) : rng::uniform53(pos2[0], pos2[1]);
       fluid.x[k][i] = u * box.length[k];
       fluid.v[k][i] = sigma * g[k];
-      momentum[k] += fixed::from_double(fluid.v[k][i]);
+      local[k] += fixed::from_double(fluid.v[k][i]);
     }
   }
+  MPI_Allreduce(local.data(), momentum.data(), 3, MPI_INT64_T, MPI_SUM, comm);
   // Zero total momentum (seed 000 section 3.4.4): a net drift biases every flow measurement.
   for (int k = 0; k < box.dim; ++k) {
-    const double mean = n ? fixed::to_double(momentum[k]) / static_cast<double>(n) : 0.0;
+    const double mean = total ? fixed::to_double(momentum[k]) / static_cast<double>(total) : 0.0;
     for (auto &vk : fluid.v[k])
       vk -= mean;
   }

@@ -3,14 +3,17 @@
 
 #include "narrows/scene/scene.hpp"
 
+#include <mpi.h>
+
 #include <string>
 #include <vector>
 
 namespace narrows::engine {
 
 // Lines describing the run: pipeline of stages, particle count, memory estimate, mean free
-// path, theory viscosity and Sc, and Ma/Re when a body force is set.
-std::vector<std::string> describe_scene(const scene::Scene &scene);
+// path, theory viscosity and Sc, and Ma/Re when a body force is set; the pipeline as it runs
+// on the ranks of comm (no messages are sent).
+std::vector<std::string> describe_scene(const scene::Scene &scene, MPI_Comm comm);
 
 // Warnings about the physical regime (Ma > 0.2, unbounded acceleration...).
 std::vector<std::string> regime_warnings(const scene::Scene &scene);

@@ -6,6 +6,8 @@
 #include "narrows/mpcd/cell_sort.hpp"
 #include "narrows/mpcd/collision.hpp"
 #include "narrows/mpcd/fluid.hpp"
+#include "narrows/parallel/exchange.hpp"
+#include "narrows/parallel/slabs.hpp"
 #include "narrows/scene/scene.hpp"
 
 #include <mpi.h>
@@ -24,8 +26,10 @@ struct Stage {
 
 class MpcdSimulation {
 public:
-  // Builds the pipeline and, if `allocate`, the fluid (ids 0..N-1, zero total momentum) and
-  // the cell grid. Without it only the pipeline exists (for `narrows info` and `check`).
+  // Builds the slabs, the pipeline and, if `allocate`, the fluid (ids 0..N-1 in blocks over
+  // the ranks, zero total momentum) and this rank's cell grid. Without it only the pipeline
+  // exists (for `narrows info` and `check`). Throws bad_input if comm has more ranks than
+  // the box has slabs.
   MpcdSimulation(const scene::Scene &scene, MPI_Comm comm, bool allocate = true);
   MpcdSimulation(const MpcdSimulation &) = delete;
   MpcdSimulation &operator=(const MpcdSimulation &) = delete;
@@ -42,13 +46,20 @@ public:
   const mpcd::Fluid &fluid() const { return fluid_; }
   const mpcd::CellGrid &grid() const { return grid_; }
   MPI_Comm comm() const { return comm_; }
+  const parallel::Slabs &slabs() const { return slabs_; }
 
 private:
   void build_pipeline();
+  void migrate_to_owners();
+  void migrate_strays_and_bin_arrivals();
 
   scene::Scene scene_;
   MPI_Comm comm_;
   mpcd::Box box_;
+  parallel::Slabs slabs_;
+  parallel::Exchange exchange_;
+  mpcd::Strays strays_;
+  std::vector<int> stray_dest_;
   mpcd::Fluid fluid_;
   mpcd::CellGrid grid_;
   mpcd::CollisionScratch collision_scratch_;
@@ -64,5 +75,9 @@ std::size_t estimate_memory(const scene::Scene &scene);
 
 // Number of fluid particles the scene creates.
 std::uint64_t particle_count(const scene::Scene &scene);
+
+// The arrays of the fluid that travel with a particle, including its cell index (so a row
+// moved within a rank keeps its binning; arrivals are binned again).
+parallel::SoaView fluid_view(mpcd::Fluid &fluid);
 
 } // namespace narrows::engine

@@ -5,6 +5,7 @@
 #include "narrows/mpcd/fluid.hpp"
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -16,25 +17,61 @@ struct CellSums {
   std::uint32_t n = 0;
 };
 
+// The cells one rank owns: its slab of x columns [first_column, first_column + cells[0]) of
+// the global grid (global_columns wide, periodic), and all of y (and z).
 struct CellGrid {
   int dim = 2;
-  std::array<int, 3> cells{1, 1, 1};
+  std::array<int, 3> cells{1, 1, 1}; // local: x columns of the slab, y, z
+  int first_column = 0;
+  int global_columns = 1;
   std::array<double, 3> shift{0.0, 0.0, 0.0}; // grid origin offset, each in [-1/2, 1/2)
   std::vector<CellSums> sums;
 
-  explicit CellGrid(const Box &box);
+  // The whole box (one rank), or the slab [first_column, first_column + columns).
+  explicit CellGrid(const Box &box, int first_column = 0, int columns = -1);
   CellGrid() = default;
   std::size_t size() const { return sums.size(); }
-  // Global index of local cell c: the key of per-cell random draws. (One rank owns the whole
-  // grid for now; slabs will add their column offset here.)
-  std::uint64_t global_id(std::size_t c) const { return c; }
+  // Global index of local cell c: the key of per-cell random draws, the same whichever rank
+  // owns the cell, so results do not depend on the number of ranks.
+  std::uint64_t global_id(std::size_t c) const {
+    const std::size_t nx = static_cast<std::size_t>(cells[0]);
+    return (c % nx + static_cast<std::size_t>(first_column)) +
+           static_cast<std::uint64_t>(global_columns) * (c / nx);
+  }
 };
 
 // Shift of the collision grid at a step, uniform in [-1/2, 1/2) per axis; the same on every
 // rank without a message because it depends only on (seed, step).
 std::array<double, 3> grid_shift(std::uint64_t seed, std::uint64_t step, int dim);
 
-// Assigns each particle its cell of the shifted grid and fills the cell sums.
-void bin_particles(Fluid &fluid, CellGrid &grid);
+// Cell coordinate of position x along an axis of n cells with grid shift s: floor(x - s),
+// wrapped. x lies in [0, L) and s in [-1/2, 1/2), so x - s lies in (-1/2, L + 1/2) and one
+// wrap each way suffices. (collision_at.cpp's in_cell uses the same floor(x - s), so cell and
+// offset always agree.)
+inline int cell_coordinate(double x, double s, int n) {
+  int i = static_cast<int>(std::floor(x - s));
+  i += (i < 0) ? n : 0;
+  i -= (i >= n) ? n : 0;
+  return i;
+}
+
+// Particles found outside this rank's slab while binning: index and global x column.
+struct Strays {
+  std::vector<std::size_t> index;
+  std::vector<int> column;
+  void clear() {
+    index.clear();
+    column.clear();
+  }
+};
+
+// Assigns each particle its cell of the shifted grid and fills the cell sums (from zero).
+// A particle outside this grid's slab is an invariant error, unless `strays` is given: then
+// it is listed there (for migration) and left out of the sums.
+void bin_particles(Fluid &fluid, CellGrid &grid, Strays *strays = nullptr);
+
+// Adds particles [first, size) to the cell sums (e.g. arrivals after migration); each must
+// lie in the slab.
+void bin_more_particles(Fluid &fluid, CellGrid &grid, std::size_t first);
 
 } // namespace narrows::mpcd

@@ -1,6 +1,8 @@
 // The MPCD fluid as a structure of arrays, and the periodic box it lives in.
 #pragma once
 
+#include <mpi.h>
+
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -34,9 +36,14 @@ struct Fluid {
   void resize(std::size_t n);
 };
 
-// Fills the box with round(density * volume) particles with ids 0..N-1: positions uniform,
-// velocities Maxwell-Boltzmann at kT (mass 1), then the mean velocity removed so the total
-// momentum is zero. Each particle's draw depends only on (seed, id).
-void init_fluid(Fluid &fluid, const Box &box, double density, double kT, std::uint64_t seed);
+// Number of particles of a box filled at a mean density: round(density * volume).
+std::uint64_t fluid_particle_count(const Box &box, double density);
+
+// Creates the particles with ids [first_id, first_id + count) of a fluid filling the box:
+// positions uniform, velocities Maxwell-Boltzmann at kT (mass 1), then the mean velocity of
+// all `total` particles (summed exactly over the ranks of comm) removed, so the total momentum
+// is zero. Each particle's state depends only on (seed, id), not on the rank that makes it.
+void init_fluid(Fluid &fluid, const Box &box, double kT, std::uint64_t seed, std::uint64_t first_id,
+                std::uint64_t count, std::uint64_t total, MPI_Comm comm);
 
 } // namespace narrows::mpcd

@@ -1,0 +1,71 @@
+// Moving particles of any structure-of-arrays species between ranks: migrate (ownership
+// changed), halo (copies of particles near a slab edge for the neighbouring rank), reverse
+// (sum per-copy quantities back to the owners, in fixed point so the sum is exact).
+#pragma once
+
+#include <mpi.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace narrows::parallel {
+
+// The arrays of one species, all of the same length. A particle travels as one row of 8-byte
+// words (a 4-byte field takes a whole word).
+struct SoaView {
+  std::vector<std::vector<double> *> reals;
+  std::vector<std::vector<std::uint64_t> *> words;
+  std::vector<std::vector<std::uint32_t> *> halfwords;
+  std::size_t size() const;
+  std::size_t fields() const { return reals.size() + words.size() + halfwords.size(); }
+  void resize(std::size_t n) const;
+};
+
+// Ghost copies received by halo(): their rows (same layout as the species), and for each one
+// where it came from, so reverse() can send per-copy sums back.
+struct Halo {
+  std::vector<std::vector<double>> reals;
+  std::vector<std::vector<std::uint64_t>> words;
+  std::vector<int> source_rank;            // per ghost
+  std::vector<std::uint64_t> source_index; // per ghost: index in the owner's arrays
+  std::size_t size() const { return source_rank.size(); }
+};
+
+class Exchange {
+public:
+  explicit Exchange(MPI_Comm comm);
+
+  // Sends every particle i with dest[i] != this rank to dest[i] and appends what arrives.
+  void migrate(const SoaView &species, const std::vector<int> &dest);
+
+  // The same for a list of leavers (ascending indices) and their destinations: O(leavers),
+  // the holes are filled from the end of the arrays, so the order of particles changes
+  // (nothing in narrows depends on it: cell sums are fixed point).
+  void migrate(const SoaView &species, const std::vector<std::size_t> &leavers,
+               const std::vector<int> &leaver_dest);
+
+  // Copies of the particles whose x lies within `width` of the slab [lo, hi) edges go to the
+  // neighbouring ranks (left, right). Periodic along x with length L: a copy that crosses the
+  // periodic end has its x shifted by +-L so it lies next to the receiving slab. `x_field` is
+  // the index of x among species.reals. Throws if width exceeds the width of any slab.
+  Halo halo(const SoaView &species, int x_field, double lo, double hi, double L, double width,
+            int left, int right, double min_slab_width);
+
+  // For each ghost of `halo`, `per_ghost[g * k + j]` (k values per ghost) is added to
+  // `per_owner[i * k + j]` of its owner particle i. Exact and order-independent.
+  void reverse(const Halo &halo, const std::vector<std::int64_t> &per_ghost, int k,
+               std::vector<std::int64_t> &per_owner);
+
+  MPI_Comm comm() const { return comm_; }
+
+private:
+  MPI_Comm comm_;
+  int rank_ = 0, ranks_ = 1;
+  // Buffers reused between calls (no allocation in the step loop once warm).
+  std::vector<int> send_counts_, recv_counts_, send_displs_, recv_displs_;
+  std::vector<std::uint64_t> send_, recv_;
+  std::vector<std::size_t> leavers_;
+  std::vector<int> leaver_dest_;
+};
+
+} // namespace narrows::parallel

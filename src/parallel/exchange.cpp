@@ -1,0 +1,232 @@
+// Migrate, halo and reverse for any structure-of-arrays species, over MPI_Alltoallv.
+#include "narrows/parallel/exchange.hpp"
+
+#include "narrows/core/error.hpp"
+
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace narrows::parallel {
+
+std::size_t SoaView::size() const {
+  if (!reals.empty())
+    return reals[0]->size();
+  if (!words.empty())
+    return words[0]->size();
+  return halfwords.empty() ? 0 : halfwords[0]->size();
+}
+
+void SoaView::resize(std::size_t n) const {
+  for (auto *a : reals)
+    a->resize(n);
+  for (auto *a : words)
+    a->resize(n);
+  for (auto *a : halfwords)
+    a->resize(n);
+}
+
+Exchange::Exchange(MPI_Comm comm) : comm_(comm) {
+  MPI_Comm_rank(comm, &rank_);
+  MPI_Comm_size(comm, &ranks_);
+}
+
+namespace {
+
+// Alltoallv of rows of `row` words: counts are in rows. Returns received rows in recv.
+void exchange_rows(MPI_Comm comm, int ranks, std::size_t row, const std::vector<int> &send_rows,
+                   std::vector<int> &recv_rows, std::vector<int> &sdispl, std::vector<int> &rdispl,
+                   const std::vector<std::uint64_t> &send, std::vector<std::uint64_t> &recv) {
+  recv_rows.assign(ranks, 0);
+  MPI_Alltoall(send_rows.data(), 1, MPI_INT, recv_rows.data(), 1, MPI_INT, comm);
+  std::vector<int> scount(ranks), rcount(ranks);
+  sdispl.assign(ranks, 0);
+  rdispl.assign(ranks, 0);
+  long long stotal = 0, rtotal = 0;
+  for (int r = 0; r < ranks; ++r) {
+    scount[r] = static_cast<int>(send_rows[r] * row);
+    rcount[r] = static_cast<int>(recv_rows[r] * row);
+    sdispl[r] = static_cast<int>(stotal);
+    rdispl[r] = static_cast<int>(rtotal);
+    stotal += scount[r];
+    rtotal += rcount[r];
+  }
+  if (stotal > std::numeric_limits<int>::max() || rtotal > std::numeric_limits<int>::max())
+    throw Error(ExitCode::other, "exchange of more than 2^31 words in one step");
+  recv.resize(static_cast<std::size_t>(rtotal));
+  MPI_Alltoallv(send.data(), scount.data(), sdispl.data(), MPI_UINT64_T, recv.data(), rcount.data(),
+                rdispl.data(), MPI_UINT64_T, comm);
+}
+
+} // namespace
+
+void Exchange::migrate(const SoaView &s, const std::vector<int> &dest) {
+  leavers_.clear();
+  leaver_dest_.clear();
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (dest[i] != rank_) {
+      leavers_.push_back(i);
+      leaver_dest_.push_back(dest[i]);
+    }
+  // Copies: the overload below may be handed these very members by other callers.
+  const std::vector<std::size_t> leavers = leavers_;
+  const std::vector<int> to = leaver_dest_;
+  migrate(s, leavers, to);
+}
+
+void Exchange::migrate(const SoaView &s, const std::vector<std::size_t> &leavers,
+                       const std::vector<int> &to) {
+  const std::size_t F = s.fields();
+  send_counts_.assign(ranks_, 0);
+  for (int d : to)
+    ++send_counts_[d];
+  std::vector<std::size_t> next(ranks_, 0);
+  std::size_t total = 0;
+  for (int r = 0; r < ranks_; ++r) {
+    next[r] = total;
+    total += send_counts_[r];
+  }
+  send_.resize(total * F);
+  for (std::size_t j = 0; j < leavers.size(); ++j) {
+    const std::size_t i = leavers[j];
+    std::uint64_t *row = &send_[next[to[j]]++ * F];
+    std::size_t f = 0;
+    for (auto *a : s.reals)
+      row[f++] = std::bit_cast<std::uint64_t>((*a)[i]);
+    for (auto *a : s.words)
+      row[f++] = (*a)[i];
+    for (auto *a : s.halfwords)
+      row[f++] = (*a)[i];
+  }
+  // Remove the leavers from the largest index down, filling each hole with the current last
+  // particle: every leaver above the hole is already gone, so that one stays.
+  std::size_t n = s.size();
+  for (auto it = leavers.rbegin(); it != leavers.rend(); ++it) {
+    --n;
+    if (*it != n) {
+      for (auto *a : s.reals)
+        (*a)[*it] = (*a)[n];
+      for (auto *a : s.words)
+        (*a)[*it] = (*a)[n];
+      for (auto *a : s.halfwords)
+        (*a)[*it] = (*a)[n];
+    }
+  }
+  exchange_rows(comm_, ranks_, F, send_counts_, recv_counts_, send_displs_, recv_displs_, send_,
+                recv_);
+  const std::size_t arrived = recv_.size() / (F ? F : 1);
+  s.resize(n + arrived);
+  for (std::size_t j = 0; j < arrived; ++j) {
+    const std::uint64_t *row = &recv_[j * F];
+    std::size_t f = 0;
+    for (auto *a : s.reals)
+      (*a)[n + j] = std::bit_cast<double>(row[f++]);
+    for (auto *a : s.words)
+      (*a)[n + j] = row[f++];
+    for (auto *a : s.halfwords)
+      (*a)[n + j] = static_cast<std::uint32_t>(row[f++]);
+  }
+}
+
+Halo Exchange::halo(const SoaView &s, int x_field, double lo, double hi, double L, double width,
+                    int left, int right, double min_slab_width) {
+  if (width > min_slab_width)
+    throw input_error("halo width " + std::to_string(width) + " exceeds the narrowest slab (" +
+                      std::to_string(min_slab_width) +
+                      " cells); allowed: a width up to the slab width (use fewer ranks)");
+  if (!s.halfwords.empty())
+    throw Error(ExitCode::other, "halo of 4-byte fields is not supported");
+  const std::size_t n = s.size(), F = s.fields();
+  const std::size_t row_len = F + 1; // + source index
+  const std::vector<double> &x = *s.reals[x_field];
+  const double span = hi - lo;
+  // Each selected particle becomes one row per receiving side.
+  struct Pick {
+    std::size_t i;
+    int to;
+    double x;
+  };
+  std::vector<Pick> picks;
+  for (std::size_t i = 0; i < n; ++i) {
+    double u = std::fmod(x[i] - lo, L); // position in the slab, unwrapped
+    if (u < 0)
+      u += L;
+    const double xs = lo + u;
+    if (u <= width) // within the width of the left edge (inclusive): for the left neighbour
+      picks.push_back({i, left, rank_ == 0 ? xs + L : xs});
+    if (span - u <= width) // near the right edge (inclusive: a particle exactly at the width)
+      picks.push_back({i, right, rank_ == ranks_ - 1 ? xs - L : xs});
+  }
+  send_counts_.assign(ranks_, 0);
+  for (const Pick &p : picks)
+    ++send_counts_[p.to];
+  std::vector<std::size_t> next(ranks_, 0);
+  std::size_t total = 0;
+  for (int r = 0; r < ranks_; ++r) {
+    next[r] = total;
+    total += send_counts_[r];
+  }
+  send_.resize(total * row_len);
+  for (const Pick &p : picks) {
+    std::uint64_t *row = &send_[next[p.to]++ * row_len];
+    std::size_t f = 0;
+    for (std::size_t a = 0; a < s.reals.size(); ++a)
+      row[f++] =
+          std::bit_cast<std::uint64_t>(static_cast<int>(a) == x_field ? p.x : (*s.reals[a])[p.i]);
+    for (auto *a : s.words)
+      row[f++] = (*a)[p.i];
+    row[f] = p.i;
+  }
+  exchange_rows(comm_, ranks_, row_len, send_counts_, recv_counts_, send_displs_, recv_displs_,
+                send_, recv_);
+  Halo h;
+  const std::size_t g = recv_.size() / row_len;
+  h.reals.assign(s.reals.size(), std::vector<double>(g));
+  h.words.assign(s.words.size(), std::vector<std::uint64_t>(g));
+  h.source_rank.resize(g);
+  h.source_index.resize(g);
+  std::size_t j = 0;
+  for (int r = 0; r < ranks_; ++r)
+    for (int k = 0; k < recv_counts_[r]; ++k, ++j) {
+      const std::uint64_t *row = &recv_[j * row_len];
+      std::size_t f = 0;
+      for (auto &a : h.reals)
+        a[j] = std::bit_cast<double>(row[f++]);
+      for (auto &a : h.words)
+        a[j] = row[f++];
+      h.source_rank[j] = r;
+      h.source_index[j] = row[f];
+    }
+  return h;
+}
+
+void Exchange::reverse(const Halo &h, const std::vector<std::int64_t> &per_ghost, int k,
+                       std::vector<std::int64_t> &per_owner) {
+  const std::size_t row_len = static_cast<std::size_t>(k) + 1;
+  send_counts_.assign(ranks_, 0);
+  for (int r : h.source_rank)
+    ++send_counts_[r];
+  std::vector<std::size_t> next(ranks_, 0);
+  std::size_t total = 0;
+  for (int r = 0; r < ranks_; ++r) {
+    next[r] = total;
+    total += send_counts_[r];
+  }
+  send_.resize(total * row_len);
+  for (std::size_t g = 0; g < h.size(); ++g) {
+    std::uint64_t *row = &send_[next[h.source_rank[g]]++ * row_len];
+    row[0] = h.source_index[g];
+    for (int j = 0; j < k; ++j)
+      row[1 + j] = static_cast<std::uint64_t>(per_ghost[g * k + j]);
+  }
+  exchange_rows(comm_, ranks_, row_len, send_counts_, recv_counts_, send_displs_, recv_displs_,
+                send_, recv_);
+  for (std::size_t j = 0; j < recv_.size() / row_len; ++j) {
+    const std::uint64_t *row = &recv_[j * row_len];
+    for (int q = 0; q < k; ++q)
+      per_owner[row[0] * k + q] += static_cast<std::int64_t>(row[1 + q]);
+  }
+}
+
+} // namespace narrows::parallel
