@@ -3,6 +3,7 @@
 #include "narrows/engine/bench.hpp"
 #include "narrows/engine/info.hpp"
 #include "narrows/engine/run.hpp"
+#include "narrows/io/checkpoint.hpp"
 #include "narrows/scene/parse.hpp"
 
 #include <CLI/CLI.hpp>
@@ -88,9 +89,8 @@ int main_inner(int argc, char **argv) {
     return 0;
   }
   if (!restart.empty())
-    throw narrows::input_error("--restart " + restart +
-                               ": checkpoint/restart is not available in this version yet");
-  narrows::engine::run_scene(scene, {out_dir}, MPI_COMM_WORLD);
+    narrows::io::check_restart_overrides(sets);
+  narrows::engine::run_scene(scene, {out_dir, restart}, MPI_COMM_WORLD);
   return 0;
 }
 

@@ -8,6 +8,7 @@
 #include "narrows/engine/invariants.hpp"
 #include "narrows/engine/log.hpp"
 #include "narrows/engine/mpcd_simulation.hpp"
+#include "narrows/io/checkpoint.hpp"
 #include "narrows/io/observables_writer.hpp"
 #include "narrows/parallel/slabs.hpp"
 
@@ -96,6 +97,15 @@ void run_scene(const scene::Scene &scene, const RunOptions &options, MPI_Comm co
   MPI_Comm_size(comm, &ranks);
   // Refuse a decomposition the box cannot take before anything is written.
   const parallel::Slabs slabs(comm, make_box(scene).cells[0]);
+  // A restart is checked (file, format, scene) before anything is written.
+  std::string restart_file;
+  io::CheckpointInfo restart_info;
+  if (!options.restart.empty()) {
+    restart_file = io::resolve_restart(options.restart);
+    restart_info = io::read_checkpoint_info(restart_file, comm);
+    io::check_restart_scene(scene, restart_info, restart_file);
+  }
+  const bool restarting = !restart_file.empty();
 
   const std::string dir = options.out_dir.empty() ? scene.output.dir : options.out_dir;
   // Rank 0 makes the directory; every rank learns whether that worked, so all stop together.
@@ -107,7 +117,12 @@ void run_scene(const scene::Scene &scene, const RunOptions &options, MPI_Comm co
   if (failed)
     throw input_error(dir + ": cannot create output directory" +
                       (rank == 0 ? " (" + ec.message() + ")" : std::string()));
-  Log log(rank == 0, dir + "/log.txt");
+  // A continuation keeps what earlier runs wrote: its log and observables carry the step it
+  // starts from in their names (log-0000001000.txt, observables-0000001000.h5).
+  char from[16] = "";
+  if (restarting)
+    std::snprintf(from, sizeof from, "-%010lld", static_cast<long long>(restart_info.step));
+  Log log(rank == 0, dir + "/log" + from + ".txt");
   log.line("narrows " NARROWS_VERSION " run " + scene.file + " on " + std::to_string(ranks) +
            " rank(s), output in " + dir);
   for (const auto &line : describe_scene(scene, comm))
@@ -115,14 +130,38 @@ void run_scene(const scene::Scene &scene, const RunOptions &options, MPI_Comm co
   for (const auto &w : regime_warnings(scene))
     log.warn(w);
 
-  MpcdSimulation sim(scene, comm);
+  MpcdSimulation sim(scene, comm, !restarting);
+  if (restarting) {
+    sim.restore(io::read_fluid(restart_file, restart_info, comm), restart_info.step);
+    log.line("restarted from " + restart_file + " at step " + std::to_string(sim.step()));
+  }
   std::unique_ptr<io::ObservablesWriter> writer;
   if (rank == 0)
-    writer = std::make_unique<io::ObservablesWriter>(dir + "/observables.h5", scene.text);
+    writer =
+        std::make_unique<io::ObservablesWriter>(dir + "/observables" + from + ".h5", scene.text);
   Observer observer(sim, std::move(writer));
   const InvariantCheck invariants(sim);
   const std::int64_t every = scene.output.every;
   const auto n_particles = analysis::total_momentum(sim.fluid(), comm).count;
+
+  // Checkpoints: every output.checkpoint_every steps, at the end, and on SIGTERM/SIGUSR1.
+  auto save_checkpoint = [&] {
+    Stopwatch watch;
+    const io::CheckpointInfo info{scene.text,    sim.step(),       sim.time(), scene.run.seed,
+                                  sim.box().dim, sim.box().length, 0};
+    const std::string path = io::checkpoint_path(dir, sim.step());
+    const double bytes = io::write_checkpoint(path, info, {io::fluid_fields(sim.fluid())}, comm);
+    if (rank == 0)
+      io::prune_checkpoints(dir, scene.output.checkpoint_keep);
+    const double s = watch.seconds();
+    char line[300];
+    std::snprintf(line, sizeof line, "checkpoint %s: %.1f MB of particles in %.3g s (%.1f MB/s)",
+                  path.c_str(), bytes / 1e6, s, s > 0 ? bytes / 1e6 / s : 0.0);
+    log.line(line);
+    return path;
+  };
+  const io::StopSignals signals;
+  int stop = 0;
 
   Stopwatch clock, since_progress;
   const std::int64_t first = sim.step();
@@ -133,6 +172,11 @@ void run_scene(const scene::Scene &scene, const RunOptions &options, MPI_Comm co
       invariants.check(sim);
       observer.sample();
     }
+    if ((stop = signals.requested(comm)) != 0)
+      break;
+    const std::int64_t cadence = scene.output.checkpoint_every;
+    if (cadence > 0 && sim.step() % cadence == 0 && sim.step() < scene.run.steps)
+      save_checkpoint();
     if (scene.output.progress && since_progress.seconds() > 10.0) {
       since_progress.restart();
       const double done = static_cast<double>(sim.step() - first);
@@ -148,6 +192,11 @@ void run_scene(const scene::Scene &scene, const RunOptions &options, MPI_Comm co
   }
   const double seconds = clock.seconds();
   const auto steps = sim.step() - first;
+  const std::string last = save_checkpoint();
+  if (stop != 0)
+    log.line(std::string("received ") + io::signal_name(stop) + ": stopped after step " +
+             std::to_string(sim.step()) + ", checkpoint " + last +
+             " written; exit 0 (continue with --restart " + dir + ")");
   char buf[200];
   std::snprintf(buf, sizeof buf,
                 "Loop time of %.4g s on %d ranks for %lld steps with %llu particles (%.4g "

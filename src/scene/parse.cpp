@@ -46,7 +46,8 @@ const std::vector<Section> &schema() {
       {"domain", {"size"}},
       {"fluid", {"collision", "density", "dt", "angle", "kT", "sort_every"}},
       {"body_force", {"kind", "value", "amplitude"}},
-      {"output", {"dir", "every", "observables", "checkpoint_every", "progress"}},
+      {"output",
+       {"dir", "every", "observables", "checkpoint_every", "checkpoint_keep", "progress"}},
   };
   return s;
 }
@@ -751,6 +752,10 @@ void parse_output(const Ctx &c, const value *o, Output &out) {
     out.checkpoint_every =
         as_integer(c, *v, "output.checkpoint_every", "an integer >= 0 (0 = only at the end)",
                    [](std::int64_t n) { return n >= 0; });
+  if (const value *v = find(o, "checkpoint_keep"))
+    out.checkpoint_keep = static_cast<int>(
+        as_integer(c, *v, "output.checkpoint_keep", "an integer from 1 to 1000 (checkpoints kept)",
+                   [](std::int64_t n) { return n >= 1 && n <= 1000; }));
   if (const value *v = find(o, "progress")) {
     if (!v->is_boolean())
       c.wrong_type("output.progress", *v, "true or false");

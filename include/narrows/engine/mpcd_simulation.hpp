@@ -37,6 +37,15 @@ public:
   // One MPCD step: every stage in order, then the step counter advances.
   void advance();
 
+  // Continues from a checkpoint: the fluid becomes `fluid` (any block of the particles: the
+  // next advance() migrates them to their slab owners), the step counter `step`. For a
+  // simulation built with allocate = false, this also builds this rank's cell grid.
+  void restore(mpcd::Fluid &&fluid, std::int64_t step) {
+    grid_ = mpcd::CellGrid(box_, slabs_.first_column(), slabs_.local_columns());
+    fluid_ = std::move(fluid);
+    step_ = step;
+  }
+
   std::int64_t step() const { return step_; }
   double time() const { return static_cast<double>(step_) * scene_.fluid.dt; }
   const std::vector<Stage> &stages() const { return stages_; }

@@ -11,6 +11,7 @@ namespace narrows::engine {
 
 struct RunOptions {
   std::string out_dir; // overrides scene.output.dir when not empty
+  std::string restart; // checkpoint file or directory to continue from (empty: start fresh)
 };
 
 // Runs the scene to run.steps. Writes DIR/log.txt and DIR/observables.h5 (rank 0) and ends

@@ -45,8 +45,9 @@ struct Output {
   std::int64_t every = 100; // observables cadence in steps
   std::vector<std::string> observables{"temperature", "momentum", "velocity_profile",
                                        "density_profile"};
-  std::int64_t checkpoint_every = 0;
-  bool progress = true; // progress line with ETA on long runs
+  std::int64_t checkpoint_every = 0; // 0 = only at the end of the run
+  int checkpoint_keep = 2;           // newest checkpoints kept in the output directory
+  bool progress = true;              // progress line with ETA on long runs
 };
 
 struct Scene {

@@ -1,0 +1,127 @@
+// Checkpoints: one parallel-HDF5 file per checkpoint, written collectively (each rank its rows
+// at an MPI_Exscan offset) and read back on any number of ranks (each rank a block of rows;
+// the first step migrates the particles to their slab owners).
+//
+// Layout (H5MD style, format version 1):
+//   /h5md                      attribute version = [1, 1]; groups creator, author (name, ...)
+//   /particles/<species>/box   attributes dimension, boundary; dataset edges [d]
+//   /particles/<species>/<field>/{value, step, time}
+//                              vector fields (position, velocity): value [N][d] float64
+//                              word fields (id): value [N] uint64
+//   /parameters/{scene, step, time, seed, format_version, dimensions}
+//
+// Species are generic: a species is a name plus its vector and word fields (SpeciesFields),
+// and the writer/reader loop over whatever a run has. The fluid is the species "fluid".
+// Colloids will be the species "colloids" with more fields (orientation, angular_velocity,
+// ...), and their contact history a further group /particles/colloids/contacts/... with its
+// own row count: readers look up only the groups their scene needs and ignore others, so
+// adding a species or a field does not change format version 1. The version changes only if
+// the meaning or shape of an existing dataset does.
+#pragma once
+
+#include "narrows/mpcd/fluid.hpp"
+#include "narrows/scene/scene.hpp"
+
+#include <mpi.h>
+
+#include <array>
+#include <csignal>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace narrows::io {
+
+inline constexpr std::int64_t checkpoint_format_version = 1;
+
+// What a checkpoint stores besides the particles.
+struct CheckpointInfo {
+  std::string scene_text; // the scene that ran (overrides re-serialised)
+  std::int64_t step = 0;
+  double time = 0.0;
+  std::uint64_t seed = 0;
+  int dimensions = 2;
+  std::array<double, 3> box{1.0, 1.0, 1.0}; // edge lengths (first `dimensions` used)
+  std::uint64_t fluid_particles = 0;        // filled by the reader
+};
+
+// One species on this rank as structure-of-arrays views. Vector fields have `dim` component
+// arrays and are stored as [N][dim]; word fields are stored as [N].
+struct SpeciesFields {
+  std::string name;
+  int dim = 2;
+  std::vector<std::pair<std::string, std::array<std::vector<double> *, 3>>> vectors;
+  std::vector<std::pair<std::string, std::vector<std::uint64_t> *>> words;
+  std::size_t rows() const;
+};
+
+// The fluid as a species: position, velocity, id.
+SpeciesFields fluid_fields(mpcd::Fluid &fluid);
+
+// Writes `path` collectively on all ranks of comm: first to `path`.tmp, then (rank 0, after
+// the file is closed and synced) renamed to `path`, so a crash never leaves a partial file
+// under the final name. Returns the bytes of particle data written (all ranks).
+double write_checkpoint(const std::string &path, const CheckpointInfo &info,
+                        const std::vector<SpeciesFields> &species, MPI_Comm comm);
+
+// Reads and checks the header of a checkpoint (collective). Anything that makes it unusable
+// throws input_error with one line: missing file, not HDF5, truncated or damaged, missing
+// dataset, wrong format version, row counts of the fluid fields that disagree.
+CheckpointInfo read_checkpoint_info(const std::string &path, MPI_Comm comm);
+
+// Reads this rank's block of the rows of every field of `species` (collective); the arrays
+// are resized. The species must exist in the file (it was checked by read_checkpoint_info for
+// the fluid).
+void read_species(const std::string &path, SpeciesFields &species, MPI_Comm comm);
+
+// The fluid of a checkpoint: this rank's block of rows, cell indices zero (recomputed by the
+// next step).
+mpcd::Fluid read_fluid(const std::string &path, const CheckpointInfo &info, MPI_Comm comm);
+
+// ---- files of a run directory ------------------------------------------------------------
+
+// DIR/checkpoint-<step as 10 digits>.h5
+std::string checkpoint_path(const std::string &dir, std::int64_t step);
+
+// The checkpoint `--restart ARG` means: ARG itself if it is a file, else the checkpoint with
+// the highest step in the directory ARG (temporary files ignored). input_error if there is
+// none.
+std::string resolve_restart(const std::string &arg);
+
+// Removes all but the newest `keep` checkpoints of dir, and leftover temporary files of
+// checkpoints that were never completed. Rank 0 only; errors are ignored (it is cleanup).
+void prune_checkpoints(const std::string &dir, int keep);
+
+// ---- restarting a scene ------------------------------------------------------------------
+
+// --set on a restart may change only run.steps and output.*: anything else throws
+// input_error naming the override.
+void check_restart_overrides(const std::vector<std::string> &overrides);
+
+// The scene given on the command line must describe the same physics as the checkpoint's
+// stored scene (only run.steps and output.* may differ), and the checkpoint's data must fit
+// it (dimensions, particle count). Throws input_error naming the first difference.
+void check_restart_scene(const scene::Scene &given, const CheckpointInfo &info,
+                         const std::string &checkpoint);
+
+// ---- stopping cleanly on a signal --------------------------------------------------------
+
+// Installs handlers for SIGTERM and SIGUSR1 (what SLURM sends before the time limit) while
+// alive; the previous handlers come back on destruction.
+class StopSignals {
+public:
+  StopSignals();
+  ~StopSignals();
+  StopSignals(const StopSignals &) = delete;
+  StopSignals &operator=(const StopSignals &) = delete;
+  // Collective: the signal received by any rank (0 if none), the same on every rank.
+  int requested(MPI_Comm comm) const;
+
+private:
+  struct sigaction old_term_ {
+  }, old_usr1_{};
+};
+
+const char *signal_name(int sig);
+
+} // namespace narrows::io

@@ -1,0 +1,696 @@
+// Checkpoints: collective parallel-HDF5 write and read, run-directory bookkeeping, the restart
+// checks and the stop signals.
+#include "narrows/io/checkpoint.hpp"
+
+#include "narrows/core/error.hpp"
+#include "narrows/io/hdf5.hpp"
+#include "narrows/scene/parse.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+
+namespace narrows::io {
+
+namespace fs = std::filesystem;
+
+std::size_t SpeciesFields::rows() const {
+  if (!words.empty())
+    return words.front().second->size();
+  if (!vectors.empty())
+    return vectors.front().second[0]->size();
+  return 0;
+}
+
+SpeciesFields fluid_fields(mpcd::Fluid &f) {
+  SpeciesFields s;
+  s.name = "fluid";
+  s.dim = f.dim;
+  s.vectors.push_back({"position", {&f.x[0], &f.x[1], &f.x[2]}});
+  s.vectors.push_back({"velocity", {&f.v[0], &f.v[1], &f.v[2]}});
+  s.words.push_back({"id", &f.id});
+  return s;
+}
+
+namespace {
+
+// Rows moved per collective H5Dwrite/H5Dread: bounds the staging buffer (16-48 MiB).
+constexpr std::uint64_t rows_per_call = std::uint64_t{1} << 21;
+
+int rank_of(MPI_Comm comm) {
+  int r = 0;
+  MPI_Comm_rank(comm, &r);
+  return r;
+}
+int size_of(MPI_Comm comm) {
+  int p = 1;
+  MPI_Comm_size(comm, &p);
+  return p;
+}
+
+[[noreturn]] void refuse(const std::string &path, const std::string &what) {
+  throw input_error(path + ": " + what);
+}
+
+// The file-access list of collective I/O on comm: metadata operations collective too, large
+// datasets aligned to 1 MiB (file-system blocks).
+h5::PropList mpio_fapl(MPI_Comm comm, const std::string &where) {
+  h5::PropList fapl(H5Pcreate(H5P_FILE_ACCESS), where, "create file access list");
+  h5::check(H5Pset_fapl_mpio(fapl.get(), comm, MPI_INFO_NULL), where, "set MPI-IO driver");
+  h5::check(H5Pset_all_coll_metadata_ops(fapl.get(), true), where, "set collective metadata");
+  h5::check(H5Pset_coll_metadata_write(fapl.get(), true), where, "set collective metadata");
+  h5::check(H5Pset_alignment(fapl.get(), 1 << 20, 1 << 20), where, "set alignment");
+  return fapl;
+}
+
+h5::PropList collective_dxpl(const std::string &where) {
+  h5::PropList dxpl(H5Pcreate(H5P_DATASET_XFER), where, "create transfer list");
+  h5::check(H5Pset_dxpl_mpio(dxpl.get(), H5FD_MPIO_COLLECTIVE), where, "set collective transfer");
+  return dxpl;
+}
+
+// Fixed-length strings: parallel HDF5 1.10 cannot write variable-length data.
+h5::Datatype fixed_string(std::size_t n, const std::string &where) {
+  h5::Datatype t(H5Tcopy(H5T_C_S1), where, "copy string type");
+  h5::check(H5Tset_size(t.get(), std::max<std::size_t>(n, 1)), where, "set string size");
+  h5::check(H5Tset_strpad(t.get(), H5T_STR_NULLPAD), where, "set string padding");
+  h5::check(H5Tset_cset(t.get(), H5T_CSET_UTF8), where, "set string charset");
+  return t;
+}
+
+void string_attribute(hid_t obj, const std::string &name, const std::string &value,
+                      const std::string &where) {
+  const auto type = fixed_string(value.size(), where);
+  std::string buf = value;
+  buf.resize(std::max<std::size_t>(value.size(), 1), '\0');
+  h5::write_attribute(obj, name, type.get(), {}, buf.data(), where);
+}
+
+// A small dataset created by all ranks (collective) and written by rank 0 (independent).
+void small_dataset(hid_t loc, const std::string &name, hid_t type, std::span<const hsize_t> dims,
+                   const void *data, MPI_Comm comm, const std::string &where) {
+  const auto space = h5::simple_dataspace(dims, {}, where);
+  const h5::Dataset d(
+      H5Dcreate2(loc, name.c_str(), type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+      where, "create dataset " + name);
+  if (rank_of(comm) == 0)
+    h5::check(H5Dwrite(d.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), where,
+              "write dataset " + name);
+}
+template <class T>
+void small_scalar(hid_t loc, const std::string &name, T value, MPI_Comm comm,
+                  const std::string &where) {
+  small_dataset(loc, name, h5::native_type<T>(), {}, &value, comm, where);
+}
+void small_string(hid_t loc, const std::string &name, const std::string &value, MPI_Comm comm,
+                  const std::string &where) {
+  const auto type = fixed_string(value.size(), where);
+  std::string buf = value;
+  buf.resize(std::max<std::size_t>(value.size(), 1), '\0');
+  small_dataset(loc, name, type.get(), {}, buf.data(), comm, where);
+}
+
+// This rank's rows [offset, offset + n) of a [total][width] dataset, moved in collective calls
+// of at most rows_per_call rows; every rank makes the same number of calls. `move(buf, first,
+// count)` fills (write) or drains (read) the staging buffer for local rows [first, first+count).
+template <class T>
+void transfer_rows(hid_t dset, bool write, std::uint64_t offset, std::uint64_t n, int width,
+                   MPI_Comm comm, const std::function<void(T *, std::size_t, std::size_t)> &move,
+                   const std::string &where) {
+  std::uint64_t most = 0;
+  MPI_Allreduce(&n, &most, 1, MPI_UINT64_T, MPI_MAX, comm);
+  const std::uint64_t calls = (most + rows_per_call - 1) / rows_per_call;
+  const auto dxpl = collective_dxpl(where);
+  const h5::Dataspace file_space(H5Dget_space(dset), where, "get dataspace");
+  const int rank = H5Sget_simple_extent_ndims(file_space.get());
+  std::vector<T> buf(std::min(n, rows_per_call) * width);
+  for (std::uint64_t c = 0; c < calls; ++c) {
+    const std::uint64_t first = std::min(n, c * rows_per_call);
+    const std::uint64_t count = std::min(n - first, rows_per_call);
+    const hsize_t start[2] = {offset + first, 0};
+    const hsize_t extent[2] = {count, static_cast<hsize_t>(width)};
+    const hsize_t mem_dims[2] = {std::max<hsize_t>(count, 1), static_cast<hsize_t>(width)};
+    const h5::Dataspace mem(H5Screate_simple(rank, mem_dims, nullptr), where, "memory space");
+    if (count > 0) {
+      h5::check(
+          H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start, nullptr, extent, nullptr),
+          where, "select rows");
+    } else {
+      h5::check(H5Sselect_none(file_space.get()), where, "select none");
+      h5::check(H5Sselect_none(mem.get()), where, "select none");
+    }
+    if (write) {
+      if (count > 0)
+        move(buf.data(), first, count);
+      h5::check(
+          H5Dwrite(dset, h5::native_type<T>(), mem.get(), file_space.get(), dxpl.get(), buf.data()),
+          where, "collective write");
+    } else {
+      h5::check(
+          H5Dread(dset, h5::native_type<T>(), mem.get(), file_space.get(), dxpl.get(), buf.data()),
+          where, "collective read");
+      if (count > 0)
+        move(buf.data(), first, count);
+    }
+  }
+}
+
+// A big dataset: space allocated at creation (required in parallel), never filled.
+h5::Dataset create_rows(hid_t loc, const std::string &name, hid_t type, std::uint64_t total,
+                        int width, bool vector, const std::string &where) {
+  const hsize_t dims[2] = {total, static_cast<hsize_t>(width)};
+  const auto space =
+      h5::simple_dataspace(std::span<const hsize_t>(dims, vector ? 2 : 1), {}, where);
+  h5::PropList dcpl(H5Pcreate(H5P_DATASET_CREATE), where, "create dataset list");
+  h5::check(H5Pset_alloc_time(dcpl.get(), H5D_ALLOC_TIME_EARLY), where, "set allocation time");
+  h5::check(H5Pset_fill_time(dcpl.get(), H5D_FILL_TIME_NEVER), where, "set fill time");
+  return h5::Dataset(
+      H5Dcreate2(loc, name.c_str(), type, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT), where,
+      "create dataset " + name);
+}
+
+// Exclusive prefix sum and total of the local row counts.
+std::pair<std::uint64_t, std::uint64_t> offset_and_total(std::uint64_t n, MPI_Comm comm) {
+  std::uint64_t offset = 0, total = 0;
+  MPI_Exscan(&n, &offset, 1, MPI_UINT64_T, MPI_SUM, comm);
+  if (rank_of(comm) == 0)
+    offset = 0; // MPI_Exscan leaves rank 0's result undefined
+  MPI_Allreduce(&n, &total, 1, MPI_UINT64_T, MPI_SUM, comm);
+  return {offset, total};
+}
+
+double write_species(hid_t particles, const SpeciesFields &s, const CheckpointInfo &info,
+                     MPI_Comm comm, const std::string &where) {
+  const std::uint64_t n = s.rows();
+  const auto [offset, total] = offset_and_total(n, comm);
+  const auto g = h5::create_group(particles, s.name, where);
+  {
+    const auto box = h5::create_group(g.get(), "box", where);
+    const std::int32_t dim = s.dim;
+    h5::write_attribute(box.get(), "dimension", std::span<const std::int32_t>(&dim, 1), where);
+    const auto type = fixed_string(8, where);
+    std::vector<char> boundary(8 * s.dim, '\0');
+    for (int k = 0; k < s.dim; ++k)
+      std::memcpy(&boundary[8 * k], "periodic", 8);
+    const hsize_t d = s.dim;
+    h5::write_attribute(box.get(), "boundary", type.get(), std::span<const hsize_t>(&d, 1),
+                        boundary.data(), where);
+    small_dataset(box.get(), "edges", H5T_NATIVE_DOUBLE, std::span<const hsize_t>(&d, 1),
+                  info.box.data(), comm, where);
+  }
+  double bytes = 0;
+  for (const auto &[name, comp] : s.vectors) {
+    const auto fg = h5::create_group(g.get(), name, where);
+    small_scalar<std::int64_t>(fg.get(), "step", info.step, comm, where);
+    small_scalar<double>(fg.get(), "time", info.time, comm, where);
+    const auto dset = create_rows(fg.get(), "value", H5T_IEEE_F64LE, total, s.dim, true, where);
+    const int d = s.dim;
+    transfer_rows<double>(
+        dset.get(), true, offset, n, d, comm,
+        [&comp, d](double *buf, std::size_t first, std::size_t count) {
+          for (int k = 0; k < d; ++k) {
+            const double *src = comp[k]->data() + first;
+            for (std::size_t i = 0; i < count; ++i)
+              buf[i * d + k] = src[i];
+          }
+        },
+        where);
+    bytes += static_cast<double>(total) * d * 8;
+  }
+  for (const auto &[name, words] : s.words) {
+    const auto fg = h5::create_group(g.get(), name, where);
+    small_scalar<std::int64_t>(fg.get(), "step", info.step, comm, where);
+    small_scalar<double>(fg.get(), "time", info.time, comm, where);
+    const auto dset = create_rows(fg.get(), "value", H5T_STD_U64LE, total, 1, false, where);
+    transfer_rows<std::uint64_t>(
+        dset.get(), true, offset, n, 1, comm,
+        [words](std::uint64_t *buf, std::size_t first, std::size_t count) {
+          std::copy_n(words->data() + first, count, buf);
+        },
+        where);
+    bytes += static_cast<double>(total) * 8;
+  }
+  return bytes;
+}
+
+// fsync of a file or directory; false on failure.
+bool sync_path(const std::string &path, bool directory) {
+  const int fd = ::open(path.c_str(), directory ? (O_RDONLY | O_DIRECTORY) : O_RDONLY);
+  if (fd < 0)
+    return false;
+  const bool ok = ::fsync(fd) == 0;
+  ::close(fd);
+  return ok;
+}
+
+// ---- reading ---------------------------------------------------------------------------------
+
+// What HDF5 said about the last failure (its error stack, innermost first), for messages.
+std::string hdf5_error_text() {
+  std::string text;
+  H5Ewalk2(
+      H5E_DEFAULT, H5E_WALK_DOWNWARD,
+      [](unsigned, const H5E_error2_t *e, void *data) -> herr_t {
+        auto &t = *static_cast<std::string *>(data);
+        if (e->desc != nullptr && *e->desc != '\0')
+          t += std::string(t.empty() ? "" : "; ") + e->desc;
+        return 0;
+      },
+      &text);
+  return text;
+}
+
+// Whether every link of an absolute path exists.
+bool path_exists(hid_t file, const std::string &path) {
+  for (std::size_t pos = path.find('/', 1);; pos = path.find('/', pos + 1)) {
+    if (H5Lexists(file, path.substr(0, pos).c_str(), H5P_DEFAULT) <= 0)
+      return false;
+    if (pos == std::string::npos)
+      return true;
+  }
+}
+
+h5::Dataset open_required(hid_t file, const std::string &name, const std::string &path) {
+  if (!path_exists(file, name))
+    refuse(path, "missing dataset " + name + "; allowed: a narrows checkpoint (format version " +
+                     std::to_string(checkpoint_format_version) + ", written by narrows run)");
+  return h5::Dataset(H5Dopen2(file, name.c_str(), H5P_DEFAULT), path, "open dataset " + name);
+}
+
+std::vector<hsize_t> shape_of(hid_t dset, const std::string &path) {
+  const h5::Dataspace s(H5Dget_space(dset), path, "get dataspace");
+  const int n = H5Sget_simple_extent_ndims(s.get());
+  std::vector<hsize_t> dims(std::max(n, 0));
+  if (n > 0)
+    H5Sget_simple_extent_dims(s.get(), dims.data(), nullptr);
+  return dims;
+}
+
+template <class T> T read_scalar(hid_t file, const std::string &name, const std::string &path) {
+  const auto d = open_required(file, name, path);
+  if (!shape_of(d.get(), path).empty())
+    refuse(path, name + " is not a scalar; allowed: a narrows checkpoint");
+  T value{};
+  h5::check(H5Dread(d.get(), h5::native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, &value), path,
+            "read " + name);
+  return value;
+}
+
+std::string read_string(hid_t file, const std::string &name, const std::string &path) {
+  const auto d = open_required(file, name, path);
+  const h5::Datatype type(H5Dget_type(d.get()), path, "get type of " + name);
+  if (H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) > 0)
+    refuse(path, name + " is not a fixed-length string; allowed: a narrows checkpoint");
+  std::string buf(H5Tget_size(type.get()), '\0');
+  h5::check(H5Dread(d.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buf.data()), path,
+            "read " + name);
+  buf.resize(std::strlen(buf.c_str()));
+  return buf;
+}
+
+std::string shape_text(const std::vector<hsize_t> &dims) {
+  std::string s;
+  for (const auto d : dims) {
+    s += '[';
+    s += std::to_string(d);
+    s += ']';
+  }
+  return s.empty() ? "scalar" : s;
+}
+
+} // namespace
+
+double write_checkpoint(const std::string &path, const CheckpointInfo &info,
+                        const std::vector<SpeciesFields> &species, MPI_Comm comm) {
+  h5::silence_errors();
+  const std::string tmp = path + ".tmp";
+  const auto fapl = mpio_fapl(comm, tmp);
+  double bytes = 0;
+  {
+    h5::File file = h5::create_file(tmp, fapl.get());
+    {
+      const auto h5md = h5::create_group(file.get(), "h5md", tmp);
+      const std::int32_t version[2] = {1, 1};
+      h5::write_attribute(h5md.get(), "version", std::span<const std::int32_t>(version, 2), tmp);
+      const auto creator = h5::create_group(h5md.get(), "creator", tmp);
+      string_attribute(creator.get(), "name", "narrows", tmp);
+      string_attribute(creator.get(), "version", NARROWS_VERSION, tmp);
+      const auto author = h5::create_group(h5md.get(), "author", tmp);
+      string_attribute(author.get(), "name", "narrows run", tmp);
+    }
+    {
+      const auto params = h5::create_group(file.get(), "parameters", tmp);
+      small_string(params.get(), "scene", info.scene_text, comm, tmp);
+      small_scalar<std::int64_t>(params.get(), "step", info.step, comm, tmp);
+      small_scalar<double>(params.get(), "time", info.time, comm, tmp);
+      small_scalar<std::uint64_t>(params.get(), "seed", info.seed, comm, tmp);
+      small_scalar<std::int64_t>(params.get(), "format_version", checkpoint_format_version, comm,
+                                 tmp);
+      small_scalar<std::int32_t>(params.get(), "dimensions", info.dimensions, comm, tmp);
+    }
+    {
+      const auto particles = h5::create_group(file.get(), "particles", tmp);
+      for (const auto &s : species)
+        bytes += write_species(particles.get(), s, info, comm, tmp);
+    }
+    // Closing is where the last metadata reaches the file: check it (not the destructor).
+    h5::check(H5Fclose(file.release()), tmp, "close file");
+  }
+  // Only a complete file gets the final name. The data reach the disk before the rename,
+  // so not even a power cut leaves a partial checkpoint under the final name.
+  int failed = 0;
+  std::string why;
+  if (rank_of(comm) == 0) {
+    std::error_code ec;
+    if (!sync_path(tmp, false)) {
+      failed = 1;
+      why = std::string("fsync failed (") + std::strerror(errno) + ")";
+    } else {
+      fs::rename(tmp, path, ec);
+      if (ec) {
+        failed = 1;
+        why = "rename from " + tmp + " failed (" + ec.message() + ")";
+      } else {
+        sync_path(fs::path(path).parent_path().empty() ? std::string(".")
+                                                       : fs::path(path).parent_path().string(),
+                  true);
+      }
+    }
+  }
+  MPI_Bcast(&failed, 1, MPI_INT, 0, comm);
+  if (failed)
+    throw Error(ExitCode::other,
+                path + ": cannot complete checkpoint" + (why.empty() ? "" : ": " + why));
+  return bytes;
+}
+
+CheckpointInfo read_checkpoint_info(const std::string &path, MPI_Comm comm) {
+  h5::silence_errors();
+  std::error_code ec;
+  if (!fs::exists(path, ec))
+    refuse(path, "cannot open checkpoint (no such file); allowed: a checkpoint-*.h5 file or a "
+                 "directory holding one");
+  if (!fs::is_regular_file(path, ec))
+    refuse(path, "cannot open checkpoint (not a regular file); allowed: a checkpoint-*.h5 file "
+                 "or a directory holding one");
+  const auto size = fs::file_size(path, ec);
+  {
+    // Our files carry the HDF5 signature at offset 0 (no user block).
+    static const char signature[8] = {'\211', 'H', 'D', 'F', '\r', '\n', '\032', '\n'};
+    char head[8] = {};
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+      refuse(path, std::string("cannot open checkpoint (") + std::strerror(errno) + ")");
+    in.read(head, 8);
+    if (in.gcount() != 8 || std::memcmp(head, signature, 8) != 0)
+      refuse(path, "not an HDF5 file (found no HDF5 signature in its " + std::to_string(size) +
+                       " bytes); allowed: a checkpoint-*.h5 written by narrows run");
+  }
+  const auto fapl = mpio_fapl(comm, path);
+  const h5::File file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()));
+  if (!file) {
+    const std::string err = hdf5_error_text();
+    if (err.find("truncated") != std::string::npos)
+      refuse(path, "truncated HDF5 file (" + std::to_string(size) +
+                       " bytes; the writer did not finish); allowed: a complete checkpoint");
+    refuse(path,
+           "damaged HDF5 file, HDF5 cannot open it (" + err + "); allowed: a complete checkpoint");
+  }
+  const hid_t f = file.get();
+
+  CheckpointInfo info;
+  const auto version = read_scalar<std::int64_t>(f, "/parameters/format_version", path);
+  if (version != checkpoint_format_version)
+    refuse(path, "/parameters/format_version = " + std::to_string(version) +
+                     "; allowed: " + std::to_string(checkpoint_format_version) +
+                     " (the format this narrows " NARROWS_VERSION " reads)");
+  info.scene_text = read_string(f, "/parameters/scene", path);
+  info.step = read_scalar<std::int64_t>(f, "/parameters/step", path);
+  info.time = read_scalar<double>(f, "/parameters/time", path);
+  info.seed = read_scalar<std::uint64_t>(f, "/parameters/seed", path);
+  info.dimensions = read_scalar<std::int32_t>(f, "/parameters/dimensions", path);
+  if (info.step < 0)
+    refuse(path, "/parameters/step = " + std::to_string(info.step) + "; allowed: >= 0");
+  if (info.dimensions != 2 && info.dimensions != 3)
+    refuse(path,
+           "/parameters/dimensions = " + std::to_string(info.dimensions) + "; allowed: 2 or 3");
+
+  const std::string pos = "/particles/fluid/position/value",
+                    vel = "/particles/fluid/velocity/value", ids = "/particles/fluid/id/value",
+                    edges = "/particles/fluid/box/edges";
+  const auto p_shape = shape_of(open_required(f, pos, path).get(), path);
+  const auto v_shape = shape_of(open_required(f, vel, path).get(), path);
+  const auto i_shape = shape_of(open_required(f, ids, path).get(), path);
+  if (p_shape.size() != 2 || (p_shape[1] != 2 && p_shape[1] != 3))
+    refuse(path, pos + " has shape " + shape_text(p_shape) + "; allowed: [N][2] or [N][3]");
+  if (p_shape[1] != static_cast<hsize_t>(info.dimensions))
+    refuse(path, pos + " has shape " + shape_text(p_shape) + " but /parameters/dimensions = " +
+                     std::to_string(info.dimensions) + "; allowed: [N][dimensions]");
+  if (v_shape != p_shape)
+    refuse(path, vel + " has shape " + shape_text(v_shape) + ", " + pos + " has " +
+                     shape_text(p_shape) + "; allowed: the same shape");
+  if (i_shape.size() != 1 || i_shape[0] != p_shape[0])
+    refuse(path, "particle count mismatch: " + ids + " has shape " + shape_text(i_shape) + ", " +
+                     pos + " has " + shape_text(p_shape) + "; allowed: one id per particle ([" +
+                     std::to_string(p_shape[0]) + "])");
+  info.fluid_particles = p_shape[0];
+  const auto e = open_required(f, edges, path);
+  if (shape_of(e.get(), path) != std::vector<hsize_t>{static_cast<hsize_t>(info.dimensions)})
+    refuse(path, edges + " has shape " + shape_text(shape_of(e.get(), path)) + "; allowed: [" +
+                     std::to_string(info.dimensions) + "]");
+  h5::check(H5Dread(e.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, info.box.data()),
+            path, "read " + edges);
+  (void)comm;
+  return info;
+}
+
+void read_species(const std::string &path, SpeciesFields &s, MPI_Comm comm) {
+  h5::silence_errors();
+  const auto fapl = mpio_fapl(comm, path);
+  const h5::File file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()), path, "open file");
+  const std::string base = "/particles/" + s.name + "/";
+  const std::string first_field =
+      base + (!s.vectors.empty() ? s.vectors.front().first : s.words.front().first) + "/value";
+  const auto total = shape_of(open_required(file.get(), first_field, path).get(), path).at(0);
+  const auto r = static_cast<std::uint64_t>(rank_of(comm));
+  const auto p = static_cast<std::uint64_t>(size_of(comm));
+  const std::uint64_t first = total * r / p, n = total * (r + 1) / p - first;
+  for (auto &[name, comp] : s.vectors) {
+    const auto d = open_required(file.get(), base + name + "/value", path);
+    for (int k = 0; k < s.dim; ++k)
+      comp[k]->resize(n);
+    const int dim = s.dim;
+    transfer_rows<double>(
+        d.get(), false, first, n, dim, comm,
+        [&comp, dim](double *buf, std::size_t at, std::size_t count) {
+          for (int k = 0; k < dim; ++k) {
+            double *dst = comp[k]->data() + at;
+            for (std::size_t i = 0; i < count; ++i)
+              dst[i] = buf[i * dim + k];
+          }
+        },
+        path);
+  }
+  for (auto &[name, words] : s.words) {
+    const auto d = open_required(file.get(), base + name + "/value", path);
+    words->resize(n);
+    transfer_rows<std::uint64_t>(
+        d.get(), false, first, n, 1, comm,
+        [words](std::uint64_t *buf, std::size_t at, std::size_t count) {
+          std::copy_n(buf, count, words->data() + at);
+        },
+        path);
+  }
+}
+
+mpcd::Fluid read_fluid(const std::string &path, const CheckpointInfo &info, MPI_Comm comm) {
+  mpcd::Fluid fluid;
+  fluid.dim = info.dimensions;
+  auto fields = fluid_fields(fluid);
+  read_species(path, fields, comm);
+  fluid.cell.assign(fluid.id.size(), 0);
+  for (const auto id : fluid.id)
+    if (id >= info.fluid_particles)
+      refuse(path, "/particles/fluid/id/value holds id " + std::to_string(id) + "; allowed: 0 to " +
+                       std::to_string(info.fluid_particles - 1));
+  return fluid;
+}
+
+// ---- files of a run directory ------------------------------------------------------------
+
+std::string checkpoint_path(const std::string &dir, std::int64_t step) {
+  char name[40];
+  std::snprintf(name, sizeof name, "checkpoint-%010lld.h5", static_cast<long long>(step));
+  return (fs::path(dir) / name).string();
+}
+
+namespace {
+
+// Checkpoints of dir (complete ones only), oldest first.
+std::vector<fs::path> list_checkpoints(const std::string &dir) {
+  std::vector<fs::path> out;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.size() == 24 && name.rfind("checkpoint-", 0) == 0 && name.compare(21, 3, ".h5") == 0 &&
+        std::all_of(name.begin() + 11, name.begin() + 21,
+                    [](char c) { return c >= '0' && c <= '9'; }))
+      out.push_back(it->path());
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+} // namespace
+
+std::string resolve_restart(const std::string &arg) {
+  std::error_code ec;
+  if (!fs::is_directory(arg, ec))
+    return arg;
+  const auto all = list_checkpoints(arg);
+  if (all.empty())
+    throw input_error("--restart " + arg +
+                      ": no checkpoint-<step>.h5 in this directory; allowed: a checkpoint file "
+                      "or a directory holding one");
+  return all.back().string();
+}
+
+void prune_checkpoints(const std::string &dir, int keep) {
+  const auto all = list_checkpoints(dir);
+  std::error_code ec;
+  for (std::size_t i = 0; i + static_cast<std::size_t>(std::max(keep, 1)) < all.size(); ++i)
+    fs::remove(all[i], ec);
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind("checkpoint-", 0) == 0 && name.size() > 4 &&
+        name.compare(name.size() - 7, 7, ".h5.tmp") == 0) {
+      std::error_code ignored;
+      fs::remove(it->path(), ignored);
+    }
+  }
+}
+
+// ---- restarting a scene ------------------------------------------------------------------
+
+void check_restart_overrides(const std::vector<std::string> &overrides) {
+  for (const auto &o : overrides) {
+    std::string key = o.substr(0, o.find('='));
+    key.erase(0, key.find_first_not_of(" \t"));
+    key.erase(key.find_last_not_of(" \t") + 1);
+    if (key == "run.steps" || key.rfind("output.", 0) == 0)
+      continue;
+    throw input_error("--set '" + o + "': " + key +
+                      " cannot change on a restart (the checkpoint's scene continues); "
+                      "allowed: run.steps, output.*");
+  }
+}
+
+void check_restart_scene(const scene::Scene &given, const CheckpointInfo &info,
+                         const std::string &checkpoint) {
+  const std::string head = given.file + ": ";
+  if (given.run.engine != scene::Engine::mpcd)
+    throw input_error(head + "run.engine = \"" + scene::to_string(given.run.engine) +
+                      "\" with --restart; allowed: checkpoints of the mpcd engine only");
+  if (given.run.dimensions != info.dimensions)
+    throw input_error(head + "run.dimensions = " + std::to_string(given.run.dimensions) +
+                      " but checkpoint " + checkpoint + " is from a " +
+                      std::to_string(info.dimensions) +
+                      "D run; allowed: the scene the checkpoint was written by");
+  const auto stored = scene::parse_scene(info.scene_text, checkpoint + ":/parameters/scene");
+  // Everything but run.steps and output.* must match: the continuation is that run.
+  std::string key, found, wanted;
+  auto differ = [&](const std::string &k, auto a, auto b) {
+    if (!key.empty() || a == b)
+      return;
+    std::ostringstream x, y;
+    x.precision(17);
+    y.precision(17);
+    x << a;
+    y << b;
+    key = k, found = x.str(), wanted = y.str();
+  };
+  const auto &g = given, &s = stored;
+  differ("run.dimensions", g.run.dimensions, s.run.dimensions);
+  differ("run.seed", g.run.seed, s.run.seed);
+  for (int k = 0; k < g.run.dimensions; ++k)
+    differ("domain.size[" + std::to_string(k) + "]", g.domain.size[k], s.domain.size[k]);
+  differ("fluid.collision", std::string(scene::to_string(g.fluid.collision)),
+         std::string(scene::to_string(s.fluid.collision)));
+  differ("fluid.density", g.fluid.density, s.fluid.density);
+  differ("fluid.dt", g.fluid.dt, s.fluid.dt);
+  differ("fluid.angle", g.fluid.angle_deg, s.fluid.angle_deg);
+  differ("fluid.kT", g.fluid.kT, s.fluid.kT);
+  differ("fluid.sort_every", g.fluid.sort_every, s.fluid.sort_every);
+  differ("[body_force]", std::string(g.body_force ? "present" : "absent"),
+         std::string(s.body_force ? "present" : "absent"));
+  if (g.body_force && s.body_force) {
+    differ("body_force.kind", static_cast<int>(g.body_force->kind),
+           static_cast<int>(s.body_force->kind));
+    for (int k = 0; k < g.run.dimensions; ++k)
+      differ("body_force.value[" + std::to_string(k) + "]", g.body_force->value[k],
+             s.body_force->value[k]);
+    differ("body_force.amplitude", g.body_force->amplitude, s.body_force->amplitude);
+  }
+  if (!key.empty())
+    throw input_error(head + key + " = " + found + " but checkpoint " + checkpoint + " has " +
+                      wanted + "; allowed: on a restart only run.steps and output.* may change");
+  const auto scene_box = [&] {
+    double n = 1;
+    for (int k = 0; k < g.run.dimensions; ++k)
+      n *= g.domain.size[k];
+    return static_cast<std::uint64_t>(std::llround(n * g.fluid.density));
+  }();
+  if (scene_box != info.fluid_particles)
+    throw input_error(checkpoint + ": holds " + std::to_string(info.fluid_particles) +
+                      " fluid particles, the scene has " + std::to_string(scene_box) +
+                      "; allowed: a checkpoint of this scene");
+}
+
+// ---- stopping cleanly on a signal --------------------------------------------------------
+
+namespace {
+volatile std::sig_atomic_t stop_signal = 0;
+extern "C" void on_stop_signal(int sig) { stop_signal = sig; }
+} // namespace
+
+StopSignals::StopSignals() {
+  stop_signal = 0;
+  struct sigaction sa {};
+  sa.sa_handler = on_stop_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGTERM, &sa, &old_term_);
+  sigaction(SIGUSR1, &sa, &old_usr1_);
+}
+
+StopSignals::~StopSignals() {
+  sigaction(SIGTERM, &old_term_, nullptr);
+  sigaction(SIGUSR1, &old_usr1_, nullptr);
+}
+
+int StopSignals::requested(MPI_Comm comm) const {
+  int local = stop_signal, any = 0;
+  MPI_Allreduce(&local, &any, 1, MPI_INT, MPI_MAX, comm);
+  return any;
+}
+
+const char *signal_name(int sig) {
+  switch (sig) {
+  case SIGTERM:
+    return "SIGTERM";
+  case SIGUSR1:
+    return "SIGUSR1";
+  default:
+    return "a signal";
+  }
+}
+
+} // namespace narrows::io
