@@ -3,6 +3,7 @@
 #include "narrows/engine/bench.hpp"
 #include "narrows/engine/info.hpp"
 #include "narrows/engine/run.hpp"
+#include "narrows/kmc/driver.hpp"
 #include "narrows/io/checkpoint.hpp"
 #include "narrows/scene/parse.hpp"
 
@@ -51,6 +52,9 @@ int main_inner(int argc, char **argv) {
   narrows::engine::BenchOptions bench_opt;
   auto *bench = app.add_subcommand("bench", "throughput of the hot kernels on this machine");
   bench->add_flag("--json", bench_opt.json, "print JSON");
+  double kmc_sites = 0.0;
+  bench->add_option("--kmc", kmc_sites, "only the kmc engine, on this many sites (e.g. 1e6)")
+      ->check(CLI::PositiveNumber);
   bench->add_option("--particles", bench_opt.particles, "particles per case (default 1e6)")
       ->check(CLI::PositiveNumber);
   bench->add_option("--steps", bench_opt.steps, "timed steps per case (default 100)")
@@ -71,12 +75,20 @@ int main_inner(int argc, char **argv) {
   }
 
   const bool root = rank_of_world() == 0;
+  if (*bench && kmc_sites > 0.0) {
+    if (root)
+      narrows::kmc::run_bench(std::cout, kmc_sites, bench_opt.json);
+    return 0;
+  }
   if (*bench) {
     if (root)
       narrows::engine::run_bench(bench_opt, std::cout);
     return 0;
   }
   const auto scene = narrows::scene::load_scene(scene_file, sets);
+  if (scene.run.engine == narrows::scene::Engine::kmc)
+    return narrows::kmc::command(scene, static_cast<bool>(*check), static_cast<bool>(*info),
+                                 restart, out_dir, MPI_COMM_WORLD);
   if (*check || *info) {
     if (root) {
       if (*check)

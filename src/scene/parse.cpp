@@ -7,6 +7,7 @@
 #include "narrows/scene/parse.hpp"
 
 #include "narrows/core/error.hpp"
+#include "parse_kmc.hpp"
 
 #include <toml.hpp>
 
@@ -46,6 +47,9 @@ const std::vector<Section> &schema() {
       {"domain", {"size"}},
       {"fluid", {"collision", "density", "dt", "angle", "kT", "sort_every"}},
       {"body_force", {"kind", "value", "amplitude"}},
+      {"kmc",
+       {"length", "boundary", "rates", "left", "right", "initial", "time", "warmup", "replicas",
+        "charge"}},
       {"output",
        {"dir", "every", "observables", "checkpoint_every", "checkpoint_keep", "progress"}},
   };
@@ -546,11 +550,14 @@ Engine parse_engine(const Ctx &c, const value *run) {
   const std::string s = as_string(c, *v, "run.engine", "one of " + join(names));
   if (s == "mpcd")
     return Engine::mpcd;
+  if (s == "kmc")
+    return Engine::kmc;
   if (std::find(names.begin(), names.end(), s) != names.end())
     c.fail("run.engine", "run.engine = " + repr(*v) +
-                             " is not available yet in this version; allowed (available): mpcd");
-  std::string msg = "run.engine = " + repr(*v) + " is not a known engine; allowed: mpcd (" +
-                    "lgca, kmc and continuum are not available yet in this version)";
+                             " is not available yet in this version; allowed (available): mpcd, "
+                             "kmc");
+  std::string msg = "run.engine = " + repr(*v) + " is not a known engine; allowed: mpcd, kmc (" +
+                    "lgca and continuum are not available yet in this version)";
   const std::string hint = closest(s, names);
   if (!hint.empty())
     msg += "; did you mean \"" + hint + "\"?";
@@ -565,7 +572,7 @@ void parse_run(const Ctx &c, const value *run, Run &out) {
     out.dimensions =
         static_cast<int>(as_integer(c, *v, "run.dimensions", "an integer, " + dims_allowed,
                                     [](std::int64_t n) { return n == 2 || n == 3; }));
-  else
+  else if (out.engine == Engine::mpcd)
     c.missing("run.dimensions", dims_allowed);
 
   const std::string seed_allowed = "an integer >= 0";
@@ -722,7 +729,7 @@ std::optional<BodyForce> parse_body_force(const Ctx &c, const value *bf, int dim
   return out;
 }
 
-void parse_output(const Ctx &c, const value *o, Output &out) {
+void parse_output(const Ctx &c, const value *o, Engine engine, Output &out) {
   check_keys(c, o, "output");
   if (const value *v = find(o, "dir")) {
     out.dir = as_string(c, *v, "output.dir", "a non-empty directory path");
@@ -733,7 +740,10 @@ void parse_output(const Ctx &c, const value *o, Output &out) {
     out.every = as_integer(c, *v, "output.every", "an integer >= 1 (steps)",
                            [](std::int64_t n) { return n >= 1; });
   if (const value *v = find(o, "observables")) {
-    const std::vector<std::string> names(std::begin(all_observables), std::end(all_observables));
+    const std::vector<std::string> names =
+        engine == Engine::kmc
+            ? std::vector<std::string>{"current", "density_profile"}
+            : std::vector<std::string>(std::begin(all_observables), std::end(all_observables));
     const std::string allowed = "an array of strings from: " + join(names);
     if (!v->is_array())
       c.wrong_type("output.observables", *v, allowed);
@@ -886,10 +896,28 @@ Scene parse_scene(const std::string &text, const std::string &file,
   }
 
   parse_run(c, run, s.run);
-  parse_domain(c, section(c, root, "domain"), s.run.dimensions, s.domain);
-  parse_fluid(c, section(c, root, "fluid"), s.domain, s.run.dimensions, s.fluid);
-  s.body_force = parse_body_force(c, section(c, root, "body_force"), s.run.dimensions);
-  parse_output(c, section(c, root, "output"), s.output);
+  if (s.run.engine == Engine::kmc) {
+    for (const char *name : {"domain", "fluid", "body_force"})
+      if (section(c, root, name) != nullptr)
+        c.fail(name, std::string("section [") + name +
+                         "] is for engine mpcd; allowed with run.engine = \"kmc\": [run], [kmc], "
+                         "[output]");
+    check_keys(c, section(c, root, "kmc"), "kmc");
+    s.kmc = detail::parse_kmc(section(c, root, "kmc"),
+                              [&c](const std::string &key, const std::string &message) {
+                                c.fail(key, message);
+                              });
+    s.output.observables = {"current", "density_profile"};
+  } else {
+    if (section(c, root, "kmc") != nullptr)
+      c.fail("kmc", "section [kmc] needs run.engine = \"kmc\"; allowed with run.engine = \"" +
+                        std::string(to_string(s.run.engine)) + "\": [run], [domain], [fluid], "
+                        "[body_force], [output]");
+    parse_domain(c, section(c, root, "domain"), s.run.dimensions, s.domain);
+    parse_fluid(c, section(c, root, "fluid"), s.domain, s.run.dimensions, s.fluid);
+    s.body_force = parse_body_force(c, section(c, root, "body_force"), s.run.dimensions);
+  }
+  parse_output(c, section(c, root, "output"), s.run.engine, s.output);
   return s;
 }
 

@@ -19,6 +19,7 @@ enum class Purpose : std::uint32_t {
   random_permute = 5, // id = position in the permutation
   init_position = 6,  // id = particle id
   init_velocity = 7,  // id = particle id
+  kmc_replica = 8,    // step = word pair, id = replica: seeds a replica's stateful generator
   test = 15,
 };
 

@@ -50,6 +50,23 @@ struct Output {
   bool progress = true;              // progress line with ETA on long runs
 };
 
+// Engine "kmc": the three-state stochastic lattice gas of seed 000 ch.2 (DESIGN.md, "Scene keys
+// of the lattice engines"). States 0/1/2; pair codes c = 3 n_k + n_(k+1) (the seed's label
+// i = c + 1). All rates are zero unless given.
+enum class KmcBoundary { open, periodic };
+
+struct Kmc {
+  std::int64_t length = 0;
+  KmcBoundary boundary = KmcBoundary::open;
+  std::array<double, 81> rates{};               // [from pair code * 9 + to pair code]
+  std::array<double, 9> left{}, right{};        // site 1 / site L: [from state * 3 + to state]
+  std::array<double, 3> initial{1.0, 0.0, 0.0}; // product measure: P(n_k = 0, 1, 2)
+  std::array<int, 3> charge{0, 1, 2};           // C(n) counted by the current (default C = n)
+  double time = 0.0;                            // observed simulated time after warm-up
+  double warmup = 0.0;
+  std::int64_t replicas = 1;
+};
+
 struct Scene {
   std::string file; // where it came from, for messages
   std::string text; // the scene as read (stored in output files)
@@ -58,6 +75,7 @@ struct Scene {
   Fluid fluid;
   std::optional<BodyForce> body_force;
   Output output;
+  std::optional<Kmc> kmc; // engine kmc only
 };
 
 // Names used in messages and files.

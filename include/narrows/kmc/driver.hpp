@@ -1,0 +1,46 @@
+// Engine "kmc": replicas spread over MPI ranks and reduced with error bars, the run/check/info
+// commands for kmc scenes, and the kmc benchmark.
+#pragma once
+
+#include "narrows/scene/scene.hpp"
+
+#include <mpi.h>
+
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace narrows::kmc {
+
+// Means over replicas and standard errors of the mean (sample standard deviation / sqrt(R);
+// zero when R = 1). Filled on rank 0 only, except events, tries and seconds (every rank).
+struct Summary {
+  std::int64_t replicas = 0;
+  std::vector<double> current, current_error;            // per bond: [L-1] open, [L] periodic
+  std::vector<double> density, density_error;            // [L][3]
+  double mean_current = 0.0, mean_current_error = 0.0;   // averaged over bonds
+  double current_left = 0.0, current_left_error = 0.0;   // reservoir -> site 1
+  double current_right = 0.0, current_right_error = 0.0; // site L -> reservoir
+  std::uint64_t events = 0, tries = 0;                   // summed over ranks
+  double seconds = 0.0;                                  // wall time, slowest rank
+};
+
+// Replica r (seeded from (seed, r)) runs on rank r % P; rank 0 reduces in replica order, so
+// the numbers are bitwise the same on any number of ranks.
+Summary run_replicas(const scene::Kmc &model, std::uint64_t seed, MPI_Comm comm);
+
+// What `check` / `info` print for a kmc scene.
+std::vector<std::string> describe(const scene::Scene &scene);
+
+// `narrows run` for a kmc scene: DIR/log.txt, DIR/observables.h5, the "Loop time" line.
+void run_scene(const scene::Scene &scene, const std::string &out_dir, MPI_Comm comm);
+
+// `narrows check|info|run` for a kmc scene (called by main once the scene is parsed).
+int command(const scene::Scene &scene, bool check, bool info, const std::string &restart,
+            const std::string &out_dir, MPI_Comm comm);
+
+// `narrows bench --kmc`: events per second on one core for L = sites.
+void run_bench(std::ostream &out, double sites, bool json);
+
+} // namespace narrows::kmc

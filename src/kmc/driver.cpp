@@ -1,0 +1,332 @@
+// Engine "kmc": replicas over ranks, reduction with error bars, output, check/info, bench.
+#include "narrows/kmc/driver.hpp"
+
+#include "narrows/core/error.hpp"
+#include "narrows/core/timer.hpp"
+#include "narrows/engine/log.hpp"
+#include "narrows/io/observables_writer.hpp"
+#include "narrows/kmc/lattice.hpp"
+#include "narrows/kmc/rates.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+namespace narrows::kmc {
+
+namespace {
+
+std::string fmt(const char *format, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+// " 10->01 (w24) = 1;" (snprintf: GCC 12 warns falsely on chains of string +).
+std::string item(const std::string &name, const std::string &label, double rate) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, " %s (%s) = %g;", name.c_str(), label.c_str(), rate);
+  return buf;
+}
+
+// One replica's numbers as one array: current, density, mean, left, right.
+std::vector<double> pack(const ReplicaResult &r) {
+  std::vector<double> v;
+  v.reserve(r.current.size() + r.density.size() + 3);
+  v.insert(v.end(), r.current.begin(), r.current.end());
+  v.insert(v.end(), r.density.begin(), r.density.end());
+  v.push_back(r.mean_current);
+  v.push_back(r.current_left);
+  v.push_back(r.current_right);
+  return v;
+}
+
+} // namespace
+
+Summary run_replicas(const scene::Kmc &model, std::uint64_t seed, MPI_Comm comm) {
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  Summary s;
+  s.replicas = model.replicas;
+  const std::size_t L = static_cast<std::size_t>(model.length);
+  const std::size_t bonds = model.boundary == scene::KmcBoundary::periodic ? L : L - 1;
+  const std::size_t width = bonds + 3 * L + 3;
+
+  Stopwatch clock;
+  std::vector<std::vector<double>> mine; // this rank's replicas, in replica order
+  std::uint64_t events = 0, tries = 0;
+  for (std::int64_t r = rank; r < model.replicas; r += ranks) {
+    Lattice lattice(model, seed, static_cast<std::uint64_t>(r));
+    lattice.run_until(model.warmup);
+    lattice.start_observing();
+    lattice.run_until(model.warmup + model.time);
+    const ReplicaResult res = lattice.result();
+    events += res.events;
+    tries += res.tries;
+    mine.push_back(pack(res));
+  }
+  double seconds = clock.seconds();
+  MPI_Allreduce(&seconds, &s.seconds, 1, MPI_DOUBLE, MPI_MAX, comm);
+  MPI_Allreduce(&events, &s.events, 1, MPI_UINT64_T, MPI_SUM, comm);
+  MPI_Allreduce(&tries, &s.tries, 1, MPI_UINT64_T, MPI_SUM, comm);
+
+  // Rank 0 takes the replicas in replica order (Welford's running mean and squared deviations),
+  // so the sums are done in one order whatever the number of ranks. Messages from one rank
+  // arrive in the order they were sent, which is replica order.
+  if (rank != 0) {
+    for (const auto &v : mine)
+      MPI_Send(v.data(), static_cast<int>(width), MPI_DOUBLE, 0, 0, comm);
+    return s;
+  }
+  std::vector<double> mean(width, 0.0), m2(width, 0.0), buf(width);
+  std::size_t next_mine = 0;
+  for (std::int64_t r = 0; r < model.replicas; ++r) {
+    const int owner = static_cast<int>(r % ranks);
+    const double *x = nullptr;
+    if (owner == 0) {
+      x = mine[next_mine++].data();
+    } else {
+      MPI_Recv(buf.data(), static_cast<int>(width), MPI_DOUBLE, owner, 0, comm, MPI_STATUS_IGNORE);
+      x = buf.data();
+    }
+    const double n = static_cast<double>(r + 1);
+    for (std::size_t i = 0; i < width; ++i) {
+      const double d = x[i] - mean[i];
+      mean[i] += d / n;
+      m2[i] += d * (x[i] - mean[i]);
+    }
+  }
+  const double R = static_cast<double>(model.replicas);
+  std::vector<double> err(width, 0.0);
+  if (model.replicas > 1)
+    for (std::size_t i = 0; i < width; ++i)
+      err[i] = std::sqrt(m2[i] / (R - 1.0) / R);
+  const auto slice = [&](const std::vector<double> &v, std::size_t from, std::size_t n) {
+    return std::vector<double>(v.begin() + static_cast<std::ptrdiff_t>(from),
+                               v.begin() + static_cast<std::ptrdiff_t>(from + n));
+  };
+  s.current = slice(mean, 0, bonds);
+  s.current_error = slice(err, 0, bonds);
+  s.density = slice(mean, bonds, 3 * L);
+  s.density_error = slice(err, bonds, 3 * L);
+  const std::size_t tail = bonds + 3 * L;
+  s.mean_current = mean[tail];
+  s.mean_current_error = err[tail];
+  s.current_left = mean[tail + 1];
+  s.current_left_error = err[tail + 1];
+  s.current_right = mean[tail + 2];
+  s.current_right_error = err[tail + 2];
+  return s;
+}
+
+std::vector<std::string> describe(const scene::Scene &scene) {
+  const scene::Kmc &k = *scene.kmc;
+  const bool open = k.boundary == scene::KmcBoundary::open;
+  std::vector<std::string> out;
+  out.push_back("engine kmc: three-state lattice gas, " + std::to_string(k.length) + " sites, " +
+                (open ? "open boundaries" : "periodic"));
+  std::string bulk = "bulk rates:";
+  for (int from = 0; from < 9; ++from)
+    for (int to = 0; to < 9; ++to)
+      if (k.rates[from * 9 + to] > 0.0)
+        bulk += item(pair_name(from, to), seed_label(from, to), k.rates[from * 9 + to]);
+  out.push_back(bulk);
+  if (open)
+    for (int side = 0; side < 2; ++side) {
+      std::string line = side == 0 ? "left (site 1) rates:" : "right (site L) rates:";
+      const auto &t = side == 0 ? k.left : k.right;
+      bool any = false;
+      for (int from = 0; from < 3; ++from)
+        for (int to = 0; to < 3; ++to)
+          if (t[from * 3 + to] > 0.0) {
+            line +=
+                item(site_name(from, to), boundary_label(side == 0, from, to), t[from * 3 + to]);
+            any = true;
+          }
+      out.push_back(any ? line : line + " none");
+    }
+  out.push_back("initial: product measure P(0, 1, 2) = (" + fmt("%g", k.initial[0]) + ", " +
+                fmt("%g", k.initial[1]) + ", " + fmt("%g", k.initial[2]) + ")");
+  out.push_back("time: warm-up " + fmt("%g", k.warmup) + ", observed " + fmt("%g", k.time) + "; " +
+                std::to_string(k.replicas) + " replica(s), seeds from (run.seed = " +
+                std::to_string(scene.run.seed) + ", replica)");
+  out.push_back("current counts C(n) = (" + std::to_string(k.charge[0]) + ", " +
+                std::to_string(k.charge[1]) + ", " + std::to_string(k.charge[2]) +
+                ") moved left to right across each bond, per unit time");
+  const double bytes = static_cast<double>(k.length) * (1.0 + 32.0 + 4.0 * 8.0);
+  out.push_back("memory per replica: about " + fmt("%.3g", bytes / 1048576.0) + " MiB");
+  out.push_back("dynamics: continuous time, exact Exp(R) waiting times, events chosen by "
+                "rejection over bonds; xoshiro256++ per replica");
+  return out;
+}
+
+void run_scene(const scene::Scene &scene, const std::string &out_dir, MPI_Comm comm) {
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  const scene::Kmc &k = *scene.kmc;
+  const std::string dir = out_dir.empty() ? scene.output.dir : out_dir;
+  std::error_code ec;
+  if (rank == 0)
+    std::filesystem::create_directories(dir, ec);
+  int failed = ec ? 1 : 0;
+  MPI_Bcast(&failed, 1, MPI_INT, 0, comm);
+  if (failed)
+    throw input_error(dir + ": cannot create output directory" +
+                      (rank == 0 ? " (" + ec.message() + ")" : std::string()));
+  engine::Log log(rank == 0, dir + "/log.txt");
+  log.line("narrows " NARROWS_VERSION " run " + scene.file + " on " + std::to_string(ranks) +
+           " rank(s), output in " + dir);
+  for (const auto &line : describe(scene))
+    log.line(line);
+  if (k.replicas == 1)
+    log.warn("kmc.replicas = 1: no error bars (the *_error series are zero)");
+  if (k.replicas % ranks != 0)
+    log.warn(std::to_string(k.replicas) + " replicas on " + std::to_string(ranks) +
+             " ranks: some ranks idle at the end");
+
+  // Rank 0 opens the output first, so a bad directory fails before the work.
+  std::unique_ptr<io::ObservablesWriter> writer;
+  if (rank == 0)
+    writer = std::make_unique<io::ObservablesWriter>(dir + "/observables.h5", scene.text);
+
+  const Summary s = run_replicas(k, scene.run.seed, comm);
+
+  if (rank == 0) {
+    const auto &o = scene.output.observables;
+    const auto wants = [&](const char *name) {
+      return std::find(o.begin(), o.end(), name) != o.end();
+    };
+    const double t = k.time;
+    if (wants("current")) {
+      std::vector<double> bins(s.current.size());
+      for (std::size_t b = 0; b < bins.size(); ++b)
+        bins[b] = static_cast<double>(b) + 1.5; // bond between sites b+1 and b+2 (1-based)
+      writer->append_profile("current", 0, t, bins, s.current, 1);
+      writer->append_profile("current_error", 0, t, bins, s.current_error, 1);
+      writer->append_scalar("current_mean", 0, t, s.mean_current);
+      writer->append_scalar("current_mean_error", 0, t, s.mean_current_error);
+      if (k.boundary == scene::KmcBoundary::open) {
+        const double jb[2] = {s.current_left, s.current_right};
+        const double eb[2] = {s.current_left_error, s.current_right_error};
+        writer->append_vector("current_boundary", 0, t, jb);
+        writer->append_vector("current_boundary_error", 0, t, eb);
+      }
+    }
+    if (wants("density_profile")) {
+      std::vector<double> bins(static_cast<std::size_t>(k.length));
+      for (std::size_t i = 0; i < bins.size(); ++i)
+        bins[i] = static_cast<double>(i) + 1.0; // sites 1..L
+      writer->append_profile("density_profile", 0, t, bins, s.density, 3);
+      writer->append_profile("density_profile_error", 0, t, bins, s.density_error, 3);
+    }
+    writer->flush();
+  }
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "mean current per bond J = %.6g +- %.2g (%lld replicas)",
+                s.mean_current, s.mean_current_error, static_cast<long long>(k.replicas));
+  log.line(buf);
+  std::snprintf(buf, sizeof buf, "events %llu, tries per event %.3g",
+                static_cast<unsigned long long>(s.events),
+                s.events ? static_cast<double>(s.tries) / static_cast<double>(s.events) : 0.0);
+  log.line(buf);
+  std::snprintf(buf, sizeof buf,
+                "Loop time of %.4g s on %d ranks for %llu events with %lld sites x %lld "
+                "replicas (%.4g events/s)",
+                s.seconds, ranks, static_cast<unsigned long long>(s.events),
+                static_cast<long long>(k.length), static_cast<long long>(k.replicas),
+                s.seconds > 0 ? static_cast<double>(s.events) / s.seconds : 0.0);
+  log.line(buf);
+}
+
+int command(const scene::Scene &scene, bool check, bool info, const std::string &restart,
+            const std::string &out_dir, MPI_Comm comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  if (check || info) {
+    if (rank == 0) {
+      if (check)
+        std::cout << scene.file << ": scene is valid\n";
+      for (const auto &line : describe(scene))
+        std::cout << line << '\n';
+    }
+    return 0;
+  }
+  if (!restart.empty())
+    throw input_error("--restart " + restart +
+                      ": checkpoint/restart of engine kmc is not available in this version yet");
+  run_scene(scene, out_dir, comm);
+  return 0;
+}
+
+void run_bench(std::ostream &out, double sites, bool json) {
+  struct Case {
+    const char *name;
+    scene::Kmc model;
+  };
+  const std::int64_t L = static_cast<std::int64_t>(sites);
+  std::vector<Case> cases;
+  {
+    scene::Kmc m;
+    m.length = L;
+    m.boundary = scene::KmcBoundary::periodic;
+    m.rates[pair_code(1, 0) * 9 + pair_code(0, 1)] = 1.0;
+    m.initial = {0.5, 0.5, 0.0};
+    cases.push_back({"tasep-periodic-half", m});
+  }
+  {
+    // Family 1 (eq 2.5) with all ten rates 1, open, one third of each state.
+    scene::Kmc m;
+    m.length = L;
+    const int pairs[5][2] = {{pair_code(1, 0), pair_code(0, 1)},
+                             {pair_code(2, 0), pair_code(0, 2)},
+                             {pair_code(1, 2), pair_code(2, 1)},
+                             {pair_code(1, 1), pair_code(0, 2)},
+                             {pair_code(2, 0), pair_code(1, 1)}};
+    for (const auto &p : pairs) {
+      m.rates[p[0] * 9 + p[1]] = 1.0;
+      m.rates[p[1] * 9 + p[0]] = 1.0;
+    }
+    m.left[0 * 3 + 1] = 0.5;
+    m.right[1 * 3 + 0] = 0.5;
+    m.initial = {1.0 / 3, 1.0 / 3, 1.0 / 3};
+    cases.push_back({"family1-open-all-ones", m});
+  }
+  if (json)
+    out << "{\"kmc\": [";
+  bool first = true;
+  for (auto &c : cases) {
+    Lattice lattice(c.model, 1, 0);
+    // Warm up for ~2 events per site, then time ~2e7 events with observables on.
+    const double r0 = lattice.total_rate();
+    lattice.run_until(2.0 * static_cast<double>(L) / r0);
+    lattice.start_observing();
+    const double t0 = lattice.time();
+    const std::uint64_t e0 = lattice.events(), tr0 = lattice.tries();
+    const double span = 2.0e7 / lattice.total_rate();
+    Stopwatch clock;
+    lattice.run_until(t0 + span);
+    const double sec = clock.seconds();
+    const double ev = static_cast<double>(lattice.events() - e0);
+    const double tries = static_cast<double>(lattice.tries() - tr0);
+    if (json) {
+      out << (first ? "" : ", ") << "{\"case\": \"" << c.name << "\", \"sites\": " << L
+          << ", \"events_per_s\": " << ev / sec << ", \"tries_per_event\": " << tries / ev << "}";
+    } else {
+      char buf[200];
+      std::snprintf(buf, sizeof buf,
+                    "kmc %-24s L = %.3g: %.3g events/s on one core (%.3g tries/event, %.3g s)",
+                    c.name, sites, ev / sec, tries / ev, sec);
+      out << buf << '\n';
+    }
+    first = false;
+  }
+  if (json)
+    out << "]}\n";
+}
+
+} // namespace narrows::kmc
