@@ -62,7 +62,7 @@ Summary run_replicas(const scene::Kmc &model, std::uint64_t seed, MPI_Comm comm)
   for (std::int64_t r = rank; r < model.replicas; r += ranks) {
     Lattice lattice(model, seed, static_cast<std::uint64_t>(r));
     lattice.run_until(model.warmup);
-    lattice.start_observing();
+    lattice.start_observing(model.time);
     lattice.run_until(model.warmup + model.time);
     const ReplicaResult res = lattice.result();
     events += res.events;
@@ -304,10 +304,10 @@ void run_bench(std::ostream &out, double sites, bool json) {
     // Warm up for ~2 events per site, then time ~2e7 events with observables on.
     const double r0 = lattice.total_rate();
     lattice.run_until(2.0 * static_cast<double>(L) / r0);
-    lattice.start_observing();
+    const double span = 2.0e7 / lattice.total_rate();
+    lattice.start_observing(span);
     const double t0 = lattice.time();
     const std::uint64_t e0 = lattice.events(), tr0 = lattice.tries();
-    const double span = 2.0e7 / lattice.total_rate();
     Stopwatch clock;
     lattice.run_until(t0 + span);
     const double sec = clock.seconds();

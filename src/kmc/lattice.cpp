@@ -1,5 +1,5 @@
 // One replica of the three-state lattice gas: rejection-chosen events, exact Exp(R) waiting
-// times (see kmc/lattice.hpp).
+// times, conserved-charge currents and snapshot densities (see kmc/lattice.hpp).
 #include "narrows/kmc/lattice.hpp"
 
 #include "narrows/core/rng.hpp"
@@ -8,6 +8,14 @@
 #include <cmath>
 
 namespace narrows::kmc {
+
+namespace {
+
+// The incrementally kept total rate is recomputed from the bond counts this often, so rounding
+// never accumulates over more than this many events.
+constexpr std::uint64_t resync_every = 1u << 16;
+
+} // namespace
 
 Xoshiro256::Xoshiro256(std::uint64_t seed, std::uint64_t stream) {
   const auto a = rng::draw(seed, rng::Purpose::kmc_replica, 0, stream);
@@ -18,11 +26,12 @@ Xoshiro256::Xoshiro256(std::uint64_t seed, std::uint64_t stream) {
     s_[0] = 0x9E3779B97F4A7C15ull; // the one forbidden state
 }
 
-Lattice::Lattice(const scene::Kmc &model, std::uint64_t seed, std::uint64_t replica)
+Lattice::Lattice(const scene::Kmc &model, std::uint64_t seed, std::uint64_t replica,
+                 LatticeOptions options)
     : model_(model), periodic_(model.boundary == scene::KmcBoundary::periodic),
+      every_bond_(options.count_every_bond),
       bonds_(static_cast<std::size_t>(periodic_ ? model.length : model.length - 1)),
-      n_(static_cast<std::size_t>(model.length)), rng_(seed, replica),
-      acc_(static_cast<std::size_t>(model.length)) {
+      n_(static_cast<std::size_t>(model.length)), rng_(seed, replica) {
   const auto &C = model.charge;
   for (int from = 0; from < 9; ++from) {
     Class &c = classes_[from];
@@ -35,9 +44,13 @@ Lattice::Lattice(const scene::Kmc &model, std::uint64_t seed, std::uint64_t repl
       sum += r;
       c.t[m++] = {sum, static_cast<std::uint8_t>(to),
                   static_cast<std::int8_t>(C[from / 3] - C[to / 3])};
+      if (C[from / 3] + C[from % 3] != C[to / 3] + C[to % 3])
+        conserving_ = false;
     }
     c.rate = sum;
   }
+  if (!conserving_)
+    every_bond_ = true;
   for (int side = 0; side < 2; ++side)
     for (int from = 0; from < 3; ++from) {
       Class &c = classes_[9 + 3 * side + from];
@@ -68,6 +81,7 @@ Lattice::Lattice(const scene::Kmc &model, std::uint64_t seed, std::uint64_t repl
   }
   for (std::size_t b = 0; b < bonds_; ++b)
     ++count_[code(b)];
+  rate_ = total_rate();
 }
 
 double Lattice::total_rate() const {
@@ -86,55 +100,99 @@ std::int64_t Lattice::total_charge() const {
   return q;
 }
 
-void Lattice::start_observing() {
-  for (auto &a : acc_)
-    a = SiteAcc{t_, 0.0, 0.0, 0};
-  q_left_ = q_right_ = 0;
+void Lattice::start_observing(double window) {
+  const std::size_t L = n_.size();
+  hist1_.assign(L, 0);
+  hist2_.assign(L, 0);
+  flushed1_.clear();
+  flushed2_.clear();
+  samples_ = 0;
+  pending_ = 0;
+  n_start_ = n_;
+  q_bond_.assign(every_bond_ ? bonds_ : 0, 0);
+  q_left_ = q_right_ = q_wrap_ = 0;
   t_obs_ = t_;
+  const double r = total_rate();
+  sample_dt_ = r > 0.0 ? static_cast<double>(L) / r : window;
+  if (window > 0.0)
+    sample_dt_ = std::min(sample_dt_, window / 1000.0);
+  next_sample_ = t_ + 0.5 * sample_dt_;
   observing_ = true;
 }
 
-void Lattice::run_until(double t_end) {
-  if (observing_)
-    run<true>(t_end);
-  else
-    run<false>(t_end);
+void Lattice::snapshot() {
+  const std::size_t L = n_.size();
+  const std::uint8_t *n = n_.data();
+  std::uint32_t *h1 = hist1_.data(), *h2 = hist2_.data();
+  for (std::size_t k = 0; k < L; ++k) {
+    h1[k] += n[k] == 1;
+    h2[k] += n[k] == 2;
+  }
+  ++samples_;
+  if (++pending_ == (1u << 31))
+    flush_histogram();
 }
 
-template <bool Observe> void Lattice::run(double t_end) {
+void Lattice::flush_histogram() {
+  flushed1_.resize(hist1_.size(), 0.0);
+  flushed2_.resize(hist2_.size(), 0.0);
+  for (std::size_t k = 0; k < hist1_.size(); ++k) {
+    flushed1_[k] += hist1_[k];
+    flushed2_[k] += hist2_[k];
+    hist1_[k] = hist2_[k] = 0;
+  }
+  pending_ = 0;
+}
+
+void Lattice::run_until(double t_end) {
+  if (!observing_)
+    run<false, false>(t_end);
+  else if (every_bond_)
+    run<true, true>(t_end);
+  else
+    run<true, false>(t_end);
+}
+
+template <bool Observe, bool EveryBond> void Lattice::run(double t_end) {
   const std::size_t L = n_.size();
   const std::uint64_t slots = bonds_ + (periodic_ ? 0 : 2);
   const double r_max = r_max_;
+  const bool periodic = periodic_;
+  const Class *cls = classes_.data();
   std::uint8_t *n = n_.data();
-  SiteAcc *acc = acc_.data();
+  std::int64_t *cnt = count_.data();
   double t = t_;
+  double rate = rate_;
   std::uint64_t events = 0, tries = 0;
-
-  // Time spent in the old state of a site that changes now.
-  const auto leave = [&](std::size_t site, int old_state) {
-    if constexpr (Observe) {
-      SiteAcc &a = acc[site];
-      const double held = t - a.last;
-      a.last = t;
-      if (old_state == 1)
-        a.occ1 += held;
-      else if (old_state == 2)
-        a.occ2 += held;
-    }
-  };
+  std::uint64_t until_resync = resync_every;
 
   while (true) {
-    const double rate = total_rate();
+    if (--until_resync == 0) {
+      rate_ = rate;
+      rate = total_rate();
+      until_resync = resync_every;
+    }
     if (!(rate > 0.0)) { // absorbing state: nothing happens any more
-      t = t_end;
-      break;
+      rate = total_rate();
+      if (!(rate > 0.0)) {
+        t = t_end;
+        break;
+      }
     }
     const double dt = -std::log(rng_.open01()) / rate;
-    if (t + dt >= t_end) {
+    const double t_next = t + dt;
+    if constexpr (Observe) {
+      // the configuration is constant on [t, t_next): it is what the snapshots in there see
+      while (next_sample_ < t_next && next_sample_ < t_end) {
+        snapshot();
+        next_sample_ += sample_dt_;
+      }
+    }
+    if (t_next >= t_end) {
       t = t_end;
       break;
     }
-    t += dt;
+    t = t_next;
     ++events;
     for (;;) {
       ++tries;
@@ -147,7 +205,7 @@ template <bool Observe> void Lattice::run(double t_end) {
         const std::size_t k = slot;
         const std::size_t k2 = k + 1 == L ? 0 : k + 1;
         const int a = n[k], b = n[k2];
-        const Class &c = classes_[3 * a + b];
+        const Class &c = cls[3 * a + b];
         if (!(v < c.rate))
           continue;
         int m = 0;
@@ -155,57 +213,65 @@ template <bool Observe> void Lattice::run(double t_end) {
           ++m;
         const int to = c.t[m].to;
         const int a2 = to / 3, b2 = to % 3;
-        --count_[3 * a + b];
-        ++count_[to];
+        --cnt[3 * a + b];
+        ++cnt[to];
+        rate += cls[to].rate - c.rate;
         if (a2 != a) {
-          if (k > 0 || periodic_) {
+          if (k > 0 || periodic) {
             const std::size_t kl = k == 0 ? L - 1 : k - 1;
-            --count_[3 * n[kl] + a];
-            ++count_[3 * n[kl] + a2];
+            const int before = 3 * n[kl] + a, after = 3 * n[kl] + a2;
+            --cnt[before];
+            ++cnt[after];
+            rate += cls[after].rate - cls[before].rate;
+          } else { // site 1 of an open chain: its boundary rates change
+            rate += cls[9 + a2].rate - cls[9 + a].rate;
           }
-          leave(k, a);
           n[k] = static_cast<std::uint8_t>(a2);
         }
         if (b2 != b) {
-          if (k2 + 1 < L || periodic_) {
+          if (k2 + 1 < L || periodic) {
             const std::size_t kr = k2 + 1 == L ? 0 : k2 + 1;
-            --count_[3 * b + n[kr]];
-            ++count_[3 * b2 + n[kr]];
+            const int before = 3 * b + n[kr], after = 3 * b2 + n[kr];
+            --cnt[before];
+            ++cnt[after];
+            rate += cls[after].rate - cls[before].rate;
+          } else { // site L of an open chain
+            rate += cls[12 + b2].rate - cls[12 + b].rate;
           }
-          leave(k2, b);
           n[k2] = static_cast<std::uint8_t>(b2);
         }
-        if constexpr (Observe)
-          acc[k].q += c.t[m].dq;
+        if constexpr (Observe) {
+          if constexpr (EveryBond)
+            q_bond_[k] += c.t[m].dq;
+          else if (k2 == 0) // the bond L -> 1 of a periodic chain
+            q_wrap_ += c.t[m].dq;
+        }
         break;
       }
       const bool left = slot == bonds_;
       const std::size_t site = left ? 0 : L - 1;
       const int s = n[site];
-      const Class &c = classes_[(left ? 9 : 12) + s];
+      const Class &c = cls[(left ? 9 : 12) + s];
       if (!(v < c.rate))
         continue;
       int m = 0;
       while (!(v < c.t[m].threshold))
         ++m;
       const int s2 = c.t[m].to;
-      if (left) {
-        --count_[3 * s + n[1]];
-        ++count_[3 * s2 + n[1]];
-        if constexpr (Observe)
-          q_left_ += c.t[m].dq;
-      } else {
-        --count_[3 * n[L - 2] + s];
-        ++count_[3 * n[L - 2] + s2];
-        if constexpr (Observe)
-          q_right_ += c.t[m].dq;
-      }
-      leave(site, s);
+      rate += cls[(left ? 9 : 12) + s2].rate - c.rate;
+      const int before = left ? 3 * s + n[1] : 3 * n[L - 2] + s;
+      const int after = left ? 3 * s2 + n[1] : 3 * n[L - 2] + s2;
+      --cnt[before];
+      ++cnt[after];
+      rate += cls[after].rate - cls[before].rate;
+      if constexpr (Observe)
+        (left ? q_left_ : q_right_) += c.t[m].dq;
       n[site] = static_cast<std::uint8_t>(s2);
       break;
     }
   }
   t_ = t;
+  rate_ = total_rate();
   events_ += events;
   tries_ += tries;
 }
@@ -215,21 +281,35 @@ ReplicaResult Lattice::result() const {
   const std::size_t L = n_.size();
   const double T = t_ - t_obs_;
   const double inv = T > 0.0 ? 1.0 / T : 0.0;
+  const double inv_samples = samples_ > 0 ? 1.0 / static_cast<double>(samples_) : 0.0;
   r.density.resize(3 * L);
   for (std::size_t k = 0; k < L; ++k) {
-    const SiteAcc &a = acc_[k];
-    const double held = t_ - a.last;
-    const double occ1 = a.occ1 + (n_[k] == 1 ? held : 0.0);
-    const double occ2 = a.occ2 + (n_[k] == 2 ? held : 0.0);
-    r.density[3 * k + 0] = (T - occ1 - occ2) * inv;
-    r.density[3 * k + 1] = occ1 * inv;
-    r.density[3 * k + 2] = occ2 * inv;
+    const double c1 = hist1_[k] + (flushed1_.empty() ? 0.0 : flushed1_[k]);
+    const double c2 = hist2_[k] + (flushed2_.empty() ? 0.0 : flushed2_[k]);
+    r.density[3 * k + 0] = (static_cast<double>(samples_) - c1 - c2) * inv_samples;
+    r.density[3 * k + 1] = c1 * inv_samples;
+    r.density[3 * k + 2] = c2 * inv_samples;
+  }
+  // Integrated charge across each bond.
+  std::vector<std::int64_t> q(bonds_);
+  if (every_bond_) {
+    q = q_bond_;
+  } else {
+    // Continuity: the charge across bond k (sites k, k+1) is the charge across bond k-1 minus
+    // what site k gained. Open chains start from the left reservoir, periodic ones from the
+    // bond L -> 1 (index L - 1).
+    const auto &C = model_.charge;
+    std::int64_t prev = periodic_ ? q_wrap_ : q_left_;
+    for (std::size_t k = 0; k < bonds_; ++k) {
+      prev += C[n_start_[k]] - C[n_[k]];
+      q[k] = prev;
+    }
   }
   r.current.resize(bonds_);
   std::int64_t total = 0;
   for (std::size_t b = 0; b < bonds_; ++b) {
-    r.current[b] = static_cast<double>(acc_[b].q) * inv;
-    total += acc_[b].q;
+    r.current[b] = static_cast<double>(q[b]) * inv;
+    total += q[b];
   }
   r.mean_current = static_cast<double>(total) * inv / static_cast<double>(bonds_);
   r.current_left = static_cast<double>(q_left_) * inv;

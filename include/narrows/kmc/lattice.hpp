@@ -12,9 +12,17 @@
 // replica), because an event needs several draws (a counter-based draw per try would cost
 // more than the event).
 //
-// Observables are accumulated lazily between warm-up and the end: each site keeps the time of
-// its last change and the time spent in states 1 and 2; each bond counts the charge C moved
-// across it (C(n_k) - C(n'_k) per transition, i.e. left to right is positive).
+// Observables over the observation window:
+// - current: the charge C moved across each bond, C(n_k) - C(n'_k) per transition (left to
+//   right positive). When every bulk transition conserves C (the usual case) only the
+//   boundary transitions (open) or the bond L -> 1 (periodic) are counted and the other bonds
+//   follow exactly from the lattice continuity equation: Q_k = Q_(k-1) + C_k(start) - C_k(end).
+//   Otherwise (or on request) every bond keeps its own counter.
+// - density: the occupation of each state per site, averaged over snapshots of the whole
+//   lattice at fixed times t_start + (i + 1/2) dt (unbiased for the time average; dt = L / R
+//   at the start of the window, about one snapshot per L events, at most window / 1000).
+// Neither touches per-site memory in the event loop, which then only reads and writes the one
+// byte per site of the state.
 #pragma once
 
 #include "narrows/scene/scene.hpp"
@@ -58,25 +66,32 @@ struct ReplicaResult {
   std::uint64_t tries = 0;     // slot draws, rejected ones included
 };
 
+struct LatticeOptions {
+  bool count_every_bond = false; // per-bond current counters even when C is conserved
+};
+
 class Lattice {
 public:
   // Draws the initial product measure from the replica's generator.
-  Lattice(const scene::Kmc &model, std::uint64_t seed, std::uint64_t replica);
+  Lattice(const scene::Kmc &model, std::uint64_t seed, std::uint64_t replica,
+          LatticeOptions options = {});
 
   // Advances to time t_end (the last event before it is done, the rest is waiting).
   void run_until(double t_end);
-  // Starts the observation window now (zeroes the accumulators).
-  void start_observing();
+  // Starts the observation window now; `window` (its planned length) sets the snapshot
+  // interval so that a short window still gets >= 1000 snapshots.
+  void start_observing(double window);
   // The observables over [start_observing, now].
   ReplicaResult result() const;
 
   double time() const { return t_; }
-  double total_rate() const;
+  double total_rate() const; // recomputed from the bond counts
   std::uint64_t events() const { return events_; }
   std::uint64_t tries() const { return tries_; }
   const std::vector<std::uint8_t> &state() const { return n_; }
   std::int64_t total_charge() const;
   std::size_t bonds() const { return bonds_; }
+  bool conserving() const { return conserving_; } // every bulk transition conserves C
 
 private:
   struct Transition {
@@ -89,33 +104,40 @@ private:
     double rate = 0.0; // total out-rate (= the last threshold)
     std::array<Transition, 8> t{};
   };
-  struct alignas(32) SiteAcc {
-    double last = 0.0;  // time of the last change (or of start_observing)
-    double occ1 = 0.0;  // time in state 1
-    double occ2 = 0.0;  // time in state 2
-    std::int64_t q = 0; // charge moved across the bond to the right of this site
-  };
 
-  template <bool Observe> void run(double t_end);
+  template <bool Observe, bool EveryBond> void run(double t_end);
+  void snapshot();
+  void flush_histogram();
   int code(std::size_t bond) const {
     const std::size_t b1 = bond + 1 == n_.size() ? 0 : bond + 1;
     return 3 * n_[bond] + n_[b1];
   }
 
-  const scene::Kmc model_;
+  scene::Kmc model_;
   bool periodic_;
+  bool conserving_ = true;
+  bool every_bond_;
   std::size_t bonds_;
   std::vector<std::uint8_t> n_;
   std::array<Class, 15> classes_;
   std::array<std::int64_t, 9> count_{}; // bonds in each pair state
   double r_max_ = 0.0;
+  double rate_ = 0.0; // total rate, kept incrementally and resynchronised from count_
   Xoshiro256 rng_;
   double t_ = 0.0;
-  double t_obs_ = 0.0;
-  bool observing_ = false;
-  std::vector<SiteAcc> acc_;
-  std::int64_t q_left_ = 0, q_right_ = 0;
   std::uint64_t events_ = 0, tries_ = 0;
+
+  // observation
+  bool observing_ = false;
+  double t_obs_ = 0.0;
+  double sample_dt_ = 1.0, next_sample_ = 0.0;
+  std::uint64_t samples_ = 0;
+  std::uint32_t pending_ = 0;                // snapshots in hist1_/hist2_ not yet flushed
+  std::vector<std::uint32_t> hist1_, hist2_; // snapshots with n_k = 1, 2
+  std::vector<double> flushed1_, flushed2_;  // older snapshot counts (rarely used)
+  std::vector<std::uint8_t> n_start_;        // state at start_observing (conserving current)
+  std::vector<std::int64_t> q_bond_;         // per-bond counters (every_bond or not conserving)
+  std::int64_t q_left_ = 0, q_right_ = 0, q_wrap_ = 0;
 };
 
 } // namespace narrows::kmc
