@@ -17,9 +17,9 @@ constexpr std::uint64_t resync_every = 1u << 16;
 
 } // namespace
 
-Xoshiro256::Xoshiro256(std::uint64_t seed, std::uint64_t stream) {
-  const auto a = rng::draw(seed, rng::Purpose::kmc_replica, 0, stream);
-  const auto b = rng::draw(seed, rng::Purpose::kmc_replica, 1, stream);
+Xoshiro256::Xoshiro256(std::uint64_t seed, std::uint64_t stream, std::uint32_t substream) {
+  const auto a = rng::draw(seed, rng::Purpose::kmc_replica, 2 * substream, stream);
+  const auto b = rng::draw(seed, rng::Purpose::kmc_replica, 2 * substream + 1, stream);
   s_ = {(std::uint64_t{a[0]} << 32) | a[1], (std::uint64_t{a[2]} << 32) | a[3],
         (std::uint64_t{b[0]} << 32) | b[1], (std::uint64_t{b[2]} << 32) | b[3]};
   if ((s_[0] | s_[1] | s_[2] | s_[3]) == 0)
@@ -31,7 +31,8 @@ Lattice::Lattice(const scene::Kmc &model, std::uint64_t seed, std::uint64_t repl
     : model_(model), periodic_(model.boundary == scene::KmcBoundary::periodic),
       every_bond_(options.count_every_bond),
       bonds_(static_cast<std::size_t>(periodic_ ? model.length : model.length - 1)),
-      n_(static_cast<std::size_t>(model.length)), rng_(seed, replica) {
+      n_(static_cast<std::size_t>(model.length)), rng_(seed, replica, 0),
+      rng_time_(seed, replica, 1) {
   const auto &C = model.charge;
   for (int from = 0; from < 9; ++from) {
     Class &c = classes_[from];
@@ -82,6 +83,7 @@ Lattice::Lattice(const scene::Kmc &model, std::uint64_t seed, std::uint64_t repl
   for (std::size_t b = 0; b < bonds_; ++b)
     ++count_[code(b)];
   rate_ = total_rate();
+  ahead_ = rng_.next();
 }
 
 double Lattice::total_rate() const {
@@ -165,6 +167,7 @@ template <bool Observe, bool EveryBond> void Lattice::run(double t_end) {
   double rate = rate_;
   std::uint64_t events = 0, tries = 0;
   std::uint64_t until_resync = resync_every;
+  std::uint64_t x_next = ahead_;
 
   while (true) {
     if (--until_resync == 0) {
@@ -179,7 +182,7 @@ template <bool Observe, bool EveryBond> void Lattice::run(double t_end) {
         break;
       }
     }
-    const double dt = -std::log(rng_.open01()) / rate;
+    const double dt = -std::log(rng_time_.open01()) / rate;
     const double t_next = t + dt;
     if constexpr (Observe) {
       // the configuration is constant on [t, t_next): it is what the snapshots in there see
@@ -198,7 +201,11 @@ template <bool Observe, bool EveryBond> void Lattice::run(double t_end) {
       ++tries;
       // One 64-bit draw gives both the slot (high word of x * slots) and a uniform fraction
       // (low word) that decides acceptance and the transition.
-      const unsigned __int128 p = static_cast<unsigned __int128>(rng_.next()) * slots;
+      const unsigned __int128 p = static_cast<unsigned __int128>(x_next) * slots;
+      x_next = rng_.next();
+      const std::uint64_t slot_next =
+          static_cast<std::uint64_t>((static_cast<unsigned __int128>(x_next) * slots) >> 64);
+      __builtin_prefetch(n + std::min<std::uint64_t>(slot_next, L - 1));
       const std::uint64_t slot = static_cast<std::uint64_t>(p >> 64);
       const double v = static_cast<double>(static_cast<std::uint64_t>(p)) * 0x1p-64 * r_max;
       if (slot < bonds_) {
@@ -271,6 +278,7 @@ template <bool Observe, bool EveryBond> void Lattice::run(double t_end) {
     }
   }
   t_ = t;
+  ahead_ = x_next;
   rate_ = total_rate();
   events_ += events;
   tries_ += tries;

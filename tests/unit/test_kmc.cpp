@@ -218,7 +218,7 @@ TEST(KmcLattice, ContinuityCurrentsEqualCountedCurrents) {
     const auto ra = a.result(), rb = b.result();
     EXPECT_EQ(ra.current, rb.current);
     EXPECT_EQ(ra.density, rb.density);
-    EXPECT_GT(ra.mean_current, 0.0);
+    EXPECT_NE(ra.mean_current, 0.0); // not vacuous
   }
   scene::Kmc m = family1({1, 1, 1, 1, 1, 1, 1, 1, 1, 1});
   m.rates[pair_code(0, 0) * 9 + pair_code(2, 2)] = 0.1; // C = n not conserved

@@ -8,9 +8,10 @@
 // probability R(slot state)/R_max and pick the transition from the same uniform number; a
 // rejected try is redrawn without advancing time. This needs one byte per site and no lists.
 //
-// Random numbers: a stateful xoshiro256++ per replica, seeded from Philox (seed, kmc_replica,
-// replica), because an event needs several draws (a counter-based draw per try would cost
-// more than the event).
+// Random numbers: stateful xoshiro256++ generators per replica, seeded from Philox (seed,
+// kmc_replica, replica), because an event needs several draws (a counter-based draw per try
+// would cost more than the event). Event choices are drawn one try ahead so the state byte of
+// the next slot can be prefetched (at L = 1e6 the state does not fit in L2).
 //
 // Observables over the observation window:
 // - current: the charge C moved across each bond, C(n_k) - C(n'_k) per transition (left to
@@ -36,7 +37,9 @@ namespace narrows::kmc {
 // xoshiro256++ (Blackman & Vigna, public domain).
 class Xoshiro256 {
 public:
-  Xoshiro256(std::uint64_t seed, std::uint64_t stream);
+  // Substream 0 chooses events, 1 draws waiting times (so the event choice can be drawn one
+  // try ahead and its site prefetched).
+  Xoshiro256(std::uint64_t seed, std::uint64_t stream, std::uint32_t substream = 0);
   std::uint64_t next() {
     const std::uint64_t result = rotl(s_[0] + s_[3], 23) + s_[0];
     const std::uint64_t t = s_[1] << 17;
@@ -123,7 +126,8 @@ private:
   std::array<std::int64_t, 9> count_{}; // bonds in each pair state
   double r_max_ = 0.0;
   double rate_ = 0.0; // total rate, kept incrementally and resynchronised from count_
-  Xoshiro256 rng_;
+  Xoshiro256 rng_, rng_time_;
+  std::uint64_t ahead_ = 0; // the next event-choice draw, already taken from rng_
   double t_ = 0.0;
   std::uint64_t events_ = 0, tries_ = 0;
 
