@@ -3,8 +3,8 @@
 #include "narrows/engine/bench.hpp"
 #include "narrows/engine/info.hpp"
 #include "narrows/engine/run.hpp"
-#include "narrows/kmc/driver.hpp"
 #include "narrows/io/checkpoint.hpp"
+#include "narrows/kmc/driver.hpp"
 #include "narrows/scene/parse.hpp"
 
 #include <CLI/CLI.hpp>

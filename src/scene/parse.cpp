@@ -903,15 +903,15 @@ Scene parse_scene(const std::string &text, const std::string &file,
                          "] is for engine mpcd; allowed with run.engine = \"kmc\": [run], [kmc], "
                          "[output]");
     check_keys(c, section(c, root, "kmc"), "kmc");
-    s.kmc = detail::parse_kmc(section(c, root, "kmc"),
-                              [&c](const std::string &key, const std::string &message) {
-                                c.fail(key, message);
-                              });
+    s.kmc = detail::parse_kmc(
+        section(c, root, "kmc"),
+        [&c](const std::string &key, const std::string &message) { c.fail(key, message); });
     s.output.observables = {"current", "density_profile"};
   } else {
     if (section(c, root, "kmc") != nullptr)
       c.fail("kmc", "section [kmc] needs run.engine = \"kmc\"; allowed with run.engine = \"" +
-                        std::string(to_string(s.run.engine)) + "\": [run], [domain], [fluid], "
+                        std::string(to_string(s.run.engine)) +
+                        "\": [run], [domain], [fluid], "
                         "[body_force], [output]");
     parse_domain(c, section(c, root, "domain"), s.run.dimensions, s.domain);
     parse_fluid(c, section(c, root, "fluid"), s.domain, s.run.dimensions, s.fluid);
