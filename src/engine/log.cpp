@@ -1,7 +1,11 @@
 // Rank-0 logging to screen and file.
 #include "narrows/engine/log.hpp"
 
+#include "narrows/core/error.hpp"
+
+#include <filesystem>
 #include <iostream>
+#include <system_error>
 
 namespace narrows::engine {
 
@@ -16,6 +20,19 @@ void Log::line(const std::string &text) {
   std::cout << text << '\n' << std::flush;
   if (file_.is_open())
     file_ << text << '\n' << std::flush;
+}
+
+void make_output_dir(const std::string &dir, MPI_Comm comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  std::error_code ec;
+  if (rank == 0)
+    std::filesystem::create_directories(dir, ec);
+  int failed = ec ? 1 : 0;
+  MPI_Bcast(&failed, 1, MPI_INT, 0, comm);
+  if (failed)
+    throw input_error(dir + ": cannot create output directory" +
+                      (rank == 0 ? " (" + ec.message() + ")" : std::string()));
 }
 
 } // namespace narrows::engine

@@ -108,15 +108,7 @@ void run_scene(const scene::Scene &scene, const RunOptions &options, MPI_Comm co
   const bool restarting = !restart_file.empty();
 
   const std::string dir = options.out_dir.empty() ? scene.output.dir : options.out_dir;
-  // Rank 0 makes the directory; every rank learns whether that worked, so all stop together.
-  std::error_code ec;
-  if (rank == 0)
-    std::filesystem::create_directories(dir, ec);
-  int failed = ec ? 1 : 0;
-  MPI_Bcast(&failed, 1, MPI_INT, 0, comm);
-  if (failed)
-    throw input_error(dir + ": cannot create output directory" +
-                      (rank == 0 ? " (" + ec.message() + ")" : std::string()));
+  make_output_dir(dir, comm);
   // A continuation keeps what earlier runs wrote: its log and observables carry the step it
   // starts from in their names (log-0000001000.txt, observables-0000001000.h5).
   char from[16] = "";

@@ -170,14 +170,7 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, MPI_Comm c
   MPI_Comm_size(comm, &ranks);
   const scene::Kmc &k = *scene.kmc;
   const std::string dir = out_dir.empty() ? scene.output.dir : out_dir;
-  std::error_code ec;
-  if (rank == 0)
-    std::filesystem::create_directories(dir, ec);
-  int failed = ec ? 1 : 0;
-  MPI_Bcast(&failed, 1, MPI_INT, 0, comm);
-  if (failed)
-    throw input_error(dir + ": cannot create output directory" +
-                      (rank == 0 ? " (" + ec.message() + ")" : std::string()));
+  engine::make_output_dir(dir, comm);
   engine::Log log(rank == 0, dir + "/log.txt");
   log.line("narrows " NARROWS_VERSION " run " + scene.file + " on " + std::to_string(ranks) +
            " rank(s), output in " + dir);

@@ -59,6 +59,23 @@ void exchange_rows(MPI_Comm comm, int ranks, std::size_t row, const std::vector<
                 rdispl.data(), MPI_UINT64_T, comm);
 }
 
+// Rows per destination rank (into counts) and where each rank's rows start in the send
+// buffer (returned); dest_of(j) is the destination of row j of `rows`.
+template <class DestOf>
+std::vector<std::size_t> plan_rows(int ranks, std::size_t rows, DestOf dest_of,
+                                   std::vector<int> &counts, std::size_t &total) {
+  counts.assign(ranks, 0);
+  for (std::size_t j = 0; j < rows; ++j)
+    ++counts[dest_of(j)];
+  std::vector<std::size_t> next(ranks, 0);
+  total = 0;
+  for (int r = 0; r < ranks; ++r) {
+    next[r] = total;
+    total += counts[r];
+  }
+  return next;
+}
+
 } // namespace
 
 void Exchange::migrate(const SoaView &s, const std::vector<int> &dest) {
@@ -78,15 +95,9 @@ void Exchange::migrate(const SoaView &s, const std::vector<int> &dest) {
 void Exchange::migrate(const SoaView &s, const std::vector<std::size_t> &leavers,
                        const std::vector<int> &to) {
   const std::size_t F = s.fields();
-  send_counts_.assign(ranks_, 0);
-  for (int d : to)
-    ++send_counts_[d];
-  std::vector<std::size_t> next(ranks_, 0);
   std::size_t total = 0;
-  for (int r = 0; r < ranks_; ++r) {
-    next[r] = total;
-    total += send_counts_[r];
-  }
+  auto next = plan_rows(
+      ranks_, to.size(), [&](std::size_t j) { return to[j]; }, send_counts_, total);
   send_.resize(total * F);
   for (std::size_t j = 0; j < leavers.size(); ++j) {
     const std::size_t i = leavers[j];
@@ -158,15 +169,9 @@ Halo Exchange::halo(const SoaView &s, int x_field, double lo, double hi, double 
     if (span - u <= width) // near the right edge (inclusive: a particle exactly at the width)
       picks.push_back({i, right, rank_ == ranks_ - 1 ? xs - L : xs});
   }
-  send_counts_.assign(ranks_, 0);
-  for (const Pick &p : picks)
-    ++send_counts_[p.to];
-  std::vector<std::size_t> next(ranks_, 0);
   std::size_t total = 0;
-  for (int r = 0; r < ranks_; ++r) {
-    next[r] = total;
-    total += send_counts_[r];
-  }
+  auto next = plan_rows(
+      ranks_, picks.size(), [&](std::size_t j) { return picks[j].to; }, send_counts_, total);
   send_.resize(total * row_len);
   for (const Pick &p : picks) {
     std::uint64_t *row = &send_[next[p.to]++ * row_len];
@@ -204,15 +209,9 @@ Halo Exchange::halo(const SoaView &s, int x_field, double lo, double hi, double 
 void Exchange::reverse(const Halo &h, const std::vector<std::int64_t> &per_ghost, int k,
                        std::vector<std::int64_t> &per_owner) {
   const std::size_t row_len = static_cast<std::size_t>(k) + 1;
-  send_counts_.assign(ranks_, 0);
-  for (int r : h.source_rank)
-    ++send_counts_[r];
-  std::vector<std::size_t> next(ranks_, 0);
   std::size_t total = 0;
-  for (int r = 0; r < ranks_; ++r) {
-    next[r] = total;
-    total += send_counts_[r];
-  }
+  auto next = plan_rows(
+      ranks_, h.size(), [&](std::size_t g) { return h.source_rank[g]; }, send_counts_, total);
   send_.resize(total * row_len);
   for (std::size_t g = 0; g < h.size(); ++g) {
     std::uint64_t *row = &send_[next[h.source_rank[g]]++ * row_len];

@@ -1,6 +1,8 @@
 // Log lines from rank 0 only: to the screen and to DIR/log.txt.
 #pragma once
 
+#include <mpi.h>
+
 #include <fstream>
 #include <string>
 
@@ -16,5 +18,9 @@ private:
   bool root_;
   std::ofstream file_;
 };
+
+// Rank 0 creates the output directory; every rank learns whether that worked, so all stop
+// together with one bad-input error (exit 2) naming the directory.
+void make_output_dir(const std::string &dir, MPI_Comm comm);
 
 } // namespace narrows::engine
