@@ -24,6 +24,7 @@ struct Regime {
   double u0 = 0.0; // flow scale (sine force), 0 if none
   double mach = 0.0, reynolds = 0.0;
   double kolmogorov_re = 0.0; // u0/(k nu): the laminar flow is unstable above sqrt(2)
+  bool poiseuille = false;    // walls and a force along x: u0 = g L_y^2 / (8 nu)
 };
 
 Regime regime(const scene::Scene &s) {
@@ -41,6 +42,13 @@ Regime regime(const scene::Scene &s) {
     r.reynolds = r.u0 * L / r.nu->total();
     r.kolmogorov_re = r.u0 * L / (2.0 * std::numbers::pi * r.nu->total());
   }
+  if (s.walls && s.body_force && r.nu) {
+    const double L = s.domain.size[1];
+    r.poiseuille = true;
+    r.u0 = std::abs(s.body_force->value[0]) * L * L / (8.0 * r.nu->total());
+    r.mach = r.u0 / r.sound_speed;
+    r.reynolds = r.u0 * L / r.nu->total();
+  }
   return r;
 }
 
@@ -51,7 +59,15 @@ std::vector<std::string> describe_scene(const scene::Scene &s, MPI_Comm comm) {
   const int d = s.run.dimensions;
   std::string box = "box ";
   for (int k = 0; k < d; ++k)
-    box += fmt("%g", s.domain.size[k]) + (k + 1 < d ? " x " : " cells, periodic");
+    box += fmt("%g", s.domain.size[k]) + (k + 1 < d ? " x " : " cells, ");
+  if (s.walls)
+    box += std::string(s.walls->slip ? "slip" : "no-slip") +
+           " walls at y = 0 and y = " + fmt("%g", s.domain.size[1]) +
+           (d == 3 ? ", periodic in x and z" : ", periodic in x") +
+           (s.walls->virtual_particles ? ", virtual particles in cut cells"
+                                       : ", no virtual particles");
+  else
+    box += "periodic";
   out.push_back(std::string("engine mpcd, ") + std::to_string(d) + "D, " + box + ", seed " +
                 std::to_string(s.run.seed) + ", " + std::to_string(s.run.steps) + " steps");
   out.push_back("pipeline (per step):");
@@ -96,6 +112,10 @@ std::vector<std::string> describe_scene(const scene::Scene &s, MPI_Comm comm) {
                     ", Ma = u0/c_s = " + fmt("%.3g", r.mach) + " (c_s = " +
                     fmt("%.4g", r.sound_speed) + "), Re = u0 L_y/nu = " + fmt("%.3g", r.reynolds) +
                     ", Re_k = u0/(k nu) = " + fmt("%.3g", r.kolmogorov_re));
+    } else if (r.poiseuille) {
+      out.push_back("Poiseuille channel: u0 = g_x L_y^2/(8 nu) = " + fmt("%.4g", r.u0) +
+                    ", Ma = u0/c_s = " + fmt("%.3g", r.mach) + " (c_s = " +
+                    fmt("%.4g", r.sound_speed) + "), Re = u0 L_y/nu = " + fmt("%.3g", r.reynolds));
     } else if (s.body_force->kind == scene::ForceKind::constant) {
       double g = 0.0;
       for (int k = 0; k < d; ++k)
@@ -120,7 +140,10 @@ std::vector<std::string> regime_warnings(const scene::Scene &s) {
     w.push_back("Re_k = u0/(k nu) = " + fmt("%.3g", r.kolmogorov_re) +
                 " > 1 in a box longer than wide: the laminar Kolmogorov flow becomes unstable "
                 "near sqrt(2) and the profile no longer measures nu");
-  if (s.body_force && s.body_force->kind == scene::ForceKind::constant) {
+  if (r.poiseuille && r.reynolds > 0.2)
+    w.push_back("Re = " + fmt("%.3g", r.reynolds) +
+                " > 0.2: inertia is not negligible for colloid flows (seed 001 section 4.3)");
+  if (s.body_force && s.body_force->kind == scene::ForceKind::constant && !s.walls) {
     double g2 = 0.0;
     for (int k = 0; k < s.run.dimensions; ++k)
       g2 += s.body_force->value[k] * s.body_force->value[k];

@@ -54,6 +54,10 @@ InvariantCheck::InvariantCheck(const MpcdSimulation &sim) {
       conserved_[k] = false; // the sine force injects sum_i sin(k y_i), which fluctuates
     if (scene.body_force && scene.body_force->kind == scene::ForceKind::constant)
       drive_[k] = scene.body_force->value[k];
+    // No-slip walls and virtual particles exchange momentum with the fluid; slip walls
+    // without virtual particles only reverse v_y.
+    if (scene.walls && (k == 1 || !scene.walls->slip || scene.walls->virtual_particles))
+      conserved_[k] = false;
   }
 }
 
@@ -82,6 +86,23 @@ void InvariantCheck::check(const MpcdSimulation &sim) const {
     fail(sim, rank, what);
   if (any_bad)
     fail(sim, rank, "another rank found a non-finite or runaway particle");
+  if (sim.box().walls_y) {
+    const double L = sim.box().length[1];
+    for (std::size_t i = 0; i < f.size() && !bad; ++i)
+      if (!(f.x[1][i] >= 0.0 && f.x[1][i] <= L)) {
+        std::ostringstream os;
+        os.precision(17);
+        os << "particle id " << f.id[i] << " is outside the channel at y = " << f.x[1][i]
+           << " (allowed: 0 <= y <= " << L << ")";
+        what = os.str();
+        bad = 1;
+      }
+    MPI_Allreduce(&bad, &any_bad, 1, MPI_INT, MPI_MAX, sim.comm());
+    if (bad)
+      fail(sim, rank, what);
+    if (any_bad)
+      fail(sim, rank, "another rank found a particle outside the channel");
+  }
 
   const IdDigest d = id_digest(f, sim.comm());
   if (d.count != count_ || d.sum != id_sum_ || d.xr != id_xor_) {

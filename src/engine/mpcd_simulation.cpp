@@ -2,6 +2,8 @@
 #include "narrows/engine/mpcd_simulation.hpp"
 
 #include "narrows/mpcd/streaming.hpp"
+#include "narrows/walls/bounce_back.hpp"
+#include "narrows/walls/virtual_particles.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -13,7 +15,9 @@ mpcd::Box make_box(const scene::Scene &scene) {
   std::array<int, 3> cells{1, 1, 1};
   for (int k = 0; k < scene.run.dimensions; ++k)
     cells[k] = static_cast<int>(std::lround(scene.domain.size[k]));
-  return mpcd::make_periodic_box(scene.run.dimensions, cells);
+  mpcd::Box box = mpcd::make_periodic_box(scene.run.dimensions, cells);
+  box.walls_y = scene.walls.has_value();
+  return box;
 }
 
 std::uint64_t particle_count(const scene::Scene &scene) {
@@ -123,8 +127,23 @@ void MpcdSimulation::build_pipeline() {
   const int dim = box_.dim;
   const auto rule = f.collision;
 
-  // 1. Stream, exactly for the body force the scene has.
-  if (!scene_.body_force) {
+  // 1. Stream, exactly for the body force the scene has (and the walls).
+  if (scene_.walls) {
+    const bool slip = scene_.walls->slip;
+    const std::array<double, 3> g =
+        scene_.body_force ? scene_.body_force->value : std::array<double, 3>{0.0, 0.0, 0.0};
+    std::string name = std::string("stream with ") +
+                       (slip ? "slip (specular)" : "no-slip bounce-back") +
+                       " walls at y = 0 and y = " + format_number(box_.length[1]);
+    if (scene_.body_force) {
+      name += ", constant force [";
+      for (int k = 0; k < dim; ++k)
+        name += format_number(g[k]) + (k + 1 < dim ? ", " : "], exact hit times");
+    }
+    stages_.push_back({name, [this, dt, g, slip](std::uint64_t) {
+                         walls::stream_channel(fluid_, box_, dt, g, slip);
+                       }});
+  } else if (!scene_.body_force) {
     stages_.push_back({"stream (free flight)",
                        [this, dt](std::uint64_t) { mpcd::stream_free(fluid_, box_, dt); }});
   } else if (scene_.body_force->kind == scene::ForceKind::constant) {
@@ -143,7 +162,7 @@ void MpcdSimulation::build_pipeline() {
 
   // 2. Shifted grid: the same on every rank without a message.
   stages_.push_back({"grid shift", [this, seed, dim](std::uint64_t step) {
-                       grid_.shift = mpcd::grid_shift(seed, step, dim);
+                       grid_.set_shift(mpcd::grid_shift(seed, step, dim));
                      }});
   const bool slabs = slabs_.ranks() > 1;
   const std::string ranks = std::to_string(slabs_.ranks());
@@ -171,6 +190,16 @@ void MpcdSimulation::build_pipeline() {
   } else {
     stages_.push_back(
         {"bin into cells", [this](std::uint64_t) { mpcd::bin_particles(fluid_, grid_); }});
+  }
+
+  // Virtual particles fill the cells cut by the walls to the mean density.
+  if (scene_.walls && scene_.walls->virtual_particles) {
+    const double density = f.density, kT = f.kT;
+    const bool at_noise = rule == scene::Collision::at || rule == scene::Collision::at_a;
+    stages_.push_back({"virtual particles in cells cut by the walls",
+                       [this, density, kT, seed, at_noise](std::uint64_t step) {
+                         walls::add_virtual_particles(grid_, density, kT, seed, step, at_noise);
+                       }});
   }
 
   // 4. Collision.

@@ -2,6 +2,7 @@
 #include "narrows/engine/run.hpp"
 
 #include "narrows/analysis/fluid_observables.hpp"
+#include "narrows/analysis/poiseuille.hpp"
 #include "narrows/core/error.hpp"
 #include "narrows/core/timer.hpp"
 #include "narrows/engine/info.hpp"
@@ -49,9 +50,10 @@ public:
     momentum_ = wants(s, "momentum");
     velocity_ = wants(s, "velocity_profile");
     density_ = wants(s, "density_profile");
+    viscosity_ = wants(s, "viscosity");
   }
   void every_step() {
-    if (velocity_ || density_)
+    if (velocity_ || density_ || viscosity_)
       profiles_.add(sim_.fluid());
   }
   void sample() {
@@ -68,9 +70,16 @@ public:
       if (writer_)
         writer_->append_vector("momentum", step, t, std::span(p.data(), sim_.box().dim));
     }
-    if (velocity_ || density_) {
+    if (velocity_ || density_ || viscosity_) {
       std::vector<double> v, rho;
       if (profiles_.finish(comm, v, rho) && writer_) {
+        if (viscosity_) {
+          const auto &sc = sim_.scene();
+          const auto fit = analysis::fit_poiseuille(profiles_.bin_centres(), v, sim_.box().dim,
+                                                    profiles_.bin_width(), sim_.box().length[1],
+                                                    sc.body_force->value[0]);
+          writer_->append_scalar("viscosity", step, t, fit.nu);
+        }
         if (velocity_)
           writer_->append_profile("velocity_profile", step, t, profiles_.bin_centres(), v,
                                   sim_.box().dim);
@@ -86,7 +95,8 @@ private:
   const MpcdSimulation &sim_;
   std::unique_ptr<io::ObservablesWriter> writer_;
   analysis::ProfileAccumulator profiles_;
-  bool temperature_ = false, momentum_ = false, velocity_ = false, density_ = false;
+  bool temperature_ = false, momentum_ = false, velocity_ = false, density_ = false,
+       viscosity_ = false;
 };
 
 } // namespace

@@ -12,9 +12,12 @@
 namespace narrows::mpcd {
 
 CellGrid::CellGrid(const Box &box, int first, int columns)
-    : dim(box.dim), cells(box.cells), first_column(first), global_columns(box.cells[0]) {
+    : dim(box.dim), cells(box.cells), first_column(first), global_columns(box.cells[0]),
+      walls_y(box.walls_y) {
   if (columns >= 0)
     cells[0] = columns;
+  if (walls_y)
+    cells[1] += 1;
   if (dim == 2)
     cells[2] = 1;
   sums.resize(static_cast<std::size_t>(cells[0]) * cells[1] * cells[2]);
@@ -30,7 +33,8 @@ std::array<double, 3> grid_shift(std::uint64_t seed, std::uint64_t step, int dim
 
 namespace {
 
-template <int D> void bin_kernel(Fluid &f, CellGrid &g, std::size_t first, Strays *strays) {
+template <int D, bool Walls>
+void bin_kernel(Fluid &f, CellGrid &g, std::size_t first, Strays *strays) {
   const int NX = g.global_columns, nx = g.cells[0], ny = g.cells[1], nz = g.cells[2];
   const int x0 = g.first_column;
   const double sx = g.shift[0], sy = g.shift[1], sz = g.shift[2];
@@ -52,7 +56,8 @@ template <int D> void bin_kernel(Fluid &f, CellGrid &g, std::size_t first, Stray
                             std::to_string(x[i]) + " is outside this rank's slab (columns " +
                             std::to_string(x0) + " to " + std::to_string(x0 + nx - 1) + ")");
     }
-    std::size_t c = ix + static_cast<std::size_t>(nx) * cell_coordinate(y[i], sy, ny);
+    const int row = Walls ? wall_row(y[i], sy, ny) : cell_coordinate(y[i], sy, ny);
+    std::size_t c = ix + static_cast<std::size_t>(nx) * row;
     if constexpr (D == 3)
       c += static_cast<std::size_t>(nx) * ny * cell_coordinate(z[i], sz, nz);
     cell[i] = static_cast<std::uint32_t>(c);
@@ -67,9 +72,11 @@ template <int D> void bin_kernel(Fluid &f, CellGrid &g, std::size_t first, Stray
 
 void bin_range(Fluid &fluid, CellGrid &grid, std::size_t first, Strays *strays) {
   if (grid.dim == 3)
-    bin_kernel<3>(fluid, grid, first, strays);
+    grid.walls_y ? bin_kernel<3, true>(fluid, grid, first, strays)
+                 : bin_kernel<3, false>(fluid, grid, first, strays);
   else
-    bin_kernel<2>(fluid, grid, first, strays);
+    grid.walls_y ? bin_kernel<2, true>(fluid, grid, first, strays)
+                 : bin_kernel<2, false>(fluid, grid, first, strays);
 }
 
 } // namespace

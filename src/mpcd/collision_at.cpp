@@ -33,6 +33,25 @@ void draw_noise(Fluid &f, CollisionScratch &s, std::size_t stride, double kT, st
   }
 }
 
+// Cells cut by a wall: the mean velocity and the mean noise include the virtual particles
+// (their summed velocities and noise), delta = (P + P_v - X - X_v) / (n + n_v). The angular
+// correction of MPC-AT+a stays over the real particles, whose positions alone are known.
+template <int D>
+void virtual_delta(const CellGrid &g, CollisionScratch &s, std::size_t sum_stride,
+                   std::size_t par_stride) {
+  for (const VirtualCell &v : g.virtual_cells) {
+    const CellSums &c = g.sums[v.cell];
+    if (c.n == 0)
+      continue;
+    const double inv_n = 1.0 / (c.n + v.count);
+    for (int k = 0; k < D; ++k)
+      s.cell[v.cell * par_stride + k] =
+          (to_double(c.p[k]) + v.momentum[k] - to_double(s.cell_fixed[v.cell * sum_stride + k]) -
+           v.noise[k]) *
+          inv_n;
+  }
+}
+
 template <int D>
 void at_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, std::uint64_t seed,
                std::uint64_t step) {
@@ -46,6 +65,7 @@ void at_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, std:
     for (int k = 0; k < D; ++k)
       s.cell[c * D + k] = (to_double(g.sums[c].p[k]) - to_double(s.cell_fixed[c * D + k])) * inv_n;
   }
+  virtual_delta<D>(g, s, D, D);
   const std::size_t n = f.size();
   for (int k = 0; k < D; ++k) {
     double *v = f.v[k].data();
@@ -174,6 +194,7 @@ void at_a_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, st
       par[8] = w[2];
     }
   }
+  virtual_delta<D>(g, s, SS, PS);
 
   for (std::size_t i = 0; i < n; ++i) {
     const double *par = &s.cell[static_cast<std::size_t>(f.cell[i]) * PS];

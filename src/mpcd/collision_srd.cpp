@@ -13,6 +13,34 @@ namespace {
 // Per-cell parameters: 2D {ux, uy, cos, +-sin}; 3D {ux, uy, uz, R (row-major 3x3)}.
 template <int D> constexpr int stride = D == 2 ? 4 : 12;
 
+// The rotation of one cell: 2D {cos, +-sin}; 3D the row-major matrix, about a random axis.
+template <int D>
+void set_rotation(double *rot, double ca, double sa, std::uint64_t seed, std::uint64_t step,
+                  std::uint64_t cell_id) {
+  const auto r = rng::draw(seed, rng::Purpose::srd_rotation, step, cell_id);
+  if constexpr (D == 2) {
+    rot[0] = ca;
+    rot[1] = (r[0] & 1u) ? sa : -sa;
+  } else {
+    // Random unit axis uniform on the sphere (seed 000 eq 3.8), Rodrigues' rotation matrix.
+    const double cos_t = 2.0 * rng::open01(r[0]) - 1.0;
+    const double sin_t = std::sqrt(std::max(0.0, 1.0 - cos_t * cos_t));
+    const double ph = 2.0 * std::numbers::pi * rng::open01(r[1]);
+    const double ax = sin_t * std::cos(ph), ay = sin_t * std::sin(ph), az = cos_t;
+    const double oc = 1.0 - ca;
+    double *R = rot;
+    R[0] = ca + ax * ax * oc;
+    R[1] = ax * ay * oc - az * sa;
+    R[2] = ax * az * oc + ay * sa;
+    R[3] = ay * ax * oc + az * sa;
+    R[4] = ca + ay * ay * oc;
+    R[5] = ay * az * oc - ax * sa;
+    R[6] = az * ax * oc - ay * sa;
+    R[7] = az * ay * oc + ax * sa;
+    R[8] = ca + az * az * oc;
+  }
+}
+
 template <int D>
 void srd_cells(const CellGrid &g, std::vector<double> &par, double angle, std::uint64_t seed,
                std::uint64_t step) {
@@ -35,28 +63,20 @@ void srd_cells(const CellGrid &g, std::vector<double> &par, double angle, std::u
       }
       continue;
     }
-    const auto r = rng::draw(seed, rng::Purpose::srd_rotation, step, g.global_id(c));
-    if constexpr (D == 2) {
-      p[2] = ca;
-      p[3] = (r[0] & 1u) ? sa : -sa;
-    } else {
-      // Random unit axis uniform on the sphere (seed 000 eq 3.8), Rodrigues' rotation matrix.
-      const double cos_t = 2.0 * rng::open01(r[0]) - 1.0;
-      const double sin_t = std::sqrt(std::max(0.0, 1.0 - cos_t * cos_t));
-      const double ph = 2.0 * std::numbers::pi * rng::open01(r[1]);
-      const double ax = sin_t * std::cos(ph), ay = sin_t * std::sin(ph), az = cos_t;
-      const double oc = 1.0 - ca;
-      double *R = p + 3;
-      R[0] = ca + ax * ax * oc;
-      R[1] = ax * ay * oc - az * sa;
-      R[2] = ax * az * oc + ay * sa;
-      R[3] = ay * ax * oc + az * sa;
-      R[4] = ca + ay * ay * oc;
-      R[5] = ay * az * oc - ax * sa;
-      R[6] = az * ax * oc - ay * sa;
-      R[7] = az * ay * oc + ax * sa;
-      R[8] = ca + az * az * oc;
-    }
+    set_rotation<D>(p + D, ca, sa, seed, step, g.global_id(c));
+  }
+  // Cells cut by a wall: the mean velocity includes the virtual particles (000 eq 3.14), and
+  // a lone real particle is mixed with them too.
+  for (const VirtualCell &v : g.virtual_cells) {
+    const CellSums &s = g.sums[v.cell];
+    if (s.n == 0)
+      continue;
+    double *p = &par[v.cell * stride<D>];
+    const double inv_n = 1.0 / (s.n + v.count);
+    for (int k = 0; k < D; ++k)
+      p[k] = (fixed::to_double(s.p[k]) + v.momentum[k]) * inv_n;
+    if (s.n == 1)
+      set_rotation<D>(p + D, ca, sa, seed, step, g.global_id(v.cell));
   }
 }
 

@@ -8,29 +8,13 @@ namespace narrows::mpcd {
 
 namespace {
 
-// Back into [0, L). One subtraction almost always suffices; fmod handles the rest.
-inline double wrap(double x, double L) {
-  if (x >= L) {
-    x -= L;
-    if (x >= L)
-      x = std::fmod(x, L);
-  } else if (x < 0.0) {
-    x += L;
-    if (x < 0.0)
-      x = std::fmod(x, L) + L;
-    if (x >= L) // -tiny + L rounds to L
-      x = 0.0;
-  }
-  return x;
-}
-
 template <int D> void wrap_all(Fluid &f, const Box &box) {
   for (int k = 0; k < D; ++k) {
     double *x = f.x[k].data();
     const double L = box.length[k];
     const std::size_t n = f.size();
     for (std::size_t i = 0; i < n; ++i)
-      x[i] = wrap(x[i], L);
+      x[i] = wrap_periodic(x[i], L);
   }
 }
 
@@ -41,7 +25,7 @@ template <int D> void free_kernel(Fluid &f, const Box &box, double dt) {
     const double *v = f.v[k].data();
     const double L = box.length[k];
     for (std::size_t i = 0; i < n; ++i)
-      x[i] = wrap(x[i] + v[i] * dt, L);
+      x[i] = wrap_periodic(x[i] + v[i] * dt, L);
   }
 }
 
@@ -54,7 +38,7 @@ void constant_kernel(Fluid &f, const Box &box, double dt, const std::array<doubl
     const double L = box.length[k];
     const double half_g_dt2 = 0.5 * g[k] * dt * dt, g_dt = g[k] * dt;
     for (std::size_t i = 0; i < n; ++i) {
-      x[i] = wrap(x[i] + v[i] * dt + half_g_dt2, L);
+      x[i] = wrap_periodic(x[i] + v[i] * dt + half_g_dt2, L);
       v[i] += g_dt;
     }
   }

@@ -47,6 +47,7 @@ const std::vector<Section> &schema() {
       {"domain", {"size"}},
       {"fluid", {"collision", "density", "dt", "angle", "kT", "sort_every"}},
       {"body_force", {"kind", "value", "amplitude"}},
+      {"walls", {"slip", "virtual_particles"}},
       {"kmc",
        {"length", "boundary", "rates", "left", "right", "initial", "time", "warmup", "replicas",
         "charge"}},
@@ -67,7 +68,7 @@ constexpr std::int64_t max_cells_per_axis = std::int64_t{1} << 20;
 constexpr double max_particles = 1099511627776.0; // 2^40
 
 const char *const all_observables[] = {"temperature", "momentum", "velocity_profile",
-                                       "density_profile"};
+                                       "density_profile", "viscosity"};
 
 // ---- small text helpers -----------------------------------------------------------------------
 
@@ -425,13 +426,6 @@ std::vector<std::string> section_names() {
   return names;
 }
 
-std::string walls_message(const std::string &what) {
-  return what +
-         " is not available yet in this version (walls come in a later version); "
-         "allowed sections: " +
-         join(section_names()) + " (the domain is periodic along every axis)";
-}
-
 std::string unknown_section_message(const std::string &name, const value &v) {
   std::string msg = v.is_table() ? "unknown section [" + name + "]"
                                  : "unknown key '" + name + "' at the top level";
@@ -729,6 +723,27 @@ std::optional<BodyForce> parse_body_force(const Ctx &c, const value *bf, int dim
   return out;
 }
 
+std::optional<Walls> parse_walls(const Ctx &c, const value *w,
+                                 const std::optional<BodyForce> &force) {
+  if (w == nullptr)
+    return std::nullopt;
+  check_keys(c, w, "walls");
+  Walls out;
+  for (const auto &[key, field] :
+       {std::pair{"slip", &out.slip}, std::pair{"virtual_particles", &out.virtual_particles}}) {
+    if (const value *v = find(w, key)) {
+      if (!v->is_boolean())
+        c.wrong_type(std::string("walls.") + key, *v, "true or false");
+      *field = v->as_boolean();
+    }
+  }
+  if (force && force->kind == ForceKind::sine)
+    c.fail("walls", "[walls] cannot be combined with body_force.kind = \"sine\" (the Kolmogorov "
+                    "flow needs a periodic y axis); allowed: a constant body_force.value with "
+                    "walls, or the sine force without [walls]");
+  return out;
+}
+
 void parse_output(const Ctx &c, const value *o, Engine engine, Output &out) {
   check_keys(c, o, "output");
   if (const value *v = find(o, "dir")) {
@@ -795,8 +810,6 @@ void apply_override(Ctx &c, value &root, const std::string &text) {
     c.fail_set(text, "expected key.path=value (e.g. --set fluid.dt=0.05)");
 
   const std::string key = parts[0] + "." + parts[1];
-  if (parts[0] == "walls")
-    c.fail_set(text, walls_message("section [walls]"));
   const Section *sec = find_section(parts[0]);
   if (sec == nullptr)
     c.fail_set(text, "unknown key '" + join(parts, ".") +
@@ -889,15 +902,13 @@ Scene parse_scene(const std::string &text, const std::string &file,
   s.run.engine = parse_engine(c, run);
 
   for (const auto &[name, v] : in_file_order(root)) {
-    if (name == "walls")
-      c.fail("walls", walls_message("section [walls]"));
     if (find_section(name) == nullptr)
       c.fail(name, unknown_section_message(name, *v));
   }
 
   parse_run(c, run, s.run);
   if (s.run.engine == Engine::kmc) {
-    for (const char *name : {"domain", "fluid", "body_force"})
+    for (const char *name : {"domain", "fluid", "body_force", "walls"})
       if (section(c, root, name) != nullptr)
         c.fail(name, std::string("section [") + name +
                          "] is for engine mpcd; allowed with run.engine = \"kmc\": [run], [kmc], "
@@ -912,12 +923,20 @@ Scene parse_scene(const std::string &text, const std::string &file,
       c.fail("kmc", "section [kmc] needs run.engine = \"kmc\"; allowed with run.engine = \"" +
                         std::string(to_string(s.run.engine)) +
                         "\": [run], [domain], [fluid], "
-                        "[body_force], [output]");
+                        "[body_force], [walls], [output]");
     parse_domain(c, section(c, root, "domain"), s.run.dimensions, s.domain);
     parse_fluid(c, section(c, root, "fluid"), s.domain, s.run.dimensions, s.fluid);
     s.body_force = parse_body_force(c, section(c, root, "body_force"), s.run.dimensions);
+    s.walls = parse_walls(c, section(c, root, "walls"), s.body_force);
   }
   parse_output(c, section(c, root, "output"), s.run.engine, s.output);
+  const auto &obs = s.output.observables;
+  const bool poiseuille = s.walls && s.body_force && s.body_force->kind == ForceKind::constant &&
+                          s.body_force->value[0] != 0.0;
+  if (std::find(obs.begin(), obs.end(), "viscosity") != obs.end() && !poiseuille)
+    c.fail("output.observables",
+           "output.observables lists \"viscosity\", which fits the Poiseuille profile; allowed "
+           "only with [walls] and a body_force.value whose x component is non-zero");
   return s;
 }
 

@@ -76,7 +76,7 @@ add missing_fluid "$(good_scene | sed '/^\[fluid\]/,/^kT/d')"
 add missing_steps "$(replace_line steps '')"
 add syntax_error "$(replace_line dt 'dt = = 0.1')"
 add unknown_engine "$(replace_line engine 'engine = "lgca"')"
-add walls_section "$(good_scene; echo; echo '[walls]'; echo 'slip = false')"
+add walls_slip_not_boolean "$(good_scene; echo; echo '[walls]'; echo 'slip = 1')"
 add steps_float "$(replace_line steps 'steps = 2.5')"
 
 # check_bad NAME CMD...: runs CMD, expects exit 2 and one stderr line naming NAME.toml

@@ -28,7 +28,8 @@ struct Case {
   const char *name;
   int dim;
   scene::Collision rule;
-  bool sine; // sine force, else constant force
+  bool sine;          // sine force, else constant force
+  bool walls = false; // no-slip walls at y = 0 and y = L_y with virtual particles
 };
 
 class Bitwise : public ::testing::TestWithParam<Case> {};
@@ -48,6 +49,8 @@ TEST_P(Bitwise, TwoRanksEqualOneRank) {
   s.fluid.sort_every = 7;
   s.body_force = c.sine ? scene::BodyForce{scene::ForceKind::sine, {0, 0, 0}, 0.05}
                         : scene::BodyForce{scene::ForceKind::constant, {0.01, -0.003, 0.002}, 0};
+  if (c.walls)
+    s.walls = scene::Walls{};
   // 2000 steps in CI (~4 s); longer by hand: NARROWS_BITWISE_STEPS=20000 mpirun -n 2 mpi_tests
   const char *env = std::getenv("NARROWS_BITWISE_STEPS");
   const int steps = env ? std::atoi(env) : 2000;
@@ -77,5 +80,9 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"at_a2d_constant", 2, scene::Collision::at_a, false},
                       Case{"at_a3d_sine", 3, scene::Collision::at_a, true},
                       Case{"at3d_constant", 3, scene::Collision::at, false},
-                      Case{"maxwell2d_constant", 2, scene::Collision::random_maxwell, false}),
+                      Case{"maxwell2d_constant", 2, scene::Collision::random_maxwell, false},
+                      Case{"srd2d_walls", 2, scene::Collision::srd, false, true},
+                      Case{"srd3d_walls", 3, scene::Collision::srd, false, true},
+                      Case{"at_a2d_walls", 2, scene::Collision::at_a, false, true},
+                      Case{"at3d_walls", 3, scene::Collision::at, false, true}),
     [](const auto &info) { return std::string(info.param.name); });

@@ -340,9 +340,20 @@ TEST(SceneErrors, EngineNotAvailableYet) {
   bad(with("run", "engine = \"lbm\""), {"run.engine = \"lbm\"", "mpcd"});
 }
 
-TEST(SceneErrors, WallsSectionNotAvailableYet) {
-  bad(minimal_scene + "\n[walls]\nslip = false\n", {"[walls]", "not available yet"});
-  bad(minimal_scene, {"[walls]", "not available yet"}, {"walls.slip=true"});
+TEST(SceneErrors, WallsKeys) {
+  bad(minimal_scene + "\n[walls]\nslip = 1\n", {"walls.slip", "found 1", "true or false"});
+  bad(minimal_scene + "\n[walls]\nvirtual = true\n", {"walls.virtual", "virtual_particles"});
+  bad(minimal_scene, {"walls.slipp", "walls.slip"}, {"walls.slipp=true"});
+  bad(minimal_scene + "\n[body_force]\nkind = \"sine\"\namplitude = 0.1\n[walls]\n",
+      {"[walls]", "sine"});
+}
+
+TEST(Scene, WallsDefaultsAndOverrides) {
+  const Scene s = parse_scene(minimal_scene + "\n[walls]\n", "w.toml", {"walls.slip=true"});
+  ASSERT_TRUE(s.walls.has_value());
+  EXPECT_TRUE(s.walls->slip);
+  EXPECT_TRUE(s.walls->virtual_particles);
+  EXPECT_FALSE(parse_scene(minimal_scene, "p.toml", {}).walls.has_value());
 }
 
 TEST(SceneErrors, BodyForceMixingValueAndSine) {

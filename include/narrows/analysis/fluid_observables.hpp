@@ -33,6 +33,7 @@ public:
   // Reduces over ranks; returns true on rank 0 with the averages filled in; then resets.
   bool finish(MPI_Comm comm, std::vector<double> &velocity, std::vector<double> &density);
   const std::vector<double> &bin_centres() const { return centres_; }
+  double bin_width() const { return bin_width_; }
   int dim() const { return dim_; }
 
 private:

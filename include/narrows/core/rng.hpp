@@ -20,6 +20,8 @@ enum class Purpose : std::uint32_t {
   init_position = 6,  // id = particle id
   init_velocity = 7,  // id = particle id
   kmc_replica = 8,    // step = word pair, id = replica: seeds a replica's stateful generator
+  wall_virtual_momentum = 10, // id = global cell index: summed velocity of virtual particles
+  wall_virtual_noise = 11,    // id = global cell index: summed MPC-AT noise of virtual particles
   test = 15,
 };
 

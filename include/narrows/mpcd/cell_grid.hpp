@@ -17,20 +17,40 @@ struct CellSums {
   std::uint32_t n = 0;
 };
 
+// A cell cut by a wall, filled to the mean density by virtual particles (seed 000 eq 3.14):
+// only their number and the sums of their velocities and of their MPC-AT noise are needed.
+struct VirtualCell {
+  std::uint32_t cell = 0; // local cell index
+  double count = 0.0;     // number of virtual particles, density - real count
+  std::array<double, 3> momentum{0.0, 0.0, 0.0}; // sum of their velocities (wall at rest)
+  std::array<double, 3> noise{0.0, 0.0, 0.0};    // sum of their MPC-AT Gaussian velocities
+};
+
 // The cells one rank owns: its slab of x columns [first_column, first_column + cells[0]) of
 // the global grid (global_columns wide, periodic), and all of y (and z).
+// With walls at y = 0 and y = L_y the y axis is not periodic: the grid has L_y + 1 rows, the
+// y shift lies in [0, 1), row j covers [j - 1 + s, j + s), and rows 0 and L_y are cut by the
+// walls.
 struct CellGrid {
   int dim = 2;
-  std::array<int, 3> cells{1, 1, 1}; // local: x columns of the slab, y, z
+  std::array<int, 3> cells{1, 1, 1}; // local: x columns of the slab, y rows, z
   int first_column = 0;
   int global_columns = 1;
+  bool walls_y = false;
   std::array<double, 3> shift{0.0, 0.0, 0.0}; // grid origin offset, each in [-1/2, 1/2)
   std::vector<CellSums> sums;
+  std::vector<VirtualCell> virtual_cells; // filled by walls::add_virtual_particles
 
   // The whole box (one rank), or the slab [first_column, first_column + columns).
   explicit CellGrid(const Box &box, int first_column = 0, int columns = -1);
   CellGrid() = default;
   std::size_t size() const { return sums.size(); }
+  // Sets the shift of a step (from grid_shift); with walls the y shift moves to [0, 1).
+  void set_shift(const std::array<double, 3> &s) {
+    shift = s;
+    if (walls_y)
+      shift[1] += 0.5;
+  }
   // Global index of local cell c: the key of per-cell random draws, the same whichever rank
   // owns the cell, so results do not depend on the number of ranks.
   std::uint64_t global_id(std::size_t c) const {
@@ -53,6 +73,14 @@ inline int cell_coordinate(double x, double s, int n) {
   i += (i < 0) ? n : 0;
   i -= (i >= n) ? n : 0;
   return i;
+}
+
+// Row of position y in a grid with walls (y in [0, L_y], shift s in [0, 1)): floor(y - s) + 1,
+// clamped so that a particle exactly on the upper wall with s = 0 stays in the last row.
+inline int wall_row(double y, double s, int rows) {
+  int j = static_cast<int>(std::floor(y - s)) + 1;
+  j = j < 0 ? 0 : j;
+  return j < rows ? j : rows - 1;
 }
 
 // Particles found outside this rank's slab while binning: index and global x column.

@@ -10,11 +10,13 @@
 
 namespace narrows::mpcd {
 
-// Periodic box of whole collision cells (cell size a = 1). z is unused in 2D.
+// Box of whole collision cells (cell size a = 1), periodic along x and z; along y periodic too
+// unless walls_y (planes at y = 0 and y = length[1]). z is unused in 2D.
 struct Box {
   int dim = 2;
   std::array<int, 3> cells{1, 1, 1};
   std::array<double, 3> length{1.0, 1.0, 1.0};
+  bool walls_y = false;
   std::size_t num_cells() const {
     return static_cast<std::size_t>(cells[0]) * cells[1] * (dim == 3 ? cells[2] : 1);
   }

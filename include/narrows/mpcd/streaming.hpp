@@ -5,8 +5,25 @@
 #include "narrows/mpcd/fluid.hpp"
 
 #include <array>
+#include <cmath>
 
 namespace narrows::mpcd {
+
+// Back into [0, L). One subtraction almost always suffices; fmod handles the rest.
+inline double wrap_periodic(double x, double L) {
+  if (x >= L) {
+    x -= L;
+    if (x >= L)
+      x = std::fmod(x, L);
+  } else if (x < 0.0) {
+    x += L;
+    if (x < 0.0)
+      x = std::fmod(x, L) + L;
+    if (x >= L) // -tiny + L rounds to L
+      x = 0.0;
+  }
+  return x;
+}
 
 // Free flight: x += v dt.
 void stream_free(Fluid &fluid, const Box &box, double dt);

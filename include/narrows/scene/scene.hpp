@@ -40,6 +40,12 @@ struct BodyForce {
   double amplitude = 0.0; // sine: a_x = amplitude * sin(2 pi y / L_y) (Kolmogorov flow)
 };
 
+// Planar walls at y = 0 and y = L_y (2D channel; 3D slit with periodic z).
+struct Walls {
+  bool slip = false;             // specular reflection instead of no-slip bounce-back
+  bool virtual_particles = true; // fill cells cut by a wall to the mean density (000 eq 3.14)
+};
+
 struct Output {
   std::string dir = "out";
   std::int64_t every = 100; // observables cadence in steps
@@ -74,6 +80,7 @@ struct Scene {
   Domain domain;
   Fluid fluid;
   std::optional<BodyForce> body_force;
+  std::optional<Walls> walls;
   Output output;
   std::optional<Kmc> kmc; // engine kmc only
 };
