@@ -1,15 +1,19 @@
 #!/usr/bin/python3
-"""Plot the time-averaged x-velocity profile of a narrows run against Kolmogorov-flow theory.
+"""Plot the time-averaged x-velocity profile of a narrows run against Poiseuille or Kolmogorov theory.
 
 Usage: plot_profile.py OUTDIR [--png FILE]
 
 Reads OUTDIR/observables.h5: /observables/velocity_profile (value [T][bins][d], bin centres
 in .../bins), averaged over the second half of the samples, and the scene text in
-/parameters/scene. With a body force of kind "sine" (amplitude F0) the steady profile is
-u(y) = F0 L^2 / (4 pi^2 nu) sin(2 pi y / L), L = domain size along y; the script fits the
-amplitude of the measured profile, turns it into nu_measured and compares with the MPCD
-theory viscosity of the scene's collision rule. Writes a PNG (default OUTDIR/profile.png)
-and prints one line.
+/parameters/scene.
+- Channel ([walls] and a constant force g along x): the steady profile is the Poiseuille
+  parabola u(y) = g y (L - y) / (2 nu); the script fits u = a q(y) + b (q the bin average of
+  y (L - y)), so nu_measured = g / (2 a), with an error from the spread of the per-sample fits,
+  and b is the velocity left at the walls (slip).
+- Periodic box with a sine force (amplitude F0): u(y) = F0 L^2 / (4 pi^2 nu) sin(2 pi y / L);
+  the amplitude of the measured profile gives nu_measured.
+Either is compared with the MPCD theory viscosity of the scene's collision rule at the
+measured temperature. Writes a PNG (default OUTDIR/profile.png) and prints one line.
 """
 
 import argparse
@@ -93,11 +97,11 @@ def read_run(outdir):
         averaged = f"steps {int(used[0])}-{int(used[-1])}, {len(used)} samples"
     else:
         averaged = f"{len(samples)} samples"
-    return path, bins, samples.mean(axis=0), temperature, scene_text, averaged
+    return path, bins, samples, temperature, scene_text, averaged
 
 
 def scene_parameters(scene_text, path):
-    """Dict of what the theory needs, or None if the scene has no sine body force."""
+    """Dict of what the theory needs, or None if the scene has neither flow."""
     if not scene_text:
         return None
     try:
@@ -105,13 +109,18 @@ def scene_parameters(scene_text, path):
     except tomllib.TOMLDecodeError as e:
         raise InputError(f"{path}: /parameters/scene is not valid TOML: {e}") from e
     force = scene.get("body_force", {})
-    if force.get("kind") != "sine":
+    if "walls" in scene and "value" in force:
+        flow = "poiseuille"
+    elif "walls" not in scene and force.get("kind") == "sine":
+        flow = "kolmogorov"
+    else:
         return None
     try:
         size = scene["domain"]["size"]
         fluid = scene["fluid"]
         return {
-            "F0": float(force["amplitude"]),
+            "flow": flow,
+            "F0": float(force["amplitude"]) if flow == "kolmogorov" else float(force["value"][0]),
             "L": float(size[1]),
             "dims": int(scene.get("run", {}).get("dimensions", len(size))),
             "collision": str(fluid["collision"]),
@@ -132,58 +141,75 @@ def main(argv):
     png = args.png or os.path.join(args.outdir, "profile.png")
 
     try:
-        path, y, u, temperature, scene_text, averaged = read_run(args.outdir)
+        path, y, samples, temperature, scene_text, averaged = read_run(args.outdir)
         params = scene_parameters(scene_text, path)
     except InputError as e:
         print(f"plot_profile: {e}", file=sys.stderr)
         return 2
 
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    u = samples.mean(axis=0)
     ax.plot(y, u, "o", ms=4, label=f"measured ({averaged})")
     ax.set_xlabel("y")
     ax.set_ylabel(r"$\langle u_x \rangle$")
 
     if params is None:
-        ax.set_title("velocity profile (no sine body force: no theory)")
-        line = f"profile: no sine body force, no theory; plot in {png}"
+        ax.set_title("velocity profile (neither a channel flow nor a sine force: no theory)")
+        line = f"profile: no flow with a theory; plot in {png}"
     else:
         F0, L = params["F0"], params["L"]
-        # Amplitude of the sin(2 pi y / L) mode; bins are uniform, dy from their spacing.
+        yy = np.linspace(0.0, L, 400)
         dy = L / len(y) if len(y) < 2 else float(np.mean(np.diff(y)))
-        u_hat = 2.0 / L * float(np.sum(u * np.sin(2.0 * np.pi * y / L))) * dy
-        nu_measured = F0 * L**2 / (4.0 * np.pi**2 * u_hat) if u_hat != 0.0 else math.inf
+        if params["flow"] == "poiseuille":
+            q = y * (L - y) - dy * dy / 12.0
+            design = np.vstack([q, np.ones_like(q)]).T
+            fits = np.linalg.lstsq(design, samples.T, rcond=None)[0]  # [2][samples]
+            a, b = fits[0].mean(), fits[1].mean()
+            nu_measured = F0 / (2.0 * a) if a != 0.0 else math.inf
+            err = (nu_measured * fits[0].std(ddof=1) / math.sqrt(fits.shape[1]) / abs(a)
+                   if fits.shape[1] > 1 else math.nan)
+            u0 = a * L * L / 4.0 + b
+            shape = lambda nu: F0 * yy * (L - yy) / (2.0 * nu)  # noqa: E731
+            fit_curve = a * yy * (L - yy) + b
+            flow_name = "Poiseuille channel"
+            extra = f", wall velocity {100 * b / u0:+.1f} % of u0"
+        else:
+            u_hat = 2.0 / L * float(np.sum(u * np.sin(2.0 * np.pi * y / L))) * dy
+            nu_measured = F0 * L**2 / (4.0 * np.pi**2 * u_hat) if u_hat != 0.0 else math.inf
+            amps = 2.0 / L * (samples * np.sin(2.0 * np.pi * y / L)).sum(axis=1) * dy
+            err = (nu_measured * amps.std(ddof=1) / math.sqrt(len(amps)) / abs(u_hat)
+                   if len(amps) > 1 else math.nan)
+            shape = lambda nu: F0 * L**2 / (4.0 * np.pi**2 * nu) * np.sin(2.0 * np.pi * yy / L)  # noqa: E731,E501
+            fit_curve = u_hat * np.sin(2.0 * np.pi * yy / L)
+            flow_name = "Kolmogorov flow"
+            extra = ""
 
         kT = params["kT"]
         kT_note = f"kT = {kT:g}"
-        if temperature is not None:
+        if temperature is not None and params["collision"] == "srd":
             kT = temperature
             kT_note = f"kinetic part at measured T = {temperature:.4g}"
         nu_theory, reason = theory_viscosity(params["collision"], params["dims"], params["n"],
                                              params["dt"], params["angle"], kT)
-
-        yy = np.linspace(0.0, L, 400)
-        ax.plot(yy, u_hat * np.sin(2.0 * np.pi * yy / L), "-", color="C0", lw=1, alpha=0.6,
-                label=rf"fit: $\nu_{{measured}}$ = {nu_measured:.4g}")
+        measured = rf"$\nu_{{measured}}$ = {nu_measured:.4g} $\pm$ {err:.2g}"
+        ax.plot(yy, fit_curve, "-", color="C0", lw=1, alpha=0.6, label="fit: " + measured)
         desc = f"{params['collision']} {params['dims']}D, n = {params['n']:g}, dt = {params['dt']:g}"
         if params["collision"] == "srd":
             desc += f", angle = {params['angle']:g}°"
         if nu_theory is not None:
-            u_theory = F0 * L**2 / (4.0 * np.pi**2 * nu_theory)
-            ax.plot(yy, u_theory * np.sin(2.0 * np.pi * yy / L), "--", color="C3",
+            ax.plot(yy, shape(nu_theory), "--", color="C3",
                     label=rf"theory: $\nu$ = {nu_theory:.4g} ({kT_note})")
             off = 100.0 * (nu_measured - nu_theory) / nu_theory
-            ax.set_title(f"Kolmogorov flow, {desc}\n"
-                         rf"$\nu_{{measured}}$ = {nu_measured:.4g}, "
-                         rf"$\nu_{{theory}}$ = {nu_theory:.4g} ({off:+.1f} %)", fontsize=10)
-            line = (f"profile: nu_measured = {nu_measured:.6g}, nu_theory = {nu_theory:.6g} "
-                    f"({off:+.2f} % off), plot in {png}")
+            ax.set_title(f"{flow_name}, {desc}\n" + measured +
+                         rf", $\nu_{{theory}}$ = {nu_theory:.4g} ({off:+.1f} %)", fontsize=10)
+            line = (f"profile: nu_measured = {nu_measured:.6g} +- {err:.2g}, nu_theory = "
+                    f"{nu_theory:.6g} ({off:+.2f} % off){extra}, plot in {png}")
         else:
             ax.plot([], [], " ", label=f"theory: none ({reason})")
-            ax.set_title(f"Kolmogorov flow, {desc}\n"
-                         rf"$\nu_{{measured}}$ = {nu_measured:.4g}, $\nu_{{theory}}$: n/a",
+            ax.set_title(f"{flow_name}, {desc}\n" + measured + r", $\nu_{theory}$: n/a",
                          fontsize=10)
-            line = (f"profile: nu_measured = {nu_measured:.6g}, nu_theory = n/a ({reason}), "
-                    f"plot in {png}")
+            line = (f"profile: nu_measured = {nu_measured:.6g} +- {err:.2g}, nu_theory = n/a "
+                    f"({reason}){extra}, plot in {png}")
         ax.set_xlim(0.0, L)
 
     ax.axhline(0.0, color="0.7", lw=0.5)

@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Every MPCD scene in run/ passes `check`; each channel scene (with [walls]) runs briefly and
+# writes the viscosity series, a velocity profile that plot_profile.py turns into a PNG, and a
+# log with the Poiseuille Ma/Re line; 2 ranks give the same viscosity numbers as 1.
+set -u
+narrows=$1
+src=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+mpi=(mpirun --quiet --oversubscribe)
+[ "$(id -u)" -eq 0 ] && mpi+=(--allow-run-as-root)
+pass=0 fail=0
+check() { if eval "$2"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $1"; fi; }
+
+for scene in "$src"/run/*.toml; do
+  grep -q 'engine = "\(kmc\|lgca\)"' "$scene" && continue
+  name=$(basename "$scene" .toml)
+  "$narrows" check "$scene" > "$tmp/$name.check" 2>&1
+  check "$name: check exits 0" '[ $? -eq 0 ]'
+  grep -q '^\[walls\]' "$scene" || continue
+  short=(--set domain.size=$(grep -q 'dimensions = 3' "$scene" && echo '[8,6,4]' || echo '[8,6]')
+         --set run.steps=200 --set output.every=50 --set output.progress=false)
+  "$narrows" run "$scene" "${short[@]}" --out "$tmp/$name" > /dev/null 2>&1
+  code=$?
+  check "$name: run exits 0 (got $code)" '[ "$code" -eq 0 ]'
+  check "$name: Poiseuille line in the log" 'grep -q "Poiseuille channel: u0 = \|viscosity: no kinetic" "$tmp/$name/log.txt"'
+  check "$name: viscosity series" '/usr/bin/python3 - "$tmp/$name/observables.h5" <<PY
+import sys, h5py, numpy as np
+f = h5py.File(sys.argv[1], "r")["observables"]
+v = f["viscosity/value"][()]
+assert v.shape == (4,), v.shape
+assert np.all(np.isfinite(v)), v
+PY'
+  check "$name: plot" '/usr/bin/python3 "$src/tools/plot_profile.py" "$tmp/$name" > "$tmp/$name.plot" 2>&1 && [ -s "$tmp/$name/profile.png" ]'
+  "${mpi[@]}" -n 2 "$narrows" run "$scene" "${short[@]}" --out "$tmp/$name-2" > /dev/null 2>&1
+  check "$name: 2 ranks give the 1-rank viscosity series" '/usr/bin/python3 - "$tmp/$name/observables.h5" "$tmp/$name-2/observables.h5" <<PY
+import sys, h5py, numpy as np
+a = h5py.File(sys.argv[1], "r")["observables/viscosity/value"][()]
+b = h5py.File(sys.argv[2], "r")["observables/viscosity/value"][()]
+assert np.allclose(a, b, rtol=1e-12, atol=0), (a, b)
+PY'
+done
+echo "channel scenes: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]
