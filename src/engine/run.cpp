@@ -11,6 +11,7 @@
 #include "narrows/engine/mpcd_simulation.hpp"
 #include "narrows/io/checkpoint.hpp"
 #include "narrows/io/observables_writer.hpp"
+#include "narrows/io/trajectory_writer.hpp"
 #include "narrows/parallel/slabs.hpp"
 
 #include <algorithm>
@@ -142,6 +143,18 @@ void run_scene(const scene::Scene &scene, const RunOptions &options, MPI_Comm co
     writer =
         std::make_unique<io::ObservablesWriter>(dir + "/observables" + from + ".h5", scene.text);
   Observer observer(sim, std::move(writer));
+  std::optional<io::TrajectoryWriter> trajectory;
+  const std::int64_t frame_every = scene.output.trajectory_every;
+  if (frame_every > 0) {
+    trajectory.emplace(dir + "/trajectory" + from + ".h5", scene.text, sim.box(),
+                       particle_count(scene),
+                       static_cast<std::uint64_t>(scene.output.trajectory_subsample), comm);
+    log.line("trajectory: " + std::to_string(trajectory->tracked()) + " fluid particles every " +
+             std::to_string(frame_every) + " steps to " + dir + "/trajectory" + from +
+             ".h5 (ParaView: trajectory" + from + ".xdmf)");
+    if (!restarting)
+      trajectory->write_frame(sim.step(), sim.time(), sim.fluid());
+  }
   const InvariantCheck invariants(sim);
   const std::int64_t every = scene.output.every;
   const auto n_particles = analysis::total_momentum(sim.fluid(), comm).count;
@@ -174,6 +187,8 @@ void run_scene(const scene::Scene &scene, const RunOptions &options, MPI_Comm co
       invariants.check(sim);
       observer.sample();
     }
+    if (trajectory && sim.step() % frame_every == 0)
+      trajectory->write_frame(sim.step(), sim.time(), sim.fluid());
     if ((stop = signals.requested(comm)) != 0)
       break;
     const std::int64_t cadence = scene.output.checkpoint_every;

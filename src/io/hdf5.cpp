@@ -1,6 +1,8 @@
 // The RAII HDF5 layer: checked file/group/dataspace creation and small-write helpers.
 #include "narrows/io/hdf5.hpp"
 
+#include <algorithm>
+
 namespace narrows::io::h5 {
 
 void silence_errors() {
@@ -91,6 +93,53 @@ void write_string_dataset(hid_t loc, const std::string &name, const std::string 
   const Datatype type = string_type(where);
   const char *text = value.c_str();
   write_dataset(loc, name, type.get(), std::span<const hsize_t>(), &text, where);
+}
+
+// Rows per chunk: about 32 KiB of doubles per chunk, at most 256 rows, at least one (small
+// enough for short runs, large enough that long runs do not drown in chunk metadata).
+static hsize_t chunk_rows(const std::vector<hsize_t> &sample_shape) {
+  hsize_t elements = 1;
+  for (const hsize_t n : sample_shape)
+    elements *= n;
+  return std::clamp<hsize_t>(4096 / elements, 1, 256);
+}
+
+// An empty dataset of shape [0][sample_shape...] that can grow without limit along axis 0.
+h5::Dataset create_series(hid_t group, const std::string &name, hid_t type,
+                          const std::vector<hsize_t> &sample_shape, const std::string &where) {
+  std::vector<hsize_t> dims{0}, maxdims{H5S_UNLIMITED}, chunk{chunk_rows(sample_shape)};
+  for (const hsize_t n : sample_shape) {
+    dims.push_back(n);
+    maxdims.push_back(n);
+    chunk.push_back(n);
+  }
+  const h5::Dataspace space = h5::simple_dataspace(dims, maxdims, where);
+  const h5::PropList dcpl(H5Pcreate(H5P_DATASET_CREATE), where, "create property list");
+  h5::check(H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()), where,
+            "set chunk size of " + name);
+  return h5::Dataset(
+      H5Dcreate2(group, name.c_str(), type, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
+      where, "create dataset " + name);
+}
+
+// Grows `dset` to row + 1 rows and writes `data` (one sample) into row `row`.
+void write_row(const h5::Dataset &dset, hsize_t row, hid_t type,
+               const std::vector<hsize_t> &sample_shape, const void *data, const std::string &where,
+               const std::string &name) {
+  std::vector<hsize_t> dims{row + 1}, start{row}, count{1};
+  for (const hsize_t n : sample_shape) {
+    dims.push_back(n);
+    start.push_back(0);
+    count.push_back(n);
+  }
+  h5::check(H5Dset_extent(dset.get(), dims.data()), where, "extend dataset " + name);
+  const h5::Dataspace file_space(H5Dget_space(dset.get()), where, "get dataspace of " + name);
+  h5::check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr,
+                                count.data(), nullptr),
+            where, "select row of " + name);
+  const h5::Dataspace mem_space = h5::simple_dataspace(count, {}, where);
+  h5::check(H5Dwrite(dset.get(), type, mem_space.get(), file_space.get(), H5P_DEFAULT, data), where,
+            "write dataset " + name);
 }
 
 } // namespace narrows::io::h5

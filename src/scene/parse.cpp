@@ -52,7 +52,8 @@ const std::vector<Section> &schema() {
        {"length", "boundary", "rates", "left", "right", "initial", "time", "warmup", "replicas",
         "charge"}},
       {"output",
-       {"dir", "every", "observables", "checkpoint_every", "checkpoint_keep", "progress"}},
+       {"dir", "every", "observables", "checkpoint_every", "checkpoint_keep", "progress",
+        "trajectory_every", "trajectory_subsample"}},
   };
   return s;
 }
@@ -781,6 +782,20 @@ void parse_output(const Ctx &c, const value *o, Engine engine, Output &out) {
     out.checkpoint_keep = static_cast<int>(
         as_integer(c, *v, "output.checkpoint_keep", "an integer from 1 to 1000 (checkpoints kept)",
                    [](std::int64_t n) { return n >= 1 && n <= 1000; }));
+  if (const value *v = find(o, "trajectory_every"))
+    out.trajectory_every =
+        as_integer(c, *v, "output.trajectory_every", "an integer >= 0 (steps; 0 = no trajectory)",
+                   [](std::int64_t n) { return n >= 0; });
+  if (const value *v = find(o, "trajectory_subsample"))
+    out.trajectory_subsample =
+        as_integer(c, *v, "output.trajectory_subsample",
+                   "an integer >= 1 (frames hold the fluid particles whose id is a multiple of it)",
+                   [](std::int64_t n) { return n >= 1; });
+  if (engine == Engine::kmc && out.trajectory_every > 0)
+    c.fail("output.trajectory_every",
+           "output.trajectory_every = " + std::to_string(out.trajectory_every) +
+               " is for particle engines; allowed with run.engine = "
+               "\"kmc\": 0 (the kmc engine writes no trajectory)");
   if (const value *v = find(o, "progress")) {
     if (!v->is_boolean())
       c.wrong_type("output.progress", *v, "true or false");

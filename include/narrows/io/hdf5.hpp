@@ -11,6 +11,7 @@
 #include <string>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 namespace narrows::io::h5 {
 
@@ -139,5 +140,13 @@ template <class T>
 void write_scalar(hid_t loc, const std::string &name, T value, const std::string &where) {
   write_dataset(loc, name, native_type<T>(), std::span<const hsize_t>(), &value, where);
 }
+
+// Time series: an empty dataset of shape [0][sample_shape...], chunked, unlimited along axis 0,
+// and the append of one sample as row `row` (the dataset grows to row + 1 rows).
+Dataset create_series(hid_t group, const std::string &name, hid_t type,
+                      const std::vector<hsize_t> &sample_shape, const std::string &where);
+void write_row(const Dataset &dset, hsize_t row, hid_t type,
+               const std::vector<hsize_t> &sample_shape, const void *data, const std::string &where,
+               const std::string &name);
 
 } // namespace narrows::io::h5

@@ -54,6 +54,9 @@ struct Output {
   std::int64_t checkpoint_every = 0; // 0 = only at the end of the run
   int checkpoint_keep = 2;           // newest checkpoints kept in the output directory
   bool progress = true;              // progress line with ETA on long runs
+  std::int64_t trajectory_every =
+      0; // fluid frames to trajectory.h5 every this many steps (0 = none)
+  std::int64_t trajectory_subsample = 1; // frames hold the particles whose id is a multiple of this
 };
 
 // Engine "kmc": the three-state stochastic lattice gas of seed 000 ch.2 (DESIGN.md, "Scene keys

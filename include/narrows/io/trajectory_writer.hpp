@@ -1,0 +1,53 @@
+// Trajectory output: frames of the fluid (every particle, or those whose id is a multiple of a
+// subsample stride) in an H5MD file, plus an XDMF description of the same file for ParaView.
+//
+// Layout of DIR/trajectory.h5 (H5MD 1.1 style):
+//   /h5md                               attribute version = [1, 1]; group creator
+//   /particles/fluid/box                attributes dimension, boundary; dataset edges [d]
+//   /particles/fluid/position/{value [T][M][d], step [T], time [T]}
+//   /particles/fluid/velocity/{value [T][M][d], step [T], time [T]}
+//   /particles/fluid/id                 [M]: row j holds the particle with id j * subsample
+//   /parameters/{scene, subsample}
+// Rows are ordered by id, so a row is the same particle in every frame, on any rank count.
+// Colloids will be a second species group with their own fields; the XDMF gets a grid each.
+#pragma once
+
+#include "narrows/io/hdf5.hpp"
+#include "narrows/mpcd/fluid.hpp"
+
+#include <mpi.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace narrows::io {
+
+class TrajectoryWriter {
+public:
+  // Collective. Rank 0 creates `h5_path` (truncating) and writes the header; the XDMF file is
+  // h5_path with .h5 replaced by .xdmf. The fluid has ids 0 .. total - 1.
+  TrajectoryWriter(const std::string &h5_path, const std::string &scene_text, const mpcd::Box &box,
+                   std::uint64_t total, std::uint64_t subsample, MPI_Comm comm);
+
+  // Collective: gathers the tracked particles on rank 0, which appends one frame, flushes the
+  // file and rewrites the XDMF. Throws narrows::Error if a tracked id is missing or repeated.
+  void write_frame(std::int64_t step, double time, const mpcd::Fluid &fluid);
+
+  std::uint64_t tracked() const { return rows_; }
+
+private:
+  void write_xdmf() const;
+
+  std::string path_, xdmf_path_;
+  MPI_Comm comm_;
+  int rank_ = 0, dim_ = 2;
+  std::uint64_t subsample_ = 1, rows_ = 0;
+  h5::File file_;
+  h5::Dataset step_[2], time_[2], value_[2]; // position, velocity
+  std::vector<double> frame_times_;
+  std::vector<std::uint64_t> send_rows_, recv_rows_;
+  std::vector<double> send_values_, recv_values_, position_, velocity_;
+};
+
+} // namespace narrows::io

@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# Trajectory output: trajectory.h5 in H5MD layout with the subsampled fluid, one frame at the
+# start and every trajectory_every steps; rows ordered by id, so 1 and 2 ranks write the same
+# frames bit for bit; the last frame equals the end checkpoint for the tracked ids; the XDMF
+# file for ParaView is well-formed and points at the datasets with the right shapes; a
+# restart writes trajectory-<step>.h5 with the frames after the checkpoint.
+set -u
+narrows=$1
+src=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+mpi=(mpirun --quiet --oversubscribe)
+[ "$(id -u)" -eq 0 ] && mpi+=(--allow-run-as-root)
+pass=0 fail=0
+check() { if eval "$2"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $1"; fi; }
+
+sed 's/^size = .*/size = [24.0, 10.0]/' "$src/run/quickstart.toml" > "$tmp/s.toml"
+opts=(--set run.steps=300 --set output.every=100
+      --set output.trajectory_every=100 --set output.trajectory_subsample=7
+      --set output.progress=false)
+"$narrows" run "$tmp/s.toml" "${opts[@]}" --out "$tmp/one" > /dev/null 2>&1
+check "1-rank run exits 0" '[ $? -eq 0 ]'
+"${mpi[@]}" -n 2 "$narrows" run "$tmp/s.toml" "${opts[@]}" --out "$tmp/two" \
+  > /dev/null 2>&1
+check "2-rank run exits 0" '[ $? -eq 0 ]'
+"$narrows" run "$tmp/s.toml" "${opts[@]}" --set run.steps=500 --out "$tmp/one" \
+  --restart "$tmp/one" > /dev/null 2>&1
+check "restart exits 0" '[ $? -eq 0 ]'
+check "trajectory contents" '/usr/bin/python3 - "$tmp" <<PY
+import sys, h5py, numpy as np
+import xml.etree.ElementTree as ET
+tmp = sys.argv[1]
+a = h5py.File(tmp + "/one/trajectory.h5", "r")
+b = h5py.File(tmp + "/two/trajectory.h5", "r")
+fl = a["particles/fluid"]
+n = 24 * 10 * 10
+m = (n + 6) // 7
+assert list(a["h5md"].attrs["version"]) == [1, 1]
+assert fl["position/value"].shape == (4, m, 2), fl["position/value"].shape
+assert list(fl["position/step"][()]) == [0, 100, 200, 300]
+assert np.array_equal(fl["id"][()], np.arange(m) * 7)
+for f in ("position", "velocity"):
+    assert np.array_equal(fl[f + "/value"][()], b["particles/fluid/" + f + "/value"][()]), f
+ck = h5py.File(tmp + "/one/checkpoint-0000000300.h5", "r")["particles/fluid"]
+ids = ck["id/value"][()]
+order = np.argsort(ids)
+pos = ck["position/value"][()][order][::7]
+assert np.array_equal(pos, fl["position/value"][3]), "last frame differs from the checkpoint"
+y = fl["position/value"][:, :, 1]
+assert (y >= 0).all() and (y <= 10).all()
+c = h5py.File(tmp + "/one/trajectory-0000000300.h5", "r")["particles/fluid/position"]
+assert list(c["step"][()]) == [400, 500], c["step"][()]
+root = ET.parse(tmp + "/one/trajectory.xdmf").getroot()
+grids = root.findall("./Domain/Grid/Grid")
+assert len(grids) == 4, len(grids)
+item = grids[2].find("./Geometry/DataItem")
+assert item.get("Dimensions") == f"{m} 2"
+inner = item.findall("DataItem")
+assert inner[0].text.split()[:3] == ["2", "0", "0"]
+assert inner[1].text.strip() == "trajectory.h5:/particles/fluid/position/value"
+PY'
+"$narrows" check "$src/run/quickstart.toml" --set output.trajectory_subsample=0 \
+  > /dev/null 2> "$tmp/err"
+code=$?
+check "subsample 0 refused with exit 2 and one line" \
+  '[ $code -eq 2 ] && [ $(wc -l < "$tmp/err") -eq 1 ] && grep -q "output.trajectory_subsample" "$tmp/err"'
+echo "trajectory: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]
