@@ -162,8 +162,9 @@ void run_scene(const scene::Scene &scene, const RunOptions &options, MPI_Comm co
   // Checkpoints: every output.checkpoint_every steps, at the end, and on SIGTERM/SIGUSR1.
   auto save_checkpoint = [&] {
     Stopwatch watch;
-    const io::CheckpointInfo info{scene.text,    sim.step(),       sim.time(), scene.run.seed,
-                                  sim.box().dim, sim.box().length, 0};
+    io::CheckpointInfo info{scene.text,    sim.step(),       sim.time(), scene.run.seed,
+                            sim.box().dim, sim.box().length, false};
+    info.walls_y = sim.box().walls_y;
     const std::string path = io::checkpoint_path(dir, sim.step());
     const double bytes = io::write_checkpoint(path, info, {io::fluid_fields(sim.fluid())}, comm);
     if (rank == 0)

@@ -32,6 +32,7 @@ struct Case {
   int dim;
   scene::Collision rule;
   bool sine;
+  bool walls = false; // no-slip walls with virtual particles
 };
 
 scene::Scene make_scene(const Case &c) {
@@ -46,6 +47,8 @@ scene::Scene make_scene(const Case &c) {
   s.fluid.sort_every = 7;
   s.body_force = c.sine ? scene::BodyForce{scene::ForceKind::sine, {0, 0, 0}, 0.05}
                         : scene::BodyForce{scene::ForceKind::constant, {0.01, -0.003, 0.002}, 0};
+  if (c.walls)
+    s.walls = scene::Walls{};
   s.text = "# test scene\n";
   return s;
 }
@@ -159,5 +162,7 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"srd3d_constant", 3, scene::Collision::srd, false},
                       Case{"at_a2d_constant", 2, scene::Collision::at_a, false},
                       Case{"at3d_sine", 3, scene::Collision::at, true},
-                      Case{"maxwell2d_constant", 2, scene::Collision::random_maxwell, false}),
+                      Case{"maxwell2d_constant", 2, scene::Collision::random_maxwell, false},
+                      Case{"srd2d_walls", 2, scene::Collision::srd, false, true},
+                      Case{"at3d_walls", 3, scene::Collision::at, false, true}),
     [](const auto &info) { return std::string(info.param.name); });

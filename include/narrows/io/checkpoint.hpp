@@ -42,7 +42,8 @@ struct CheckpointInfo {
   std::uint64_t seed = 0;
   int dimensions = 2;
   std::array<double, 3> box{1.0, 1.0, 1.0}; // edge lengths (first `dimensions` used)
-  std::uint64_t fluid_particles = 0;        // filled by the reader
+  bool walls_y = false;              // box/boundary along y: "none" (walls) instead of "periodic"
+  std::uint64_t fluid_particles = 0; // filled by the reader
 };
 
 // One species on this rank as structure-of-arrays views. Vector fields have `dim` component
