@@ -33,6 +33,12 @@ std::array<double, 3> grid_shift(std::uint64_t seed, std::uint64_t step, int dim
 
 namespace {
 
+// Marks a particle that left the slab (listed in strays, not in any cell sum).
+constexpr std::uint32_t stray_cell = 0xffffffffu;
+
+// Two passes: the cell of every particle, then the sums, fetching the records of later
+// particles ahead; the sums pass is bound by their latency (at 1e6 particles, one core,
+// 3D 9.2 -> 6.0 ns per particle, 2D 3.8 -> 3.5 ns).
 template <int D, bool Walls>
 void bin_kernel(Fluid &f, CellGrid &g, std::size_t first, Strays *strays) {
   const int NX = g.global_columns, nx = g.cells[0], ny = g.cells[1], nz = g.cells[2];
@@ -43,6 +49,14 @@ void bin_kernel(Fluid &f, CellGrid &g, std::size_t first, Strays *strays) {
   std::uint32_t *cell = f.cell.data();
   CellSums *sums = g.sums.data();
   const std::size_t n = f.size();
+  auto add = [&](std::size_t i, std::uint32_t c) {
+    CellSums &s = sums[c];
+    s.n += 1;
+    s.p[0] += fixed::from_double(vx[i]);
+    s.p[1] += fixed::from_double(vy[i]);
+    if constexpr (D == 3)
+      s.p[2] += fixed::from_double(vz[i]);
+  };
   for (std::size_t i = first; i < n; ++i) {
     const int column = cell_coordinate(x[i], sx, NX);
     const int ix = column - x0;
@@ -50,6 +64,7 @@ void bin_kernel(Fluid &f, CellGrid &g, std::size_t first, Strays *strays) {
       if (strays) {
         strays->index.push_back(i);
         strays->column.push_back(column);
+        cell[i] = stray_cell;
         continue;
       }
       throw invariant_error("particle id " + std::to_string(f.id[i]) + " at x = " +
@@ -61,12 +76,15 @@ void bin_kernel(Fluid &f, CellGrid &g, std::size_t first, Strays *strays) {
     if constexpr (D == 3)
       c += static_cast<std::size_t>(nx) * ny * cell_coordinate(z[i], sz, nz);
     cell[i] = static_cast<std::uint32_t>(c);
-    CellSums &s = sums[c];
-    s.n += 1;
-    s.p[0] += fixed::from_double(vx[i]);
-    s.p[1] += fixed::from_double(vy[i]);
-    if constexpr (D == 3)
-      s.p[2] += fixed::from_double(vz[i]);
+  }
+  {
+    constexpr std::size_t ahead = 64; // ~0.4 us ahead at ~6 ns a particle: the memory latency
+    for (std::size_t i = first; i < n; ++i) {
+      if (i + ahead < n && cell[i + ahead] != stray_cell)
+        __builtin_prefetch(&sums[cell[i + ahead]], 1);
+      if (cell[i] != stray_cell)
+        add(i, cell[i]);
+    }
   }
 }
 

@@ -86,6 +86,8 @@ INSTANTIATE_TEST_SUITE_P(
              20,
              40,
              0.03},
+        // Seeds 7-10 give -2.7, -1.9, -1.5, -1.0 % here (the formula sits ~1.5 % high at
+        // 130 deg): 40 blocks keep the error bar (~0.65 %) well inside the tolerance.
         Case{"srd3d_a130_dt1",
              3,
              Collision::srd,
@@ -95,7 +97,7 @@ INSTANTIATE_TEST_SUITE_P(
              {40, 16, 40},
              0.0051,
              100,
-             20,
+             40,
              60,
              0.03},
         // SRD 2D, lambda = 0.5, two angles. Measured by hand at this size: alpha = 120 ->
