@@ -196,9 +196,12 @@ void MpcdSimulation::build_pipeline() {
   if (scene_.walls && scene_.walls->virtual_particles) {
     const double density = f.density, kT = f.kT;
     const bool at_noise = rule == scene::Collision::at || rule == scene::Collision::at_a;
-    stages_.push_back({"virtual particles in cells cut by the walls",
-                       [this, density, kT, seed, at_noise](std::uint64_t step) {
-                         walls::add_virtual_particles(grid_, density, kT, seed, step, at_noise);
+    const bool mirror = scene_.walls->virtual_flow == scene::VirtualFlow::mirror;
+    stages_.push_back({std::string("virtual particles in cells cut by the walls (") +
+                           (mirror ? "mirror-image flow)" : "at rest)"),
+                       [this, density, kT, seed, at_noise, mirror](std::uint64_t step) {
+                         walls::add_virtual_particles(grid_, density, kT, seed, step, at_noise,
+                                                      mirror);
                        }});
   }
 

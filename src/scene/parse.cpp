@@ -47,7 +47,7 @@ const std::vector<Section> &schema() {
       {"domain", {"size"}},
       {"fluid", {"collision", "density", "dt", "angle", "kT", "sort_every"}},
       {"body_force", {"kind", "value", "amplitude"}},
-      {"walls", {"slip", "virtual_particles"}},
+      {"walls", {"slip", "virtual_particles", "virtual_flow"}},
       {"kmc",
        {"length", "boundary", "rates", "left", "right", "initial", "time", "warmup", "replicas",
         "charge"}},
@@ -737,6 +737,14 @@ std::optional<Walls> parse_walls(const Ctx &c, const value *w,
         c.wrong_type(std::string("walls.") + key, *v, "true or false");
       *field = v->as_boolean();
     }
+  }
+  if (const value *v = find(w, "virtual_flow")) {
+    const std::size_t i =
+        as_choice(c, *v, "walls.virtual_flow", "a known virtual-particle flow", {"rest", "mirror"});
+    out.virtual_flow = i == 0 ? VirtualFlow::rest : VirtualFlow::mirror;
+    if (out.virtual_flow == VirtualFlow::mirror && out.slip)
+      c.fail("walls.virtual_flow", "walls.virtual_flow = \"mirror\" continues the flow of a "
+                                   "no-slip wall; allowed with walls.slip = true: \"rest\"");
   }
   if (force && force->kind == ForceKind::sine)
     c.fail("walls", "[walls] cannot be combined with body_force.kind = \"sine\" (the Kolmogorov "

@@ -28,8 +28,9 @@ struct Case {
   const char *name;
   int dim;
   scene::Collision rule;
-  bool sine;          // sine force, else constant force
-  bool walls = false; // no-slip walls at y = 0 and y = L_y with virtual particles
+  bool sine;           // sine force, else constant force
+  bool walls = false;  // no-slip walls at y = 0 and y = L_y with virtual particles
+  bool mirror = false; // ... whose mean velocity continues the flow (walls.virtual_flow)
 };
 
 class Bitwise : public ::testing::TestWithParam<Case> {};
@@ -50,7 +51,8 @@ TEST_P(Bitwise, TwoRanksEqualOneRank) {
   s.body_force = c.sine ? scene::BodyForce{scene::ForceKind::sine, {0, 0, 0}, 0.05}
                         : scene::BodyForce{scene::ForceKind::constant, {0.01, -0.003, 0.002}, 0};
   if (c.walls)
-    s.walls = scene::Walls{};
+    s.walls =
+        scene::Walls{false, true, c.mirror ? scene::VirtualFlow::mirror : scene::VirtualFlow::rest};
   // 2000 steps in CI (~4 s); longer by hand: NARROWS_BITWISE_STEPS=20000 mpirun -n 2 mpi_tests
   const char *env = std::getenv("NARROWS_BITWISE_STEPS");
   const int steps = env ? std::atoi(env) : 2000;
@@ -82,7 +84,7 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"at3d_constant", 3, scene::Collision::at, false},
                       Case{"maxwell2d_constant", 2, scene::Collision::random_maxwell, false},
                       Case{"srd2d_walls", 2, scene::Collision::srd, false, true},
-                      Case{"srd3d_walls", 3, scene::Collision::srd, false, true},
+                      Case{"srd3d_walls_mirror", 3, scene::Collision::srd, false, true, true},
                       Case{"at_a2d_walls", 2, scene::Collision::at_a, false, true},
                       Case{"at3d_walls", 3, scene::Collision::at, false, true}),
     [](const auto &info) { return std::string(info.param.name); });

@@ -346,6 +346,10 @@ TEST(SceneErrors, WallsKeys) {
   bad(minimal_scene, {"walls.slipp", "walls.slip"}, {"walls.slipp=true"});
   bad(minimal_scene + "\n[body_force]\nkind = \"sine\"\namplitude = 0.1\n[walls]\n",
       {"[walls]", "sine"});
+  bad(minimal_scene + "\n[walls]\nvirtual_flow = \"mirrored\"\n",
+      {"walls.virtual_flow", "mirrored", "mirror"});
+  bad(minimal_scene + "\n[walls]\nslip = true\nvirtual_flow = \"mirror\"\n",
+      {"walls.virtual_flow", "slip"});
 }
 
 TEST(Scene, WallsDefaultsAndOverrides) {
@@ -353,6 +357,7 @@ TEST(Scene, WallsDefaultsAndOverrides) {
   ASSERT_TRUE(s.walls.has_value());
   EXPECT_TRUE(s.walls->slip);
   EXPECT_TRUE(s.walls->virtual_particles);
+  EXPECT_EQ(s.walls->virtual_flow, VirtualFlow::rest);
   EXPECT_FALSE(parse_scene(minimal_scene, "p.toml", {}).walls.has_value());
 }
 

@@ -301,3 +301,41 @@ TEST(VirtualParticles, SrdUsesTheirMomentum) {
 }
 
 } // namespace
+
+namespace {
+
+// With the mirror option and kT = 0, the virtual particles continue a linear profile
+// v_x = gamma y antisymmetrically through the wall: the cut cell's mean velocity becomes the
+// average of gamma y over the whole cell, gamma (s - 1/2) for the lower wall (fluid part
+// [0, s)), and likewise at the upper wall.
+TEST(VirtualParticles, MirrorContinuesALinearProfile) {
+  const Box box = channel(2, {2, 6, 1});
+  const double gamma = 0.01, L = box.length[1];
+  const int per_row = 1000; // particles on a fine lattice: the averages are near exact
+  Fluid f;
+  f.dim = 2;
+  f.resize(static_cast<std::size_t>(2 * 6 * per_row));
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    f.id[i] = i;
+    f.x[0][i] = 0.5 + (i % 2);
+    f.x[1][i] = (static_cast<double>(i / 2) + 0.5) * L / (f.size() / 2);
+    f.v[0][i] = gamma * std::min(f.x[1][i], L - f.x[1][i]); // both walls at rest
+    f.v[1][i] = 0.0;
+  }
+  for (double shift : {-0.4, -0.1, 0.2, 0.45}) {
+    mpcd::CellGrid g(box);
+    g.set_shift({0.0, shift, 0.0});
+    mpcd::bin_particles(f, g);
+    const double density = f.size() / (2.0 * L); // particles per unit cell
+    walls::add_virtual_particles(g, density, 0.0, 1, 1, false, true);
+    for (const auto &v : g.virtual_cells) {
+      const std::size_t row = (v.cell / 2) % g.cells[1];
+      const double s = row == 0 ? g.shift[1] : 1.0 - g.shift[1];
+      const double mean =
+          (fixed::to_double(g.sums[v.cell].p[0]) + v.momentum[0]) / (g.sums[v.cell].n + v.count);
+      EXPECT_NEAR(mean, gamma * (s - 0.5), 2e-3 * gamma) << "shift " << shift << " row " << row;
+    }
+  }
+}
+
+} // namespace

@@ -40,10 +40,15 @@ struct BodyForce {
   double amplitude = 0.0; // sine: a_x = amplitude * sin(2 pi y / L_y) (Kolmogorov flow)
 };
 
+// Mean velocity of the virtual wall particles: at rest with the wall (seed 000 eq 3.14), or the
+// mirror image of the flow next to the wall (its antisymmetric continuation, no-slip walls).
+enum class VirtualFlow { rest, mirror };
+
 // Planar walls at y = 0 and y = L_y (2D channel; 3D slit with periodic z).
 struct Walls {
   bool slip = false;             // specular reflection instead of no-slip bounce-back
   bool virtual_particles = true; // fill cells cut by a wall to the mean density (000 eq 3.14)
+  VirtualFlow virtual_flow = VirtualFlow::rest;
 };
 
 struct Output {
