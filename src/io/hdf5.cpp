@@ -2,6 +2,11 @@
 #include "narrows/io/hdf5.hpp"
 
 #include <algorithm>
+#include <array>
+
+#ifndef NARROWS_VERSION
+#define NARROWS_VERSION "dev"
+#endif
 
 namespace narrows::io::h5 {
 
@@ -140,6 +145,18 @@ void write_row(const h5::Dataset &dset, hsize_t row, hid_t type,
   const h5::Dataspace mem_space = h5::simple_dataspace(count, {}, where);
   h5::check(H5Dwrite(dset.get(), type, mem_space.get(), file_space.get(), H5P_DEFAULT, data), where,
             "write dataset " + name);
+}
+
+Group write_h5md_header(hid_t file, const std::string &scene_text, const std::string &where) {
+  const Group h5md = create_group(file, "h5md", where);
+  const std::array<std::int32_t, 2> version{1, 1};
+  write_attribute<std::int32_t>(h5md.get(), "version", version, where);
+  const Group creator = create_group(h5md.get(), "creator", where);
+  write_string_attribute(creator.get(), "name", "narrows", where);
+  write_string_attribute(creator.get(), "version", NARROWS_VERSION, where);
+  Group parameters = create_group(file, "parameters", where);
+  write_string_dataset(parameters.get(), "scene", scene_text, where);
+  return parameters;
 }
 
 } // namespace narrows::io::h5

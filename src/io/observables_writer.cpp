@@ -5,10 +5,6 @@
 #include <array>
 #include <utility>
 
-#ifndef NARROWS_VERSION
-#define NARROWS_VERSION "dev"
-#endif
-
 namespace narrows::io {
 
 namespace {
@@ -24,16 +20,7 @@ std::string shape_string(const std::vector<hsize_t> &shape) {
 
 ObservablesWriter::ObservablesWriter(const std::string &path, const std::string &scene_text)
     : path_(path), file_(h5::create_file(path)) {
-  const h5::Group h5md = h5::create_group(file_.get(), "h5md", path_);
-  const std::array<std::int32_t, 2> version{1, 1};
-  h5::write_attribute<std::int32_t>(h5md.get(), "version", version, path_);
-  const h5::Group creator = h5::create_group(h5md.get(), "creator", path_);
-  h5::write_string_attribute(creator.get(), "name", "narrows", path_);
-  h5::write_string_attribute(creator.get(), "version", NARROWS_VERSION, path_);
-
-  const h5::Group parameters = h5::create_group(file_.get(), "parameters", path_);
-  h5::write_string_dataset(parameters.get(), "scene", scene_text, path_);
-
+  h5::write_h5md_header(file_.get(), scene_text, path_);
   observables_ = h5::create_group(file_.get(), "observables", path_);
 }
 

@@ -3,14 +3,7 @@
 # writes the viscosity series, a velocity profile that plot_profile.py turns into a PNG, and a
 # log with the Poiseuille Ma/Re line; 2 ranks give the same viscosity numbers as 1.
 set -u
-narrows=$1
-src=$2
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-mpi=(mpirun --quiet --oversubscribe)
-[ "$(id -u)" -eq 0 ] && mpi+=(--allow-run-as-root)
-pass=0 fail=0
-check() { if eval "$2"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $1"; fi; }
+source "$(dirname "$0")/common.bash"
 
 for scene in "$src"/run/*.toml; do
   grep -q 'engine = "\(kmc\|lgca\)"' "$scene" && continue
@@ -40,5 +33,4 @@ b = h5py.File(sys.argv[2], "r")["observables/viscosity/value"][()]
 assert np.allclose(a, b, rtol=1e-12, atol=0), (a, b)
 PY'
 done
-echo "channel scenes: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish "channel scenes"

@@ -5,14 +5,7 @@
 # file for ParaView is well-formed and points at the datasets with the right shapes; a
 # restart writes trajectory-<step>.h5 with the frames after the checkpoint.
 set -u
-narrows=$1
-src=$2
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-mpi=(mpirun --quiet --oversubscribe)
-[ "$(id -u)" -eq 0 ] && mpi+=(--allow-run-as-root)
-pass=0 fail=0
-check() { if eval "$2"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $1"; fi; }
+source "$(dirname "$0")/common.bash"
 
 sed 's/^size = .*/size = [24.0, 10.0]/' "$src/run/quickstart.toml" > "$tmp/s.toml"
 opts=(--set run.steps=300 --set output.every=100
@@ -64,5 +57,4 @@ PY'
 code=$?
 check "subsample 0 refused with exit 2 and one line" \
   '[ $code -eq 2 ] && [ $(wc -l < "$tmp/err") -eq 1 ] && grep -q "output.trajectory_subsample" "$tmp/err"'
-echo "trajectory: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish "trajectory"

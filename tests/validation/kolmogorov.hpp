@@ -3,6 +3,7 @@
 // amplitude of the sin(k y) mode of the particle velocities gives nu without walls.
 #pragma once
 
+#include "fluid_scene.hpp"
 #include "narrows/analysis/fluid_observables.hpp"
 #include "narrows/engine/mpcd_simulation.hpp"
 
@@ -66,15 +67,7 @@ inline KolmogorovResult measure_kolmogorov(const scene::Scene &s, int warmup, in
 inline scene::Scene kolmogorov_scene(int dim, scene::Collision rule, double n, double dt,
                                      double angle_deg, std::array<double, 3> size, double amplitude,
                                      std::uint64_t seed = 7) {
-  scene::Scene s;
-  s.file = "(validation)";
-  s.run.dimensions = dim;
-  s.run.seed = seed;
-  s.domain.size = size;
-  s.fluid.collision = rule;
-  s.fluid.density = n;
-  s.fluid.dt = dt;
-  s.fluid.angle_deg = angle_deg;
+  scene::Scene s = fluid_scene(dim, rule, n, dt, angle_deg, size, seed);
   s.body_force = scene::BodyForce{scene::ForceKind::sine, {0, 0, 0}, amplitude};
   return s;
 }

@@ -2,6 +2,7 @@
 // x; the steady profile v_x = g y (L_y - y)/(2 nu) gives nu from its fitted curvature.
 #pragma once
 
+#include "fluid_scene.hpp"
 #include "narrows/analysis/fluid_observables.hpp"
 #include "narrows/analysis/poiseuille.hpp"
 #include "narrows/engine/mpcd_simulation.hpp"
@@ -91,15 +92,7 @@ inline PoiseuilleResult measure_poiseuille(const scene::Scene &s, int warmup, in
 inline scene::Scene channel_scene(int dim, scene::Collision rule, double n, double dt,
                                   double angle_deg, std::array<double, 3> size, double g,
                                   std::uint64_t seed = 11) {
-  scene::Scene s;
-  s.file = "(validation)";
-  s.run.dimensions = dim;
-  s.run.seed = seed;
-  s.domain.size = size;
-  s.fluid.collision = rule;
-  s.fluid.density = n;
-  s.fluid.dt = dt;
-  s.fluid.angle_deg = angle_deg;
+  scene::Scene s = fluid_scene(dim, rule, n, dt, angle_deg, size, seed);
   s.body_force = scene::BodyForce{scene::ForceKind::constant, {g, 0, 0}, 0.0};
   s.walls = scene::Walls{};
   return s;

@@ -149,4 +149,8 @@ void write_row(const Dataset &dset, hsize_t row, hid_t type,
                const std::vector<hsize_t> &sample_shape, const void *data, const std::string &where,
                const std::string &name);
 
+// The H5MD header every narrows output file starts with: /h5md (version = [1, 1], creator
+// name and version) and /parameters/scene; returns the /parameters group for more entries.
+Group write_h5md_header(hid_t file, const std::string &scene_text, const std::string &where);
+
 } // namespace narrows::io::h5
