@@ -3,6 +3,7 @@
 #include "narrows/io/checkpoint.hpp"
 
 #include "narrows/core/error.hpp"
+#include "narrows/io/direct_writer.hpp"
 #include "narrows/io/hdf5.hpp"
 #include "narrows/scene/parse.hpp"
 
@@ -10,6 +11,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -44,8 +46,7 @@ SpeciesFields fluid_fields(mpcd::Fluid &f) {
 
 namespace {
 
-// Rows moved per collective H5Dwrite/H5Dread: bounds the staging buffer (4-12 MiB); small
-// blocks let the disk write one back while the next is staged.
+// Rows moved per collective H5Dread: bounds the staging buffer (4-12 MiB).
 constexpr std::uint64_t rows_per_call = std::uint64_t{1} << 19;
 
 int rank_of(MPI_Comm comm) {
@@ -131,35 +132,13 @@ void small_string(hid_t loc, const std::string &name, const std::string &value, 
 // This rank's rows [offset, offset + n) of a [total][width] dataset, moved in collective calls
 // of at most rows_per_call rows; every rank makes the same number of calls. `move(buf, first,
 // count)` fills (write) or drains (read) the staging buffer for local rows [first, first+count).
-// Starts the disk write-back of the byte range [start, start + length) of a file this rank
-// has just written, so the disk works while the next block is staged and the final fsync
-// waits for less (Linux sync_file_range; a no-op where the file cannot be opened).
-class WriteBack {
-public:
-  explicit WriteBack(const std::string &path) : fd_(::open(path.c_str(), O_RDONLY)) {}
-  ~WriteBack() {
-    if (fd_ >= 0)
-      ::close(fd_);
-  }
-  WriteBack(const WriteBack &) = delete;
-  WriteBack &operator=(const WriteBack &) = delete;
-  void start(std::uint64_t start, std::uint64_t length) const {
-    if (fd_ >= 0 && length > 0)
-      ::sync_file_range(fd_, static_cast<off64_t>(start), static_cast<off64_t>(length),
-                        SYNC_FILE_RANGE_WRITE);
-  }
-
-private:
-  int fd_;
-};
-
+// This rank's rows [offset, offset + n) of a [total][width] dataset, read in collective calls
+// of at most rows_per_call rows; every rank makes the same number of calls. `move(buf, first,
+// count)` drains the staging buffer into local rows [first, first + count).
 template <class T>
-void transfer_rows(hid_t dset, bool write, std::uint64_t offset, std::uint64_t n, int width,
-                   MPI_Comm comm, const std::function<void(T *, std::size_t, std::size_t)> &move,
-                   const std::string &where, const WriteBack *writeback = nullptr) {
-  // A contiguous dataset's rows lie at one file address (HADDR_UNDEF for others).
-  const haddr_t base = write && writeback ? H5Dget_offset(dset) : HADDR_UNDEF;
-  const std::uint64_t row_bytes = sizeof(T) * static_cast<std::uint64_t>(width);
+void read_rows(hid_t dset, std::uint64_t offset, std::uint64_t n, int width, MPI_Comm comm,
+               const std::function<void(T *, std::size_t, std::size_t)> &move,
+               const std::string &where) {
   std::uint64_t most = 0;
   MPI_Allreduce(&n, &most, 1, MPI_UINT64_T, MPI_MAX, comm);
   const std::uint64_t calls = (most + rows_per_call - 1) / rows_per_call;
@@ -182,22 +161,44 @@ void transfer_rows(hid_t dset, bool write, std::uint64_t offset, std::uint64_t n
       h5::check(H5Sselect_none(file_space.get()), where, "select none");
       h5::check(H5Sselect_none(mem.get()), where, "select none");
     }
-    if (write) {
-      if (count > 0)
-        move(buf.data(), first, count);
-      h5::check(
-          H5Dwrite(dset, h5::native_type<T>(), mem.get(), file_space.get(), dxpl.get(), buf.data()),
-          where, "collective write");
-      if (base != HADDR_UNDEF)
-        writeback->start(base + (offset + first) * row_bytes, count * row_bytes);
-    } else {
-      h5::check(
-          H5Dread(dset, h5::native_type<T>(), mem.get(), file_space.get(), dxpl.get(), buf.data()),
-          where, "collective read");
-      if (count > 0)
-        move(buf.data(), first, count);
+    h5::check(
+        H5Dread(dset, h5::native_type<T>(), mem.get(), file_space.get(), dxpl.get(), buf.data()),
+        where, "collective read");
+    if (count > 0)
+      move(buf.data(), first, count);
+  }
+}
+
+// The particle data of one dataset that this rank writes once the file's structure exists:
+// rows [offset, offset + n) of `width` 8-byte values at file address `address`.
+struct RowJob {
+  std::uint64_t address = 0, offset = 0, n = 0;
+  int width = 1;
+  std::array<const std::vector<double> *, 3> components{}; // vector field (width components)
+  const std::vector<std::uint64_t> *words = nullptr;       // or a word field
+};
+
+// Writes a job's rows, interleaving vector components into rows as the dataset stores them.
+void write_job(const std::string &path, const RowJob &job) {
+  const std::uint64_t row_bytes = 8 * static_cast<std::uint64_t>(job.width);
+  DirectWriter out(path, job.address + job.offset * row_bytes,
+                   job.address + (job.offset + job.n) * row_bytes);
+  if (job.words != nullptr) {
+    out.append(job.words->data(), job.n * 8);
+  } else {
+    constexpr std::size_t rows = 1 << 16;
+    std::vector<double> buf(rows * job.width);
+    for (std::uint64_t first = 0; first < job.n; first += rows) {
+      const std::size_t count = std::min<std::uint64_t>(rows, job.n - first);
+      for (int k = 0; k < job.width; ++k) {
+        const double *src = job.components[k]->data() + first;
+        for (std::size_t i = 0; i < count; ++i)
+          buf[i * job.width + k] = src[i];
+      }
+      out.append(buf.data(), count * row_bytes);
     }
   }
+  out.finish();
 }
 
 // A big dataset: space allocated at creation (required in parallel), never filled.
@@ -224,8 +225,10 @@ std::pair<std::uint64_t, std::uint64_t> offset_and_total(std::uint64_t n, MPI_Co
   return {offset, total};
 }
 
-double write_species(hid_t particles, const SpeciesFields &s, const CheckpointInfo &info,
-                     MPI_Comm comm, const std::string &where, const WriteBack &writeback) {
+// Creates the groups and datasets of a species (collective) and lists this rank's row jobs;
+// the rows are written after the file is closed (write_job). Returns the bytes of all ranks.
+double create_species(hid_t particles, const SpeciesFields &s, const CheckpointInfo &info,
+                      MPI_Comm comm, const std::string &where, std::vector<RowJob> &jobs) {
   const std::uint64_t n = s.rows();
   const auto [offset, total] = offset_and_total(n, comm);
   const auto g = h5::create_group(particles, s.name, where);
@@ -247,36 +250,32 @@ double write_species(hid_t particles, const SpeciesFields &s, const CheckpointIn
                   info.box.data(), comm, where);
   }
   double bytes = 0;
-  for (const auto &[name, comp] : s.vectors) {
+  auto field = [&](const std::string &name, hid_t type, int width, bool vector) {
     const auto fg = h5::create_group(g.get(), name, where);
     small_scalar<std::int64_t>(fg.get(), "step", info.step, comm, where);
     small_scalar<double>(fg.get(), "time", info.time, comm, where);
-    const auto dset = create_rows(fg.get(), "value", H5T_IEEE_F64LE, total, s.dim, true, where);
-    const int d = s.dim;
-    transfer_rows<double>(
-        dset.get(), true, offset, n, d, comm,
-        [&comp, d](double *buf, std::size_t first, std::size_t count) {
-          for (int k = 0; k < d; ++k) {
-            const double *src = comp[k]->data() + first;
-            for (std::size_t i = 0; i < count; ++i)
-              buf[i * d + k] = src[i];
-          }
-        },
-        where, &writeback);
-    bytes += static_cast<double>(total) * d * 8;
+    const auto dset = create_rows(fg.get(), "value", type, total, width, vector, where);
+    const haddr_t address = H5Dget_offset(dset.get());
+    if (address == HADDR_UNDEF)
+      h5::fail(where, "get the file address of " + name);
+    bytes += static_cast<double>(total) * width * 8;
+    RowJob job;
+    job.address = address;
+    job.offset = offset;
+    job.n = n;
+    job.width = width;
+    return job;
+  };
+  for (const auto &[name, comp] : s.vectors) {
+    RowJob job = field(name, H5T_IEEE_F64LE, s.dim, true);
+    for (int k = 0; k < s.dim; ++k)
+      job.components[k] = comp[k];
+    jobs.push_back(job);
   }
   for (const auto &[name, words] : s.words) {
-    const auto fg = h5::create_group(g.get(), name, where);
-    small_scalar<std::int64_t>(fg.get(), "step", info.step, comm, where);
-    small_scalar<double>(fg.get(), "time", info.time, comm, where);
-    const auto dset = create_rows(fg.get(), "value", H5T_STD_U64LE, total, 1, false, where);
-    transfer_rows<std::uint64_t>(
-        dset.get(), true, offset, n, 1, comm,
-        [words](std::uint64_t *buf, std::size_t first, std::size_t count) {
-          std::copy_n(words->data() + first, count, buf);
-        },
-        where, &writeback);
-    bytes += static_cast<double>(total) * 8;
+    RowJob job = field(name, H5T_STD_U64LE, 1, false);
+    job.words = words;
+    jobs.push_back(job);
   }
   return bytes;
 }
@@ -374,6 +373,7 @@ double write_checkpoint(const std::string &path, const CheckpointInfo &info,
   const std::string tmp = path + ".tmp";
   const auto fapl = mpio_fapl(comm, tmp);
   double bytes = 0;
+  std::vector<RowJob> jobs;
   {
     h5::File file = h5::create_file(tmp, fapl.get());
     {
@@ -398,13 +398,28 @@ double write_checkpoint(const std::string &path, const CheckpointInfo &info,
     }
     {
       const auto particles = h5::create_group(file.get(), "particles", tmp);
-      const WriteBack writeback(tmp);
       for (const auto &s : species)
-        bytes += write_species(particles.get(), s, info, comm, tmp, writeback);
+        bytes += create_species(particles.get(), s, info, comm, tmp, jobs);
     }
     // Closing is where the last metadata reaches the file: check it (not the destructor).
     h5::check(H5Fclose(file.release()), tmp, "close file");
   }
+  // The particle rows: each rank its own byte ranges, straight to the disk (HDF5 allocated
+  // the datasets contiguously at creation and wrote no fill values), then synced.
+  int failed_rows = 0;
+  std::string rows_error;
+  try {
+    for (const RowJob &job : jobs)
+      write_job(tmp, job);
+  } catch (const Error &e) {
+    failed_rows = 1;
+    rows_error = e.what();
+  }
+  int any_failed = 0;
+  MPI_Allreduce(&failed_rows, &any_failed, 1, MPI_INT, MPI_MAX, comm);
+  if (any_failed)
+    throw Error(ExitCode::other,
+                failed_rows ? rows_error : tmp + ": another rank could not write its rows");
   // Only a complete file gets the final name. The data reach the disk before the rename,
   // so not even a power cut leaves a partial checkpoint under the final name.
   int failed = 0;
@@ -529,8 +544,8 @@ void read_species(const std::string &path, SpeciesFields &s, MPI_Comm comm) {
     for (int k = 0; k < s.dim; ++k)
       comp[k]->resize(n);
     const int dim = s.dim;
-    transfer_rows<double>(
-        d.get(), false, first, n, dim, comm,
+    read_rows<double>(
+        d.get(), first, n, dim, comm,
         [&comp, dim](double *buf, std::size_t at, std::size_t count) {
           for (int k = 0; k < dim; ++k) {
             double *dst = comp[k]->data() + at;
@@ -543,8 +558,8 @@ void read_species(const std::string &path, SpeciesFields &s, MPI_Comm comm) {
   for (auto &[name, words] : s.words) {
     const auto d = open_required(file.get(), base + name + "/value", path);
     words->resize(n);
-    transfer_rows<std::uint64_t>(
-        d.get(), false, first, n, 1, comm,
+    read_rows<std::uint64_t>(
+        d.get(), first, n, 1, comm,
         [words](std::uint64_t *buf, std::size_t at, std::size_t count) {
           std::copy_n(buf, count, words->data() + at);
         },

@@ -1,6 +1,8 @@
-// Checkpoints: one parallel-HDF5 file per checkpoint, written collectively (each rank its rows
-// at an MPI_Exscan offset) and read back on any number of ranks (each rank a block of rows;
-// the first step migrates the particles to their slab owners).
+// Checkpoints: one parallel-HDF5 file per checkpoint, its structure created collectively (the
+// particle datasets contiguous, allocated at creation), then each rank's rows written at its
+// MPI_Exscan offset straight to the disk (io/direct_writer: O_DIRECT where the file system
+// allows it); read back collectively on any number of ranks (each rank a block of rows; the
+// first step migrates the particles to their slab owners).
 //
 // Layout (H5MD style, format version 1):
 //   /h5md                      attribute version = [1, 1]; groups creator, author (name, ...)
