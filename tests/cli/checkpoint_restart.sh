@@ -6,14 +6,8 @@
 # with exit code 2 and one line (non-HDF5, truncated, missing dataset, wrong format version,
 # id count not matching the positions, a 3D checkpoint for a 2D scene).
 set -u
-narrows=$1
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-mpi=(mpirun --quiet --oversubscribe) # --quiet: only narrows speaks on stderr
-[ "$(id -u)" -eq 0 ] && mpi+=(--allow-run-as-root)
+source "$(dirname "$0")/common.bash"
 py=/usr/bin/python3
-pass=0 fail=0
-check() { if eval "$2"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $1"; fi; }
 
 cat > "$tmp/s.toml" <<'TOML'
 [run]
@@ -138,5 +132,4 @@ TOML
 refused "3D checkpoint for a 2D scene" "run.dimensions = 2 but checkpoint .* is from a 3D run" \
   "$narrows" run "$tmp/s.toml" --restart "$tmp/three" --out "$tmp/x"
 check "nothing written for a refused restart" '[ ! -e "$tmp/x" ]'
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish "checkpoint restart"

@@ -6,7 +6,7 @@ narrows=$1
 src=$2
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-mpi=(mpirun --quiet --oversubscribe)
+mpi=(mpirun --quiet --oversubscribe) # --quiet: only narrows speaks on stderr
 [ "$(id -u)" -eq 0 ] && mpi+=(--allow-run-as-root)
 pass=0 fail=0
 check() { if eval "$2"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $1"; fi; }

@@ -3,13 +3,7 @@
 # one line naming domain.size[0], and no output directory. Then a 2-rank run of a small
 # scene works and writes its observables.
 set -u
-narrows=$1
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-mpi=(mpirun --quiet --oversubscribe) # --quiet: only narrows speaks on stderr
-[ "$(id -u)" -eq 0 ] && mpi+=(--allow-run-as-root)
-pass=0 fail=0
-check() { if eval "$2"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $1"; fi; }
+source "$(dirname "$0")/common.bash"
 
 cat > "$tmp/narrow.toml" <<'TOML'
 [run]
@@ -34,5 +28,4 @@ code=$?
 check "2 ranks on 2 columns run (exit $code)" '[ "$code" -eq 0 ]'
 check "loop time line names 2 ranks" 'grep -q "on 2 ranks for 10 steps" "$tmp/stdout2"'
 check "observables written" '[ -s "$tmp/out2/observables.h5" ]'
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish "too many ranks"
