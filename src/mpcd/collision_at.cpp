@@ -5,6 +5,7 @@
 
 #include <Eigen/Dense>
 
+#include <array>
 #include <cmath>
 
 namespace narrows::mpcd {
@@ -13,6 +14,20 @@ namespace {
 
 using fixed::from_double;
 using fixed::to_double;
+
+// The per-cell records of these kernels are read and summed into in particle order, which
+// between sorts jumps around the cell array: fetching the record of the particle `ahead`
+// places later hides the memory latency that otherwise bounds the loops.
+constexpr std::size_t ahead = 64;
+template <class T>
+inline void prefetch_record(const std::vector<T> &records, const std::uint32_t *cell, std::size_t i,
+                            std::size_t n, std::size_t stride) {
+  if (i + ahead < n) {
+    const char *p = reinterpret_cast<const char *>(&records[cell[i + ahead] * stride]);
+    for (std::size_t b = 0; b < stride * sizeof(T); b += 64)
+      __builtin_prefetch(p + b, 1);
+  }
+}
 
 // Gaussian velocities xi_i at kT for every particle (keyed by particle id), and their
 // fixed-point sum per cell into sums[c * stride + 0 .. D-1].
@@ -24,7 +39,15 @@ void draw_noise(Fluid &f, CollisionScratch &s, std::size_t stride, double kT, st
   for (int k = 0; k < D; ++k)
     s.noise[k].resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const auto g = rng::gaussian4(rng::draw(seed, rng::Purpose::at_gaussian, step, f.id[i]));
+    prefetch_record(s.cell_fixed, f.cell.data(), i, n, stride);
+    const auto block = rng::draw(seed, rng::Purpose::at_gaussian, step, f.id[i]);
+    std::array<double, 4> g;
+    if constexpr (D == 2) { // two deviates: half the logarithms and sines
+      const auto g2 = rng::gaussian2(block);
+      g = {g2[0], g2[1], 0.0, 0.0};
+    } else {
+      g = rng::gaussian4(block);
+    }
     std::int64_t *sum = &s.cell_fixed[static_cast<std::size_t>(f.cell[i]) * stride];
     for (int k = 0; k < D; ++k) {
       s.noise[k][i] = sigma * g[k];
@@ -67,11 +90,11 @@ void at_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, std:
   }
   virtual_delta<D>(g, s, D, D);
   const std::size_t n = f.size();
-  for (int k = 0; k < D; ++k) {
-    double *v = f.v[k].data();
-    const double *xi = s.noise[k].data();
-    for (std::size_t i = 0; i < n; ++i)
-      v[i] = xi[i] + s.cell[static_cast<std::size_t>(f.cell[i]) * D + k];
+  for (std::size_t i = 0; i < n; ++i) {
+    prefetch_record(s.cell, f.cell.data(), i, n, D);
+    const double *delta = &s.cell[static_cast<std::size_t>(f.cell[i]) * D];
+    for (int k = 0; k < D; ++k)
+      f.v[k][i] = s.noise[k][i] + delta[k];
   }
 }
 
@@ -106,6 +129,7 @@ void at_a_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, st
   s.cell_fixed.assign(nc * SS, 0);
   draw_noise<D>(f, s, SS, kT, seed, step);
   for (std::size_t i = 0; i < n; ++i) {
+    prefetch_record(s.cell_fixed, f.cell.data(), i, n, SS);
     std::int64_t *sum = &s.cell_fixed[static_cast<std::size_t>(f.cell[i]) * SS];
     double r[3], v[3], xi[3], l[3];
     for (int k = 0; k < D; ++k) {
@@ -197,6 +221,7 @@ void at_a_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, st
   virtual_delta<D>(g, s, SS, PS);
 
   for (std::size_t i = 0; i < n; ++i) {
+    prefetch_record(s.cell, f.cell.data(), i, n, PS);
     const double *par = &s.cell[static_cast<std::size_t>(f.cell[i]) * PS];
     double r[3];
     for (int k = 0; k < D; ++k)

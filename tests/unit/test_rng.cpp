@@ -168,3 +168,13 @@ TEST(RngGaussian, TailsMatchNormal) {
 }
 
 } // namespace
+
+TEST(Gaussian, TwoAreTheFirstTwoOfFour) {
+  for (std::uint64_t id = 0; id < 1000; ++id) {
+    const auto b = narrows::rng::draw(3, narrows::rng::Purpose::test, 1, id);
+    const auto four = narrows::rng::gaussian4(b);
+    const auto two = narrows::rng::gaussian2(b);
+    ASSERT_EQ(two[0], four[0]);
+    ASSERT_EQ(two[1], four[1]);
+  }
+}

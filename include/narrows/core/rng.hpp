@@ -67,4 +67,12 @@ inline std::array<double, 4> gaussian4(const Block &b) {
   return {r0 * std::cos(t0), r0 * std::sin(t0), r1 * std::cos(t1), r1 * std::sin(t1)};
 }
 
+// The first two deviates of gaussian4 (the same values) at half the cost, for 2D.
+inline std::array<double, 2> gaussian2(const Block &b) {
+  constexpr double two_pi = 6.283185307179586;
+  const double r0 = std::sqrt(-2.0 * std::log(open01(b[0])));
+  const double t0 = two_pi * open01(b[1]);
+  return {r0 * std::cos(t0), r0 * std::sin(t0)};
+}
+
 } // namespace narrows::rng
