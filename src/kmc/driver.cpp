@@ -6,7 +6,9 @@
 #include "narrows/engine/log.hpp"
 #include "narrows/io/observables_writer.hpp"
 #include "narrows/kmc/lattice.hpp"
+#include "narrows/kmc/preset.hpp"
 #include "narrows/kmc/rates.hpp"
+#include "narrows/kmc/shock.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -32,21 +34,25 @@ std::string item(const std::string &name, const std::string &label, double rate)
   return buf;
 }
 
-// One replica's numbers as one array: current, density, mean, left, right.
-std::vector<double> pack(const ReplicaResult &r) {
+// One replica's numbers as one array: current, density, mean, left, right, pair states,
+// shock positions.
+std::vector<double> pack(const ReplicaResult &r, const std::vector<double> &shock) {
   std::vector<double> v;
-  v.reserve(r.current.size() + r.density.size() + 3);
+  v.reserve(r.current.size() + r.density.size() + 3 + r.pair.size() + shock.size());
   v.insert(v.end(), r.current.begin(), r.current.end());
   v.insert(v.end(), r.density.begin(), r.density.end());
   v.push_back(r.mean_current);
   v.push_back(r.current_left);
   v.push_back(r.current_right);
+  v.insert(v.end(), r.pair.begin(), r.pair.end());
+  v.insert(v.end(), shock.begin(), shock.end());
   return v;
 }
 
 } // namespace
 
-Summary run_replicas(const scene::Kmc &model, std::uint64_t seed, MPI_Comm comm) {
+Summary run_replicas(const scene::Kmc &model, std::uint64_t seed, MPI_Comm comm,
+                     ReplicaOptions options) {
   int rank = 0, ranks = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &ranks);
@@ -54,20 +60,32 @@ Summary run_replicas(const scene::Kmc &model, std::uint64_t seed, MPI_Comm comm)
   s.replicas = model.replicas;
   const std::size_t L = static_cast<std::size_t>(model.length);
   const std::size_t bonds = model.boundary == scene::KmcBoundary::periodic ? L : L - 1;
-  const std::size_t width = bonds + 3 * L + 3;
+  const std::size_t samples = model.samples > 0 ? static_cast<std::size_t>(model.samples) + 1 : 0;
+  const std::size_t n_pair = options.pairs ? 9 * bonds : 0;
+  const std::size_t width = bonds + 3 * L + 3 + n_pair + samples;
+  for (std::size_t i = 0; i < samples; ++i)
+    s.shock_time.push_back(model.time * static_cast<double>(i) / static_cast<double>(samples - 1));
 
   Stopwatch clock;
   std::vector<std::vector<double>> mine; // this rank's replicas, in replica order
   std::uint64_t events = 0, tries = 0;
+  LatticeOptions lo;
+  lo.pair_histogram = options.pairs;
   for (std::int64_t r = rank; r < model.replicas; r += ranks) {
-    Lattice lattice(model, seed, static_cast<std::uint64_t>(r));
+    Lattice lattice(model, seed, static_cast<std::uint64_t>(r), lo);
     lattice.run_until(model.warmup);
     lattice.start_observing(model.time);
+    std::vector<double> shock;
+    for (std::size_t i = 0; i < samples; ++i) {
+      lattice.run_until(model.warmup + s.shock_time[i]);
+      shock.push_back(
+          static_cast<double>(shock_position(lattice.state(), model.initial, model.initial_right)));
+    }
     lattice.run_until(model.warmup + model.time);
     const ReplicaResult res = lattice.result();
     events += res.events;
     tries += res.tries;
-    mine.push_back(pack(res));
+    mine.push_back(pack(res, shock));
   }
   double seconds = clock.seconds();
   MPI_Allreduce(&seconds, &s.seconds, 1, MPI_DOUBLE, MPI_MAX, comm);
@@ -120,6 +138,16 @@ Summary run_replicas(const scene::Kmc &model, std::uint64_t seed, MPI_Comm comm)
   s.current_left_error = err[tail + 1];
   s.current_right = mean[tail + 2];
   s.current_right_error = err[tail + 2];
+  s.pair = slice(mean, tail + 3, n_pair);
+  s.pair_error = slice(err, tail + 3, n_pair);
+  const std::size_t sh = tail + 3 + n_pair;
+  s.shock_mean = slice(mean, sh, samples);
+  s.shock_mean_error = slice(err, sh, samples);
+  for (std::size_t i = 0; i < samples; ++i) {
+    const double var = model.replicas > 1 ? m2[sh + i] / (R - 1.0) : 0.0;
+    s.shock_var.push_back(var);
+    s.shock_var_error.push_back(model.replicas > 1 ? var * std::sqrt(2.0 / (R - 1.0)) : 0.0);
+  }
   return s;
 }
 
@@ -149,8 +177,21 @@ std::vector<std::string> describe(const scene::Scene &scene) {
           }
       out.push_back(any ? line : line + " none");
     }
-  out.push_back("initial: product measure P(0, 1, 2) = (" + fmt("%g", k.initial[0]) + ", " +
-                fmt("%g", k.initial[1]) + ", " + fmt("%g", k.initial[2]) + ")");
+  const auto probs = [](const std::array<double, 3> &p) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "(%.6g, %.6g, %.6g)", p[0], p[1], p[2]);
+    return std::string(buf);
+  };
+  if (k.initial_kind == scene::KmcInitial::shock)
+    out.push_back("initial: shock measure (eq 2.23) with P(0, 1, 2) = " + probs(k.initial) +
+                  " on sites 1.." + std::to_string(k.shock_site) + " and " +
+                  probs(k.initial_right) + " on the rest; shock position sampled " +
+                  std::to_string(k.samples) +
+                  " times (maximum-likelihood split between the two measures)");
+  else
+    out.push_back("initial: product measure P(0, 1, 2) = " + probs(k.initial));
+  for (const auto &line : analyse(k).lines)
+    out.push_back(line);
   out.push_back("time: warm-up " + fmt("%g", k.warmup) + ", observed " + fmt("%g", k.time) + "; " +
                 std::to_string(k.replicas) + " replica(s), seeds from (run.seed = " +
                 std::to_string(scene.run.seed) + ", replica)");
@@ -176,6 +217,8 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, MPI_Comm c
            " rank(s), output in " + dir);
   for (const auto &line : describe(scene))
     log.line(line);
+  for (const auto &w : analyse(k).warnings)
+    log.warn(w);
   if (k.replicas == 1)
     log.warn("kmc.replicas = 1: no error bars (the *_error series are zero)");
   if (k.replicas % ranks != 0)
@@ -187,13 +230,15 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, MPI_Comm c
   if (rank == 0)
     writer = std::make_unique<io::ObservablesWriter>(dir + "/observables.h5", scene.text);
 
-  const Summary s = run_replicas(k, scene.run.seed, comm);
+  const auto &o = scene.output.observables;
+  const auto wants = [&](const char *name) {
+    return std::find(o.begin(), o.end(), name) != o.end();
+  };
+  ReplicaOptions options;
+  options.pairs = wants("pair_correlation");
+  const Summary s = run_replicas(k, scene.run.seed, comm, options);
 
   if (rank == 0) {
-    const auto &o = scene.output.observables;
-    const auto wants = [&](const char *name) {
-      return std::find(o.begin(), o.end(), name) != o.end();
-    };
     const double t = k.time;
     if (wants("current")) {
       std::vector<double> bins(s.current.size());
@@ -217,7 +262,54 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, MPI_Comm c
       writer->append_profile("density_profile", 0, t, bins, s.density, 3);
       writer->append_profile("density_profile_error", 0, t, bins, s.density_error, 3);
     }
+    if (options.pairs) {
+      // Connected correlation P(n_k = a, n_(k+1) = b) - P(n_k = a) P(n_(k+1) = b) of the
+      // replica means; its error is that of the pair probability (the product of two means
+      // over all snapshots and replicas is far more precise).
+      const std::size_t bonds = s.current.size(), L = static_cast<std::size_t>(k.length);
+      std::vector<double> corr(9 * bonds), bins(bonds);
+      for (std::size_t b = 0; b < bonds; ++b) {
+        bins[b] = static_cast<double>(b) + 1.5;
+        const std::size_t b2 = b + 1 == L ? 0 : b + 1;
+        for (int c = 0; c < 9; ++c)
+          corr[9 * b + c] =
+              s.pair[9 * b + c] - s.density[3 * b + c / 3] * s.density[3 * b2 + c % 3];
+      }
+      writer->append_profile("pair_correlation", 0, t, bins, corr, 9);
+      writer->append_profile("pair_correlation_error", 0, t, bins, s.pair_error, 9);
+    }
+    for (std::size_t i = 0; i < s.shock_time.size(); ++i) {
+      const auto step = static_cast<std::int64_t>(i);
+      writer->append_scalar("shock_position", step, s.shock_time[i], s.shock_mean[i]);
+      writer->append_scalar("shock_position_error", step, s.shock_time[i], s.shock_mean_error[i]);
+      writer->append_scalar("shock_position_variance", step, s.shock_time[i], s.shock_var[i]);
+      writer->append_scalar("shock_position_variance_error", step, s.shock_time[i],
+                            s.shock_var_error[i]);
+    }
     writer->flush();
+  }
+  if (!s.shock_time.empty() && rank == 0) {
+    // Drift to the right and diffusion from the first and the last sample.
+    const std::size_t n = s.shock_time.size() - 1;
+    const double T = s.shock_time[n];
+    const double v = (s.shock_mean[n] - s.shock_mean[0]) / T;
+    const double v_err = std::hypot(s.shock_mean_error[n], s.shock_mean_error[0]) / T;
+    const double D = (s.shock_var[n] - s.shock_var[0]) / (2.0 * T);
+    const double D_err = std::hypot(s.shock_var_error[n], s.shock_var_error[0]) / (2.0 * T);
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "shock: velocity to the right %.5g +- %.2g, diffusion %.5g +- %.2g (first to "
+                  "last sample)",
+                  v, v_err, D, D_err);
+    log.line(line);
+    const PresetReport rep = analyse(k);
+    if (rep.shock) {
+      std::snprintf(line, sizeof line,
+                    "shock theory: velocity to the right %.5g, diffusion %.5g (seed v_s = %.5g "
+                    "to the left, D_s = %.5g)",
+                    -rep.v_s, rep.d_s, rep.v_s, rep.d_s);
+      log.line(line);
+    }
   }
   char buf[256];
   std::snprintf(buf, sizeof buf, "mean current per bond J = %.6g +- %.2g (%lld replicas)",
@@ -246,6 +338,8 @@ int command(const scene::Scene &scene, bool check, bool info, const std::string 
         std::cout << scene.file << ": scene is valid\n";
       for (const auto &line : describe(scene))
         std::cout << line << '\n';
+      for (const auto &w : analyse(*scene.kmc).warnings)
+        std::cout << "warning: " << w << '\n';
     }
     return 0;
   }

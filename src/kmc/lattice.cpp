@@ -33,6 +33,7 @@ Lattice::Lattice(const scene::Kmc &model, std::uint64_t seed, std::uint64_t repl
       bonds_(static_cast<std::size_t>(periodic_ ? model.length : model.length - 1)),
       n_(static_cast<std::size_t>(model.length)), rng_(seed, replica, 0),
       rng_time_(seed, replica, 1) {
+  pairs_ = options.pair_histogram;
   const auto &C = model.charge;
   for (int from = 0; from < 9; ++from) {
     Class &c = classes_[from];
@@ -74,11 +75,17 @@ Lattice::Lattice(const scene::Kmc &model, std::uint64_t seed, std::uint64_t repl
   for (const auto &c : classes_)
     r_max_ = std::max(r_max_, c.rate);
 
-  for (auto &s : n_) {
+  // Product measure, or a shock measure (eq 2.23): sites 1..shock_site from `initial`, the
+  // rest from `initial_right`.
+  const bool shock = model.initial_kind == scene::KmcInitial::shock;
+  for (std::size_t k = 0; k < n_.size(); ++k) {
+    const auto &p = shock && static_cast<std::int64_t>(k) >= model.shock_site ? model.initial_right
+                                                                              : model.initial;
     const double u = rng_.open01();
-    s = u <= model.initial[0] ? 0 : (u <= model.initial[0] + model.initial[1] ? 1 : 2);
-    if (model.initial[s] == 0.0) // rounding at the edge of an empty state: never pick it
-      s = static_cast<std::uint8_t>(model.initial[1] > 0.0 ? 1 : (model.initial[0] > 0 ? 0 : 2));
+    std::uint8_t s = u <= p[0] ? 0 : (u <= p[0] + p[1] ? 1 : 2);
+    if (p[s] == 0.0) // rounding at the edge of an empty state: never pick it
+      s = static_cast<std::uint8_t>(p[1] > 0.0 ? 1 : (p[0] > 0 ? 0 : 2));
+    n_[k] = s;
   }
   for (std::size_t b = 0; b < bonds_; ++b)
     ++count_[code(b)];
@@ -108,6 +115,8 @@ void Lattice::start_observing(double window) {
   hist2_.assign(L, 0);
   flushed1_.clear();
   flushed2_.clear();
+  hist_pair_.assign(pairs_ ? 9 * bonds_ : 0, 0);
+  flushed_pair_.clear();
   samples_ = 0;
   pending_ = 0;
   n_start_ = n_;
@@ -130,6 +139,11 @@ void Lattice::snapshot() {
     h1[k] += n[k] == 1;
     h2[k] += n[k] == 2;
   }
+  if (pairs_) {
+    std::uint32_t *hp = hist_pair_.data();
+    for (std::size_t k = 0; k < bonds_; ++k)
+      ++hp[9 * k + code(k)];
+  }
   ++samples_;
   if (++pending_ == (1u << 31))
     flush_histogram();
@@ -142,6 +156,11 @@ void Lattice::flush_histogram() {
     flushed1_[k] += hist1_[k];
     flushed2_[k] += hist2_[k];
     hist1_[k] = hist2_[k] = 0;
+  }
+  flushed_pair_.resize(hist_pair_.size(), 0.0);
+  for (std::size_t i = 0; i < hist_pair_.size(); ++i) {
+    flushed_pair_[i] += hist_pair_[i];
+    hist_pair_[i] = 0;
   }
   pending_ = 0;
 }
@@ -298,6 +317,9 @@ ReplicaResult Lattice::result() const {
     r.density[3 * k + 1] = c1 * inv_samples;
     r.density[3 * k + 2] = c2 * inv_samples;
   }
+  r.pair.resize(hist_pair_.size());
+  for (std::size_t i = 0; i < hist_pair_.size(); ++i)
+    r.pair[i] = (hist_pair_[i] + (flushed_pair_.empty() ? 0.0 : flushed_pair_[i])) * inv_samples;
   // Integrated charge across each bond.
   std::vector<std::int64_t> q(bonds_);
   if (every_bond_) {

@@ -50,7 +50,8 @@ const std::vector<Section> &schema() {
       {"walls", {"slip", "virtual_particles", "virtual_flow"}},
       {"kmc",
        {"length", "boundary", "rates", "left", "right", "initial", "time", "warmup", "replicas",
-        "charge"}},
+        "charge", "samples", "preset", "parameters", "fugacity", "boundary_rates",
+        "boundary_coupling"}},
       {"output",
        {"dir", "every", "observables", "checkpoint_every", "checkpoint_keep", "progress",
         "trajectory_every", "trajectory_subsample"}},
@@ -766,7 +767,8 @@ void parse_output(const Ctx &c, const value *o, Engine engine, Output &out) {
   if (const value *v = find(o, "observables")) {
     const std::vector<std::string> names =
         engine == Engine::kmc
-            ? std::vector<std::string>{"current", "density_profile"}
+            ? std::vector<std::string>{"current", "density_profile", "pair_correlation",
+                                       "shock_position"}
             : std::vector<std::string>(std::begin(all_observables), std::end(all_observables));
     const std::string allowed = "an array of strings from: " + join(names);
     if (!v->is_array())
@@ -843,9 +845,6 @@ void apply_override(Ctx &c, value &root, const std::string &text) {
   if (std::none_of(sec->keys.begin(), sec->keys.end(),
                    [&](const char *k) { return parts[1] == k; }))
     c.fail_set(text, unknown_key_message(parts[0], parts[1]));
-  if (parts.size() > 2)
-    c.fail_set(text, "unknown key '" + join(parts, ".") + "'; " + key +
-                         " has no sub-keys; allowed: --set " + key + "=value");
 
   // The value: a TOML value if it parses as one, else the raw text as a string.
   const std::string raw = trim(std::string_view(text).substr(eq + 1));
@@ -866,7 +865,19 @@ void apply_override(Ctx &c, value &root, const std::string &text) {
   if (!it->second.is_table())
     c.fail_set(text, parts[0] + ": found " + repr(it->second) + " (" + type_name(it->second) +
                          ") in the scene; allowed: a table [" + parts[0] + "]");
-  it->second.as_table()[parts[1]] = std::move(parsed);
+  // Deeper paths (kmc.initial.site, kmc.parameters.h3) set one entry of a table-valued key;
+  // its section's parser validates the entry like any other.
+  value *slot = &it->second.as_table()[parts[1]];
+  for (std::size_t i = 2; i < parts.size(); ++i) {
+    if (slot->is_uninitialized())
+      *slot = toml::table{};
+    if (!slot->is_table())
+      c.fail_set(text, "unknown key '" + join(parts, ".") + "'; " +
+                           join(std::vector<std::string>(parts.begin(), parts.begin() + i), ".") +
+                           " is a " + type_name(*slot) + ", not a table, so it has no sub-keys");
+    slot = &slot->as_table()[parts[i]];
+  }
+  *slot = std::move(parsed);
   c.from_override(key, text);
 }
 
@@ -941,6 +952,8 @@ Scene parse_scene(const std::string &text, const std::string &file,
         section(c, root, "kmc"),
         [&c](const std::string &key, const std::string &message) { c.fail(key, message); });
     s.output.observables = {"current", "density_profile"};
+    if (s.kmc->samples > 0)
+      s.output.observables.push_back("shock_position");
   } else {
     if (section(c, root, "kmc") != nullptr)
       c.fail("kmc", "section [kmc] needs run.engine = \"kmc\"; allowed with run.engine = \"" +

@@ -143,7 +143,8 @@ TEST(KmcScene, Errors) {
   bad_kmc(replace(kmc_scene, "\"open\"", "\"periodic\""), {"kmc.left", "needs kmc.boundary"});
   bad_kmc(replace(kmc_scene, "0.5, 0.5, 0.0", "0.5, 0.6, 0.0"),
           {"kmc.initial.probabilities", "sums to"});
-  bad_kmc(replace(kmc_scene, "\"product\"", "\"shock\""), {"kmc.initial.kind", "product"});
+  bad_kmc(replace(kmc_scene, "\"product\"", "\"wall\""), {"kmc.initial.kind", "product", "shock"});
+  bad_kmc(replace(kmc_scene, "\"product\"", "\"shock\""), {"kmc.initial.probabilities", "site"});
   bad_kmc(replace(kmc_scene, "time = 100.0", "time = 0"), {"kmc.time = 0", "> 0"});
   bad_kmc(replace(kmc_scene, "time = 100.0", "tim = 1"), {"kmc.tim", "did you mean 'kmc.time'"});
   bad_kmc(replace(kmc_scene, "replicas = 4", "replicas = 0"), {"kmc.replicas = 0"});

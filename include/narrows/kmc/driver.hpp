@@ -22,13 +22,22 @@ struct Summary {
   double mean_current = 0.0, mean_current_error = 0.0;   // averaged over bonds
   double current_left = 0.0, current_left_error = 0.0;   // reservoir -> site 1
   double current_right = 0.0, current_right_error = 0.0; // site L -> reservoir
-  std::uint64_t events = 0, tries = 0;                   // summed over ranks
-  double seconds = 0.0;                                  // wall time, slowest rank
+  std::vector<double> pair, pair_error;                  // [bonds][9] P(n_k n_(k+1) = code)
+  // Shock position (kmc.samples > 0) at times shock_time (from the start of the observation):
+  // mean and its error, variance over replicas and its error (Gaussian: var sqrt(2/(R-1))).
+  std::vector<double> shock_time, shock_mean, shock_mean_error, shock_var, shock_var_error;
+  std::uint64_t events = 0, tries = 0; // summed over ranks
+  double seconds = 0.0;                // wall time, slowest rank
+};
+
+struct ReplicaOptions {
+  bool pairs = false; // pair histograms of every bond
 };
 
 // Replica r (seeded from (seed, r)) runs on rank r % P; rank 0 reduces in replica order, so
 // the numbers are bitwise the same on any number of ranks.
-Summary run_replicas(const scene::Kmc &model, std::uint64_t seed, MPI_Comm comm);
+Summary run_replicas(const scene::Kmc &model, std::uint64_t seed, MPI_Comm comm,
+                     ReplicaOptions options = {});
 
 // What `check` / `info` print for a kmc scene.
 std::vector<std::string> describe(const scene::Scene &scene);

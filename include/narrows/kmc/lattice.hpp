@@ -19,7 +19,7 @@
 //   boundary transitions (open) or the bond L -> 1 (periodic) are counted and the other bonds
 //   follow exactly from the lattice continuity equation: Q_k = Q_(k-1) + C_k(start) - C_k(end).
 //   Otherwise (or on request) every bond keeps its own counter.
-// - density: the occupation of each state per site, averaged over snapshots of the whole
+// - density (and on request the pair state of each bond): averaged over snapshots of the whole
 //   lattice at fixed times t_start + (i + 1/2) dt (unbiased for the time average; dt = L / R
 //   at the start of the window, about one snapshot per L events, at most window / 1000).
 // Neither touches per-site memory in the event loop, which then only reads and writes the one
@@ -62,6 +62,7 @@ private:
 struct ReplicaResult {
   std::vector<double> current; // per bond, charge per unit time: [L-1] (open) or [L] (periodic)
   std::vector<double> density; // [L][3] occupation probabilities
+  std::vector<double> pair;    // [bonds][9] P(n_k, n_(k+1)) by pair code (if asked for)
   double current_left = 0.0;   // from the left reservoir into site 1 (open only)
   double current_right = 0.0;  // from site L into the right reservoir (open only)
   double mean_current = 0.0;   // average of `current` over the bonds
@@ -71,6 +72,7 @@ struct ReplicaResult {
 
 struct LatticeOptions {
   bool count_every_bond = false; // per-bond current counters even when C is conserved
+  bool pair_histogram = false;   // snapshots also count the pair state of every bond
 };
 
 class Lattice {
@@ -138,9 +140,12 @@ private:
   std::uint64_t samples_ = 0;
   std::uint32_t pending_ = 0;                // snapshots in hist1_/hist2_ not yet flushed
   std::vector<std::uint32_t> hist1_, hist2_; // snapshots with n_k = 1, 2
-  std::vector<double> flushed1_, flushed2_;  // older snapshot counts (rarely used)
-  std::vector<std::uint8_t> n_start_;        // state at start_observing (conserving current)
-  std::vector<std::int64_t> q_bond_;         // per-bond counters (every_bond or not conserving)
+  bool pairs_ = false;
+  std::vector<std::uint32_t> hist_pair_; // snapshots with bond k in pair state c: [k * 9 + c]
+  std::vector<double> flushed_pair_;
+  std::vector<double> flushed1_, flushed2_; // older snapshot counts (rarely used)
+  std::vector<std::uint8_t> n_start_;       // state at start_observing (conserving current)
+  std::vector<std::int64_t> q_bond_;        // per-bond counters (every_bond or not conserving)
   std::int64_t q_left_ = 0, q_right_ = 0, q_wrap_ = 0;
 };
 

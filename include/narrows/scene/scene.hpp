@@ -69,16 +69,31 @@ struct Output {
 // i = c + 1). All rates are zero unless given.
 enum class KmcBoundary { open, periodic };
 
+// Presets of seed 000 ch.2: family 1 (charge conserving, eq 2.5; states A = 0, vacancy = 1,
+// B = 2) and family 2 (ASEP with binary internal state, eq 2.79; vacancy = 0, A = 1, B = 2).
+enum class KmcPreset { none, family1, family2 };
+enum class KmcInitial { product, shock };
+
 struct Kmc {
   std::int64_t length = 0;
   KmcBoundary boundary = KmcBoundary::open;
-  std::array<double, 81> rates{};               // [from pair code * 9 + to pair code]
-  std::array<double, 9> left{}, right{};        // site 1 / site L: [from state * 3 + to state]
-  std::array<double, 3> initial{1.0, 0.0, 0.0}; // product measure: P(n_k = 0, 1, 2)
+  std::array<double, 81> rates{};        // [from pair code * 9 + to pair code]
+  std::array<double, 9> left{}, right{}; // site 1 / site L: [from state * 3 + to state]
+  KmcInitial initial_kind = KmcInitial::product;
+  std::array<double, 3> initial{1.0, 0.0, 0.0}; // product measure (shock: left of the shock)
+  std::array<double, 3> initial_right{};        // shock: P(n) right of the shock
+  std::int64_t shock_site = 0;                  // shock: sites 1..shock_site use `initial`
   std::array<int, 3> charge{0, 1, 2};           // C(n) counted by the current (default C = n)
   double time = 0.0;                            // observed simulated time after warm-up
   double warmup = 0.0;
   std::int64_t replicas = 1;
+  std::int64_t samples = 0; // shock position samples over the observed time (0 = none)
+
+  KmcPreset preset = KmcPreset::none;
+  double c = 0.0;                      // family 2: ratio of B to A (eq 2.81)
+  std::vector<double> fugacity;        // preset: z, or [z_left, z_right] for a shock
+  bool boundary_from_fugacity = false; // preset: left/right rates made to fit the fugacities
+  double boundary_coupling = 1.0;      // base rate of those generated boundary rates
 };
 
 struct Scene {
