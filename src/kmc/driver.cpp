@@ -36,9 +36,10 @@ std::string item(const std::string &name, const std::string &label, double rate)
 
 // One replica's numbers as one array: current, density, mean, left, right, pair states,
 // shock positions.
-std::vector<double> pack(const ReplicaResult &r, const std::vector<double> &shock) {
+std::vector<double> pack(const ReplicaResult &r, const std::vector<double> &shock,
+                         const std::vector<double> &charge) {
   std::vector<double> v;
-  v.reserve(r.current.size() + r.density.size() + 3 + r.pair.size() + shock.size());
+  v.reserve(r.current.size() + r.density.size() + 3 + r.pair.size() + shock.size() + charge.size());
   v.insert(v.end(), r.current.begin(), r.current.end());
   v.insert(v.end(), r.density.begin(), r.density.end());
   v.push_back(r.mean_current);
@@ -46,6 +47,7 @@ std::vector<double> pack(const ReplicaResult &r, const std::vector<double> &shoc
   v.push_back(r.current_right);
   v.insert(v.end(), r.pair.begin(), r.pair.end());
   v.insert(v.end(), shock.begin(), shock.end());
+  v.insert(v.end(), charge.begin(), charge.end());
   return v;
 }
 
@@ -62,7 +64,8 @@ Summary run_replicas(const scene::Kmc &model, std::uint64_t seed, MPI_Comm comm,
   const std::size_t bonds = model.boundary == scene::KmcBoundary::periodic ? L : L - 1;
   const std::size_t samples = model.samples > 0 ? static_cast<std::size_t>(model.samples) + 1 : 0;
   const std::size_t n_pair = options.pairs ? 9 * bonds : 0;
-  const std::size_t width = bonds + 3 * L + 3 + n_pair + samples;
+  const std::size_t n_charge = options.charge ? samples * L : 0;
+  const std::size_t width = bonds + 3 * L + 3 + n_pair + samples + n_charge;
   for (std::size_t i = 0; i < samples; ++i)
     s.shock_time.push_back(model.time * static_cast<double>(i) / static_cast<double>(samples - 1));
 
@@ -75,17 +78,21 @@ Summary run_replicas(const scene::Kmc &model, std::uint64_t seed, MPI_Comm comm,
     Lattice lattice(model, seed, static_cast<std::uint64_t>(r), lo);
     lattice.run_until(model.warmup);
     lattice.start_observing(model.time);
-    std::vector<double> shock;
+    std::vector<double> shock, charge;
+    charge.reserve(n_charge);
     for (std::size_t i = 0; i < samples; ++i) {
       lattice.run_until(model.warmup + s.shock_time[i]);
       shock.push_back(
           static_cast<double>(shock_position(lattice.state(), model.initial, model.initial_right)));
+      if (options.charge)
+        for (const auto n : lattice.state())
+          charge.push_back(model.charge[n]);
     }
     lattice.run_until(model.warmup + model.time);
     const ReplicaResult res = lattice.result();
     events += res.events;
     tries += res.tries;
-    mine.push_back(pack(res, shock));
+    mine.push_back(pack(res, shock, charge));
   }
   double seconds = clock.seconds();
   MPI_Allreduce(&seconds, &s.seconds, 1, MPI_DOUBLE, MPI_MAX, comm);
@@ -148,6 +155,8 @@ Summary run_replicas(const scene::Kmc &model, std::uint64_t seed, MPI_Comm comm,
     s.shock_var.push_back(var);
     s.shock_var_error.push_back(model.replicas > 1 ? var * std::sqrt(2.0 / (R - 1.0)) : 0.0);
   }
+  s.charge = slice(mean, sh + samples, n_charge);
+  s.charge_error = slice(err, sh + samples, n_charge);
   return s;
 }
 
@@ -236,6 +245,7 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, MPI_Comm c
   };
   ReplicaOptions options;
   options.pairs = wants("pair_correlation");
+  options.charge = wants("charge_profile") && k.samples > 0;
   const Summary s = run_replicas(k, scene.run.seed, comm, options);
 
   if (rank == 0) {
@@ -277,6 +287,39 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, MPI_Comm c
       }
       writer->append_profile("pair_correlation", 0, t, bins, corr, 9);
       writer->append_profile("pair_correlation_error", 0, t, bins, s.pair_error, 9);
+    }
+    if (options.charge) {
+      const std::size_t L = static_cast<std::size_t>(k.length);
+      std::vector<double> bins(L);
+      for (std::size_t i = 0; i < L; ++i)
+        bins[i] = static_cast<double>(i) + 1.0;
+      for (std::size_t i = 0; i < s.shock_time.size(); ++i) {
+        const auto at = [&](const std::vector<double> &v) {
+          return std::vector<double>(v.begin() + static_cast<std::ptrdiff_t>(i * L),
+                                     v.begin() + static_cast<std::ptrdiff_t>((i + 1) * L));
+        };
+        const auto step = static_cast<std::int64_t>(i);
+        writer->append_profile("charge_profile", step, s.shock_time[i], bins, at(s.charge), 1);
+        writer->append_profile("charge_profile_error", step, s.shock_time[i], bins,
+                               at(s.charge_error), 1);
+      }
+    }
+    if (k.preset != scene::KmcPreset::none) {
+      // The preset's hydrodynamic flux j(density) (eq 2.48 with 2.59, or eq 2.126), for plots
+      // and for tools/kmc_plot.py's solver of the hydrodynamic equation (eq 2.60).
+      const bool f1 = k.preset == scene::KmcPreset::family1;
+      std::vector<double> dens(401), flux(401);
+      for (std::size_t i = 0; i < dens.size(); ++i) {
+        const double u = static_cast<double>(i) / 400.0;
+        dens[i] = f1 ? -1.0 + 2.0 * u : u;
+        flux[i] = hydrodynamic_flux(k, dens[i]);
+      }
+      writer->append_profile("current_theory", 0, t, dens, flux, 1);
+      const PresetReport rep = analyse(k);
+      if (rep.shock) {
+        const double theory[2] = {-rep.v_s, rep.d_s}; // velocity to the right, diffusion
+        writer->append_vector("shock_theory", 0, t, theory);
+      }
     }
     for (std::size_t i = 0; i < s.shock_time.size(); ++i) {
       const auto step = static_cast<std::int64_t>(i);

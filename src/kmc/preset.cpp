@@ -214,6 +214,32 @@ void apply_preset(scene::Kmc &model, bool keep_charge, bool initial_given) {
   }
 }
 
+double family1_rho_star(double sigma, double r) {
+  // (1 - 4r) rho^2 + 8 r rho - (sigma^2 + 4 r) = 0
+  const double a = 1.0 - 4.0 * r, b = 8.0 * r, c = -(sigma * sigma + 4.0 * r);
+  if (std::abs(a) < 1e-12)
+    return -c / b;
+  const double disc = std::sqrt(std::max(0.0, b * b - 4.0 * a * c));
+  // the root in [|sigma|, 1], written without cancellation
+  return b > 0.0 ? 2.0 * (-c) / (b + disc) : (-b + disc) / (2.0 * a);
+}
+
+double hydrodynamic_flux(const scene::Kmc &m, double density) {
+  const SeedRates w{m.rates};
+  if (m.preset == KmcPreset::family1) {
+    const double sigma = density;
+    const double rho = family1_rho_star(sigma, family1_ratio(m.rates));
+    return 0.5 * (w(4, 2) - w(2, 4)) * (rho + sigma) * (1.0 - sigma) +
+           0.5 * (w(8, 6) - w(6, 8)) * (rho - sigma) * (1.0 + sigma);
+  }
+  if (m.preset == KmcPreset::family2) {
+    const double c = m.c, rho = density;
+    return (w(2, 4) - w(4, 2) + c * (w(3, 7) - w(7, 3)) + 2.0 * c * (w(2, 7) - w(4, 3))) /
+           (1.0 + c) * rho * (1.0 - rho);
+  }
+  return 0.0;
+}
+
 PresetReport analyse(const scene::Kmc &m) {
   PresetReport rep;
   rep.preset = m.preset;

@@ -768,7 +768,7 @@ void parse_output(const Ctx &c, const value *o, Engine engine, Output &out) {
     const std::vector<std::string> names =
         engine == Engine::kmc
             ? std::vector<std::string>{"current", "density_profile", "pair_correlation",
-                                       "shock_position"}
+                                       "shock_position", "charge_profile"}
             : std::vector<std::string>(std::begin(all_observables), std::end(all_observables));
     const std::string allowed = "an array of strings from: " + join(names);
     if (!v->is_array())
@@ -953,7 +953,7 @@ Scene parse_scene(const std::string &text, const std::string &file,
         [&c](const std::string &key, const std::string &message) { c.fail(key, message); });
     s.output.observables = {"current", "density_profile"};
     if (s.kmc->samples > 0)
-      s.output.observables.push_back("shock_position");
+      s.output.observables.insert(s.output.observables.end(), {"shock_position", "charge_profile"});
   } else {
     if (section(c, root, "kmc") != nullptr)
       c.fail("kmc", "section [kmc] needs run.engine = \"kmc\"; allowed with run.engine = \"" +

@@ -61,4 +61,23 @@ check "off-manifold preset: warns about eq 2.109 with residual 0.1" \
 check "off-manifold preset: the run log has the warning" \
   'grep -q "^warning: .*eq 2.109" "$tmp/off/log.txt"'
 
+# tools/kmc_plot.py: the plots are written, and the coarse-grained charge profile of the
+# family 1 shock follows the solution of the hydrodynamic equation (eq 2.60): at the last time
+# it is at least 4 times closer to it than to the initial profile it moved away from.
+"$narrows" run "$src/run/kmc_family1_shock.toml" --out "$tmp/hydro" > /dev/null 2>&1
+/usr/bin/python3 "$src/tools/kmc_plot.py" "$tmp/hydro/observables.h5" > "$tmp/hydro.txt" 2>&1
+check "kmc_plot.py writes the PNG" '[ -s "$tmp/hydro/kmc.png" ]'
+check "charge profile follows eq 2.60" '/usr/bin/python3 - "$tmp/hydro.txt" <<PY
+import re, sys
+last = [l for l in open(sys.argv[1]) if l.startswith("t = ")][-1]
+dist, still = map(float, re.search(r"hydrodynamic\| / jump = ([0-9.]+) \(\|measured - initial\| / jump = ([0-9.]+)", last).groups())
+print(last.strip())
+assert dist < still / 4, (dist, still)
+PY'
+"$narrows" run "$src/run/kmc_family1_product.toml" --set kmc.replicas=4 --set kmc.time=200.0 \
+  --out "$tmp/prod" > /dev/null 2>&1
+/usr/bin/python3 "$src/tools/kmc_plot.py" "$tmp/prod/observables.h5" --png "$tmp/prod.png" \
+  > /dev/null 2>&1
+check "kmc_plot.py current against density" '[ -s "$tmp/prod.png" ]'
+
 finish kmc_scenes

@@ -26,12 +26,15 @@ struct Summary {
   // Shock position (kmc.samples > 0) at times shock_time (from the start of the observation):
   // mean and its error, variance over replicas and its error (Gaussian: var sqrt(2/(R-1))).
   std::vector<double> shock_time, shock_mean, shock_mean_error, shock_var, shock_var_error;
+  // Charge C(n_k) of every site at those times (if asked for): [samples][L], mean and error.
+  std::vector<double> charge, charge_error;
   std::uint64_t events = 0, tries = 0; // summed over ranks
   double seconds = 0.0;                // wall time, slowest rank
 };
 
 struct ReplicaOptions {
-  bool pairs = false; // pair histograms of every bond
+  bool pairs = false;  // pair histograms of every bond
+  bool charge = false; // the charge of every site at the sample times
 };
 
 // Replica r (seeded from (seed, r)) runs on rank r % P; rank 0 reduces in replica order, so

@@ -87,6 +87,13 @@ std::array<double, 9> boundary_rates_for(const std::array<double, 3> &p,
 // boundary rates, initial probabilities from the fugacities.
 void apply_preset(scene::Kmc &model, bool keep_charge, bool initial_given);
 
+// The hydrodynamic flux of a preset as a function of its conserved density: family 1 the
+// charge current eq 2.48 at sigma with rho = rho*(sigma) of eq 2.59 (eq 2.60); family 2 the
+// particle current eq 2.126 at rho. `density` is sigma in [-1, 1] or rho in [0, 1].
+double hydrodynamic_flux(const scene::Kmc &model, double density);
+// eq 2.59 solved for rho* in [|sigma|, 1].
+double family1_rho_star(double sigma, double r);
+
 // Everything the seed derives for the model's preset, checked.
 PresetReport analyse(const scene::Kmc &model);
 
