@@ -22,6 +22,18 @@ void Log::line(const std::string &text) {
     file_ << text << '\n' << std::flush;
 }
 
+std::string duration(double seconds) {
+  char buf[32];
+  const long s = static_cast<long>(seconds + 0.5);
+  if (s >= 3600)
+    std::snprintf(buf, sizeof buf, "%ldh%02ldm", s / 3600, (s / 60) % 60);
+  else if (s >= 60)
+    std::snprintf(buf, sizeof buf, "%ldm%02lds", s / 60, s % 60);
+  else
+    std::snprintf(buf, sizeof buf, "%lds", s);
+  return buf;
+}
+
 void make_output_dir(const std::string &dir, MPI_Comm comm) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);

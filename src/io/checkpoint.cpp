@@ -368,7 +368,8 @@ std::string shape_text(const std::vector<hsize_t> &dims) {
 } // namespace
 
 double write_checkpoint(const std::string &path, const CheckpointInfo &info,
-                        const std::vector<SpeciesFields> &species, MPI_Comm comm) {
+                        const std::vector<SpeciesFields> &species, MPI_Comm comm,
+                        const std::vector<CheckpointArray> &arrays) {
   h5::silence_errors();
   const std::string tmp = path + ".tmp";
   const auto fapl = mpio_fapl(comm, tmp);
@@ -400,6 +401,23 @@ double write_checkpoint(const std::string &path, const CheckpointInfo &info,
       const auto particles = h5::create_group(file.get(), "particles", tmp);
       for (const auto &s : species)
         bytes += create_species(particles.get(), s, info, comm, tmp, jobs);
+    }
+    for (const auto &a : arrays) {
+      // Groups on the way (collective), the size from rank 0 (others may pass no values).
+      hid_t loc = file.get();
+      std::vector<h5::Group> groups;
+      std::size_t from = 0;
+      for (std::size_t slash; (slash = a.path.find('/', from)) != std::string::npos;
+           from = slash + 1) {
+        const std::string g = a.path.substr(0, slash);
+        groups.push_back(path_exists(file.get(), g) ? h5::open_group(file.get(), g, tmp)
+                                                    : h5::create_group(file.get(), g, tmp));
+        loc = groups.back().get();
+      }
+      std::uint64_t n = a.values.size();
+      MPI_Bcast(&n, 1, MPI_UINT64_T, 0, comm);
+      const hsize_t dims[1] = {n};
+      small_dataset(loc, a.path.substr(from), H5T_NATIVE_DOUBLE, dims, a.values.data(), comm, tmp);
     }
     // Closing is where the last metadata reaches the file: check it (not the destructor).
     h5::check(H5Fclose(file.release()), tmp, "close file");
@@ -448,7 +466,7 @@ double write_checkpoint(const std::string &path, const CheckpointInfo &info,
   return bytes;
 }
 
-CheckpointInfo read_checkpoint_info(const std::string &path, MPI_Comm comm) {
+CheckpointInfo read_checkpoint_info(const std::string &path, MPI_Comm comm, bool fluid) {
   h5::silence_errors();
   std::error_code ec;
   if (!fs::exists(path, ec))
@@ -495,9 +513,13 @@ CheckpointInfo read_checkpoint_info(const std::string &path, MPI_Comm comm) {
   info.dimensions = read_scalar<std::int32_t>(f, "/parameters/dimensions", path);
   if (info.step < 0)
     refuse(path, "/parameters/step = " + std::to_string(info.step) + "; allowed: >= 0");
-  if (info.dimensions != 2 && info.dimensions != 3)
+  if (info.dimensions < 1 || info.dimensions > 3)
     refuse(path,
-           "/parameters/dimensions = " + std::to_string(info.dimensions) + "; allowed: 2 or 3");
+           "/parameters/dimensions = " + std::to_string(info.dimensions) + "; allowed: 1, 2 or 3");
+  if (!fluid)
+    return info;
+  if (info.dimensions == 1)
+    refuse(path, "a checkpoint of a kmc run; allowed: a checkpoint of an mpcd run");
 
   const std::string pos = "/particles/fluid/position/value",
                     vel = "/particles/fluid/velocity/value", ids = "/particles/fluid/id/value",
@@ -526,6 +548,22 @@ CheckpointInfo read_checkpoint_info(const std::string &path, MPI_Comm comm) {
             path, "read " + edges);
   (void)comm;
   return info;
+}
+
+std::vector<double> read_checkpoint_array(const std::string &path, const std::string &name,
+                                          std::size_t size, MPI_Comm comm) {
+  h5::silence_errors();
+  const auto fapl = mpio_fapl(comm, path);
+  const h5::File file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()), path, "open file");
+  const auto d = open_required(file.get(), "/" + name, path);
+  const auto shape = shape_of(d.get(), path);
+  if (shape != std::vector<hsize_t>{size})
+    refuse(path, "/" + name + " has shape " + shape_text(shape) + "; allowed: [" +
+                     std::to_string(size) + "] (what the scene needs)");
+  std::vector<double> v(size);
+  h5::check(H5Dread(d.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), path,
+            "read /" + name);
+  return v;
 }
 
 void read_species(const std::string &path, SpeciesFields &s, MPI_Comm comm) {
@@ -736,6 +774,8 @@ int StopSignals::requested(MPI_Comm comm) const {
   MPI_Allreduce(&local, &any, 1, MPI_INT, MPI_MAX, comm);
   return any;
 }
+
+int StopSignals::received() const { return stop_signal; }
 
 const char *signal_name(int sig) {
   switch (sig) {

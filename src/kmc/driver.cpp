@@ -4,11 +4,13 @@
 #include "narrows/core/error.hpp"
 #include "narrows/core/timer.hpp"
 #include "narrows/engine/log.hpp"
+#include "narrows/io/checkpoint.hpp"
 #include "narrows/io/observables_writer.hpp"
 #include "narrows/kmc/lattice.hpp"
 #include "narrows/kmc/preset.hpp"
 #include "narrows/kmc/rates.hpp"
 #include "narrows/kmc/shock.hpp"
+#include "narrows/scene/parse.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -53,8 +55,16 @@ std::vector<double> pack(const ReplicaResult &r, const std::vector<double> &shoc
 
 } // namespace
 
+std::size_t replica_width(const scene::Kmc &model, ReplicaOptions options) {
+  const std::size_t L = static_cast<std::size_t>(model.length);
+  const std::size_t bonds = model.boundary == scene::KmcBoundary::periodic ? L : L - 1;
+  const std::size_t samples = model.samples > 0 ? static_cast<std::size_t>(model.samples) + 1 : 0;
+  return bonds + 3 * L + 3 + (options.pairs ? 9 * bonds : 0) + samples +
+         (options.charge ? samples * L : 0);
+}
+
 Summary run_replicas(const scene::Kmc &model, std::uint64_t seed, MPI_Comm comm,
-                     ReplicaOptions options) {
+                     ReplicaOptions options, ReplicaSums start, const ReplicaHooks &hooks) {
   int rank = 0, ranks = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &ranks);
@@ -65,66 +75,94 @@ Summary run_replicas(const scene::Kmc &model, std::uint64_t seed, MPI_Comm comm,
   const std::size_t samples = model.samples > 0 ? static_cast<std::size_t>(model.samples) + 1 : 0;
   const std::size_t n_pair = options.pairs ? 9 * bonds : 0;
   const std::size_t n_charge = options.charge ? samples * L : 0;
-  const std::size_t width = bonds + 3 * L + 3 + n_pair + samples + n_charge;
+  const std::size_t width = replica_width(model, options);
   for (std::size_t i = 0; i < samples; ++i)
     s.shock_time.push_back(model.time * static_cast<double>(i) / static_cast<double>(samples - 1));
 
   Stopwatch clock;
-  std::vector<std::vector<double>> mine; // this rank's replicas, in replica order
-  std::uint64_t events = 0, tries = 0;
   LatticeOptions lo;
   lo.pair_histogram = options.pairs;
-  for (std::int64_t r = rank; r < model.replicas; r += ranks) {
+  // One replica's numbers, or nothing if hooks.stop interrupted it.
+  std::uint64_t round_counts[2] = {0, 0}; // events, tries of this rank in this round
+  const auto run_one = [&](std::int64_t r) -> std::vector<double> {
     Lattice lattice(model, seed, static_cast<std::uint64_t>(r), lo);
-    lattice.run_until(model.warmup);
+    if (!lattice.run_until(model.warmup, hooks.stop))
+      return {};
     lattice.start_observing(model.time);
     std::vector<double> shock, charge;
     charge.reserve(n_charge);
     for (std::size_t i = 0; i < samples; ++i) {
-      lattice.run_until(model.warmup + s.shock_time[i]);
+      if (!lattice.run_until(model.warmup + s.shock_time[i], hooks.stop))
+        return {};
       shock.push_back(
           static_cast<double>(shock_position(lattice.state(), model.initial, model.initial_right)));
       if (options.charge)
         for (const auto n : lattice.state())
           charge.push_back(model.charge[n]);
     }
-    lattice.run_until(model.warmup + model.time);
+    if (!lattice.run_until(model.warmup + model.time, hooks.stop))
+      return {};
     const ReplicaResult res = lattice.result();
-    events += res.events;
-    tries += res.tries;
-    mine.push_back(pack(res, shock, charge));
+    round_counts[0] = res.events;
+    round_counts[1] = res.tries;
+    return pack(res, shock, charge);
+  };
+
+  // Rank 0 takes the replicas in replica order (Welford's running mean and squared deviations),
+  // so the sums are done in one order whatever the number of ranks or restarts.
+  const std::uint64_t events0 = start.events, tries0 = start.tries;
+  ReplicaSums sums = std::move(start);
+  if (rank == 0 && sums.mean.empty()) {
+    sums.mean.assign(width, 0.0);
+    sums.m2.assign(width, 0.0);
+  }
+  std::vector<double> buf(width);
+  for (std::int64_t base = sums.done; base < model.replicas; base += ranks) {
+    const std::int64_t r = base + rank;
+    round_counts[0] = round_counts[1] = 0;
+    std::vector<double> mine;
+    int dropped = 0;
+    if (r < model.replicas) {
+      mine = run_one(r);
+      dropped = mine.empty() ? 1 : 0;
+    }
+    int any_dropped = 0;
+    MPI_Allreduce(&dropped, &any_dropped, 1, MPI_INT, MPI_MAX, comm);
+    if (any_dropped) {
+      s.complete = false;
+      break;
+    }
+    if (rank != 0 && r < model.replicas)
+      MPI_Send(mine.data(), static_cast<int>(width), MPI_DOUBLE, 0, 0, comm);
+    for (int q = 0; rank == 0 && q < ranks && base + q < model.replicas; ++q) {
+      if (q != 0)
+        MPI_Recv(buf.data(), static_cast<int>(width), MPI_DOUBLE, q, 0, comm, MPI_STATUS_IGNORE);
+      const double *x = q == 0 ? mine.data() : buf.data();
+      const double n = static_cast<double>(base + q + 1);
+      for (std::size_t i = 0; i < width; ++i) {
+        const double d = x[i] - sums.mean[i];
+        sums.mean[i] += d / n;
+        sums.m2[i] += d * (x[i] - sums.mean[i]);
+      }
+    }
+    std::uint64_t counts[2] = {0, 0};
+    MPI_Allreduce(round_counts, counts, 2, MPI_UINT64_T, MPI_SUM, comm);
+    sums.events += counts[0];
+    sums.tries += counts[1];
+    sums.done = std::min<std::int64_t>(base + ranks, model.replicas);
+    if (hooks.after_round && hooks.after_round(sums)) {
+      s.complete = sums.done == model.replicas;
+      break;
+    }
   }
   double seconds = clock.seconds();
   MPI_Allreduce(&seconds, &s.seconds, 1, MPI_DOUBLE, MPI_MAX, comm);
-  MPI_Allreduce(&events, &s.events, 1, MPI_UINT64_T, MPI_SUM, comm);
-  MPI_Allreduce(&tries, &s.tries, 1, MPI_UINT64_T, MPI_SUM, comm);
-
-  // Rank 0 takes the replicas in replica order (Welford's running mean and squared deviations),
-  // so the sums are done in one order whatever the number of ranks. Messages from one rank
-  // arrive in the order they were sent, which is replica order.
-  if (rank != 0) {
-    for (const auto &v : mine)
-      MPI_Send(v.data(), static_cast<int>(width), MPI_DOUBLE, 0, 0, comm);
+  s.events = sums.events - events0;
+  s.tries = sums.tries - tries0;
+  s.sums = sums;
+  if (rank != 0 || !s.complete)
     return s;
-  }
-  std::vector<double> mean(width, 0.0), m2(width, 0.0), buf(width);
-  std::size_t next_mine = 0;
-  for (std::int64_t r = 0; r < model.replicas; ++r) {
-    const int owner = static_cast<int>(r % ranks);
-    const double *x = nullptr;
-    if (owner == 0) {
-      x = mine[next_mine++].data();
-    } else {
-      MPI_Recv(buf.data(), static_cast<int>(width), MPI_DOUBLE, owner, 0, comm, MPI_STATUS_IGNORE);
-      x = buf.data();
-    }
-    const double n = static_cast<double>(r + 1);
-    for (std::size_t i = 0; i < width; ++i) {
-      const double d = x[i] - mean[i];
-      mean[i] += d / n;
-      m2[i] += d * (x[i] - mean[i]);
-    }
-  }
+  const std::vector<double> &mean = sums.mean, &m2 = sums.m2;
   const double R = static_cast<double>(model.replicas);
   std::vector<double> err(width, 0.0);
   if (model.replicas > 1)
@@ -214,14 +252,111 @@ std::vector<std::string> describe(const scene::Scene &scene) {
   return out;
 }
 
-void run_scene(const scene::Scene &scene, const std::string &out_dir, MPI_Comm comm) {
+namespace {
+
+ReplicaOptions replica_options(const scene::Scene &scene) {
+  const auto &o = scene.output.observables;
+  const auto wants = [&](const char *name) {
+    return std::find(o.begin(), o.end(), name) != o.end();
+  };
+  ReplicaOptions options;
+  options.pairs = wants("pair_correlation");
+  options.charge = wants("charge_profile") && scene.kmc->samples > 0;
+  return options;
+}
+
+// A restart continues the checkpoint's run: the same model, seed and replica observables; only
+// kmc.replicas (not below the replicas done), run.steps and output.* may change.
+void check_restart_scene(const scene::Scene &given, const scene::Scene &stored, std::int64_t done,
+                         const std::string &checkpoint) {
+  const std::string head = given.file + ": ";
+  if (stored.run.engine != scene::Engine::kmc)
+    throw input_error(head + "checkpoint " + checkpoint + " is from engine " +
+                      scene::to_string(stored.run.engine) +
+                      "; allowed: a checkpoint of a kmc run of this scene");
+  const scene::Kmc &g = *given.kmc, &s = *stored.kmc;
+  std::string key, found, wanted;
+  const auto differ = [&](const std::string &name, double a, double b) {
+    if (key.empty() && a != b)
+      key = name, found = fmt("%.17g", a), wanted = fmt("%.17g", b);
+  };
+  differ("run.seed", static_cast<double>(given.run.seed), static_cast<double>(stored.run.seed));
+  differ("kmc.length", static_cast<double>(g.length), static_cast<double>(s.length));
+  differ("kmc.boundary", static_cast<double>(g.boundary), static_cast<double>(s.boundary));
+  for (int i = 0; i < 81; ++i)
+    differ("kmc rate " + pair_name(i / 9, i % 9), g.rates[i], s.rates[i]);
+  for (int i = 0; i < 9; ++i) {
+    differ("kmc.left " + site_name(i / 3, i % 3), g.left[i], s.left[i]);
+    differ("kmc.right " + site_name(i / 3, i % 3), g.right[i], s.right[i]);
+  }
+  differ("kmc.initial kind", static_cast<double>(g.initial_kind),
+         static_cast<double>(s.initial_kind));
+  for (int i = 0; i < 3; ++i) {
+    differ("kmc.initial P(" + std::to_string(i) + ")", g.initial[i], s.initial[i]);
+    differ("kmc.initial right P(" + std::to_string(i) + ")", g.initial_right[i],
+           s.initial_right[i]);
+    differ("kmc charge C(" + std::to_string(i) + ")", g.charge[i], s.charge[i]);
+  }
+  differ("kmc.initial site", static_cast<double>(g.shock_site), static_cast<double>(s.shock_site));
+  differ("kmc.time", g.time, s.time);
+  differ("kmc.warmup", g.warmup, s.warmup);
+  differ("kmc.samples", static_cast<double>(g.samples), static_cast<double>(s.samples));
+  const ReplicaOptions og = replica_options(given), os = replica_options(stored);
+  differ("output.observables pair_correlation", og.pairs, os.pairs);
+  differ("output.observables charge_profile", og.charge, os.charge);
+  if (!key.empty())
+    throw input_error(head + key + " = " + found + " but checkpoint " + checkpoint + " has " +
+                      wanted +
+                      "; allowed: the checkpoint's scene (only kmc.replicas, run.steps and "
+                      "output.* other than the replica observables may change)");
+  if (g.replicas < done)
+    throw input_error(head + "kmc.replicas = " + std::to_string(g.replicas) + " but checkpoint " +
+                      checkpoint + " holds " + std::to_string(done) +
+                      " finished replicas; allowed: kmc.replicas >= " + std::to_string(done));
+}
+
+} // namespace
+
+void run_scene(const scene::Scene &scene, const std::string &out_dir, const std::string &restart,
+               MPI_Comm comm) {
   int rank = 0, ranks = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &ranks);
   const scene::Kmc &k = *scene.kmc;
+  const ReplicaOptions options = replica_options(scene);
+  const std::size_t width = replica_width(k, options);
+
+  // A restart is checked (file, format, scene) before anything is written.
+  ReplicaSums start;
+  std::string restart_file;
+  if (!restart.empty()) {
+    restart_file = io::resolve_restart(restart);
+    const io::CheckpointInfo info = io::read_checkpoint_info(restart_file, comm, false);
+    const auto stored = scene::parse_scene(info.scene_text, restart_file + ":/parameters/scene");
+    check_restart_scene(scene, stored, info.step, restart_file);
+    const auto counters = io::read_checkpoint_array(restart_file, "kmc/counters", 3, comm);
+    start.done = static_cast<std::int64_t>(counters[0]);
+    start.events = static_cast<std::uint64_t>(counters[1]);
+    start.tries = static_cast<std::uint64_t>(counters[2]);
+    if (start.done != info.step)
+      throw input_error(restart_file + ": /kmc/counters[0] = " + std::to_string(start.done) +
+                        " but /parameters/step = " + std::to_string(info.step) +
+                        "; allowed: the replicas done, the same in both");
+    start.mean = io::read_checkpoint_array(restart_file, "kmc/mean", width, comm);
+    start.m2 = io::read_checkpoint_array(restart_file, "kmc/m2", width, comm);
+    if (rank != 0)
+      start.mean.clear(), start.m2.clear();
+  }
+  const bool restarting = !restart_file.empty();
+
   const std::string dir = out_dir.empty() ? scene.output.dir : out_dir;
   engine::make_output_dir(dir, comm);
-  engine::Log log(rank == 0, dir + "/log.txt");
+  // A continuation keeps what earlier runs wrote: its log and observables carry the replicas
+  // done before it in their names (log-0000000008.txt, observables-0000000008.h5).
+  char from[16] = "";
+  if (restarting)
+    std::snprintf(from, sizeof from, "-%010lld", static_cast<long long>(start.done));
+  engine::Log log(rank == 0, dir + "/log" + from + ".txt");
   log.line("narrows " NARROWS_VERSION " run " + scene.file + " on " + std::to_string(ranks) +
            " rank(s), output in " + dir);
   for (const auto &line : describe(scene))
@@ -230,23 +365,87 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, MPI_Comm c
     log.warn(w);
   if (k.replicas == 1)
     log.warn("kmc.replicas = 1: no error bars (the *_error series are zero)");
-  if (k.replicas % ranks != 0)
-    log.warn(std::to_string(k.replicas) + " replicas on " + std::to_string(ranks) +
+  if ((k.replicas - start.done) % ranks != 0)
+    log.warn(std::to_string(k.replicas - start.done) + " replicas on " + std::to_string(ranks) +
              " ranks: some ranks idle at the end");
+  if (restarting)
+    log.line("restarted from " + restart_file + " with " + std::to_string(start.done) + " of " +
+             std::to_string(k.replicas) + " replicas done");
 
   // Rank 0 opens the output first, so a bad directory fails before the work.
   std::unique_ptr<io::ObservablesWriter> writer;
   if (rank == 0)
-    writer = std::make_unique<io::ObservablesWriter>(dir + "/observables.h5", scene.text);
+    writer =
+        std::make_unique<io::ObservablesWriter>(dir + "/observables" + from + ".h5", scene.text);
 
-  const auto &o = scene.output.observables;
+  // Checkpoints hold the running sums over the finished replicas: every
+  // output.checkpoint_every replicas, at the end, and on SIGTERM/SIGUSR1 (the unfinished round
+  // of replicas is dropped; each rank checks every 2^20 events).
+  const auto save_checkpoint = [&](const ReplicaSums &sums) {
+    io::CheckpointInfo info;
+    info.scene_text = scene.text;
+    info.step = sums.done;
+    info.time = k.time;
+    info.seed = scene.run.seed;
+    info.dimensions = 1;
+    info.box = {static_cast<double>(k.length), 1.0, 1.0};
+    const std::string path = io::checkpoint_path(dir, sums.done);
+    io::write_checkpoint(
+        path, info, {}, comm,
+        {{"kmc/counters", rank == 0 ? std::vector<double>{static_cast<double>(sums.done),
+                                                          static_cast<double>(sums.events),
+                                                          static_cast<double>(sums.tries)}
+                                    : std::vector<double>{}},
+         {"kmc/mean", sums.mean},
+         {"kmc/m2", sums.m2}});
+    if (rank == 0)
+      io::prune_checkpoints(dir, scene.output.checkpoint_keep);
+    log.line("checkpoint " + path + ": " + std::to_string(sums.done) + " of " +
+             std::to_string(k.replicas) + " replicas");
+    return path;
+  };
+  const io::StopSignals signals;
+  int stop = 0;
+  Stopwatch clock, since_progress;
+  std::int64_t last_checkpoint = start.done;
+  ReplicaHooks hooks;
+  hooks.stop = [&] { return signals.received() != 0; };
+  hooks.after_round = [&](const ReplicaSums &sums) {
+    if ((stop = signals.requested(comm)) != 0)
+      return true;
+    const std::int64_t cadence = scene.output.checkpoint_every;
+    if (cadence > 0 && sums.done - last_checkpoint >= cadence && sums.done < k.replicas) {
+      save_checkpoint(sums);
+      last_checkpoint = sums.done;
+    }
+    if (scene.output.progress && since_progress.seconds() > 10.0) {
+      since_progress.restart();
+      const double done = static_cast<double>(sums.done - start.done);
+      const double left = static_cast<double>(k.replicas - sums.done);
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "replica %lld / %lld (%.1f %%), ETA %s",
+                    static_cast<long long>(sums.done), static_cast<long long>(k.replicas),
+                    100.0 * static_cast<double>(sums.done) / static_cast<double>(k.replicas),
+                    engine::duration(left * clock.seconds() / done).c_str());
+      log.line(buf);
+    }
+    return false;
+  };
+  const Summary s = run_replicas(k, scene.run.seed, comm, options, std::move(start), hooks);
+  if (stop == 0 && !s.complete)
+    stop = signals.requested(comm);
+  const std::string last = save_checkpoint(s.sums);
+  if (!s.complete) {
+    log.line(std::string("received ") + io::signal_name(stop) + ": stopped after " +
+             std::to_string(s.sums.done) + " of " + std::to_string(k.replicas) +
+             " replicas, checkpoint " + last + " written; exit 0 (continue with --restart " + dir +
+             ")");
+    return;
+  }
   const auto wants = [&](const char *name) {
+    const auto &o = scene.output.observables;
     return std::find(o.begin(), o.end(), name) != o.end();
   };
-  ReplicaOptions options;
-  options.pairs = wants("pair_correlation");
-  options.charge = wants("charge_profile") && k.samples > 0;
-  const Summary s = run_replicas(k, scene.run.seed, comm, options);
 
   if (rank == 0) {
     const double t = k.time;
@@ -386,10 +585,7 @@ int command(const scene::Scene &scene, bool check, bool info, const std::string 
     }
     return 0;
   }
-  if (!restart.empty())
-    throw input_error("--restart " + restart +
-                      ": checkpoint/restart of engine kmc is not available in this version yet");
-  run_scene(scene, out_dir, comm);
+  run_scene(scene, out_dir, restart, comm);
   return 0;
 }
 

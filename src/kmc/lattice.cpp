@@ -165,16 +165,16 @@ void Lattice::flush_histogram() {
   pending_ = 0;
 }
 
-void Lattice::run_until(double t_end) {
+bool Lattice::run_until(double t_end, const std::function<bool()> &interrupted) {
   if (!observing_)
-    run<false, false>(t_end);
-  else if (every_bond_)
-    run<true, true>(t_end);
-  else
-    run<true, false>(t_end);
+    return run<false, false>(t_end, interrupted);
+  if (every_bond_)
+    return run<true, true>(t_end, interrupted);
+  return run<true, false>(t_end, interrupted);
 }
 
-template <bool Observe, bool EveryBond> void Lattice::run(double t_end) {
+template <bool Observe, bool EveryBond>
+bool Lattice::run(double t_end, const std::function<bool()> &interrupted) {
   const std::size_t L = n_.size();
   const std::uint64_t slots = bonds_ + (periodic_ ? 0 : 2);
   const double r_max = r_max_;
@@ -188,7 +188,13 @@ template <bool Observe, bool EveryBond> void Lattice::run(double t_end) {
   std::uint64_t until_resync = resync_every;
   std::uint64_t x_next = ahead_;
 
+  bool finished = true;
   while (true) {
+    if ((events & ((std::uint64_t{1} << 20) - 1)) == 0 && events > 0 && interrupted &&
+        interrupted()) {
+      finished = false;
+      break;
+    }
     if (--until_resync == 0) {
       rate_ = rate;
       rate = total_rate();
@@ -301,6 +307,7 @@ template <bool Observe, bool EveryBond> void Lattice::run(double t_end) {
   rate_ = total_rate();
   events_ += events;
   tries_ += tries;
+  return finished;
 }
 
 ReplicaResult Lattice::result() const {

@@ -11,6 +11,7 @@
 //                              vector fields (position, velocity): value [N][d] float64
 //                              word fields (id): value [N] uint64
 //   /parameters/{scene, step, time, seed, format_version, dimensions}
+//   /<engine>/<name>           engine-specific small arrays (CheckpointArray), e.g. /kmc/...
 //
 // Species are generic: a species is a name plus its vector and word fields (SpeciesFields),
 // and the writer/reader loop over whatever a run has. The fluid is the species "fluid".
@@ -61,16 +62,31 @@ struct SpeciesFields {
 // The fluid as a species: position, velocity, id.
 SpeciesFields fluid_fields(mpcd::Fluid &fluid);
 
+// An engine's own state that is not particles (the kmc engine's running sums over replicas):
+// a float64 array at `path` (e.g. "kmc/mean"; its groups are created), shape [values.size()].
+// Only rank 0's values are written; other ranks may pass empty vectors.
+struct CheckpointArray {
+  std::string path;
+  std::vector<double> values;
+};
+
 // Writes `path` collectively on all ranks of comm: first to `path`.tmp, then (rank 0, after
 // the file is closed and synced) renamed to `path`, so a crash never leaves a partial file
 // under the final name. Returns the bytes of particle data written (all ranks).
 double write_checkpoint(const std::string &path, const CheckpointInfo &info,
-                        const std::vector<SpeciesFields> &species, MPI_Comm comm);
+                        const std::vector<SpeciesFields> &species, MPI_Comm comm,
+                        const std::vector<CheckpointArray> &arrays = {});
 
 // Reads and checks the header of a checkpoint (collective). Anything that makes it unusable
 // throws input_error with one line: missing file, not HDF5, truncated or damaged, missing
-// dataset, wrong format version, row counts of the fluid fields that disagree.
-CheckpointInfo read_checkpoint_info(const std::string &path, MPI_Comm comm);
+// dataset, wrong format version, row counts of the fluid fields that disagree. Checkpoints of
+// engines without particles (kmc) pass fluid = false: the particle groups are not looked at.
+CheckpointInfo read_checkpoint_info(const std::string &path, MPI_Comm comm, bool fluid = true);
+
+// A CheckpointArray back (every rank reads it); input_error naming the dataset if it is
+// missing or not of shape [size].
+std::vector<double> read_checkpoint_array(const std::string &path, const std::string &name,
+                                          std::size_t size, MPI_Comm comm);
 
 // Reads this rank's block of the rows of every field of `species` (collective); the arrays
 // are resized. The species must exist in the file (it was checked by read_checkpoint_info for
@@ -119,6 +135,8 @@ public:
   StopSignals &operator=(const StopSignals &) = delete;
   // Collective: the signal received by any rank (0 if none), the same on every rank.
   int requested(MPI_Comm comm) const;
+  // This rank only (not collective, cheap): the signal received here, 0 if none.
+  int received() const;
 
 private:
   struct sigaction old_term_ {

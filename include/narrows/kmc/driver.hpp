@@ -7,11 +7,20 @@
 #include <mpi.h>
 
 #include <cstdint>
+#include <functional>
 #include <ostream>
 #include <string>
 #include <vector>
 
 namespace narrows::kmc {
+
+// Where a run of replicas stands: replicas [0, done) are in the running sums, which is all a
+// checkpoint of the kmc engine has to hold (replicas are pure functions of (seed, replica)).
+struct ReplicaSums {
+  std::int64_t done = 0;
+  std::vector<double> mean, m2; // rank 0: Welford mean and sum of squared deviations [width]
+  std::uint64_t events = 0, tries = 0;
+};
 
 // Means over replicas and standard errors of the mean (sample standard deviation / sqrt(R);
 // zero when R = 1). Filled on rank 0 only, except events, tries and seconds (every rank).
@@ -28,8 +37,10 @@ struct Summary {
   std::vector<double> shock_time, shock_mean, shock_mean_error, shock_var, shock_var_error;
   // Charge C(n_k) of every site at those times (if asked for): [samples][L], mean and error.
   std::vector<double> charge, charge_error;
-  std::uint64_t events = 0, tries = 0; // summed over ranks
-  double seconds = 0.0;                // wall time, slowest rank
+  std::uint64_t events = 0, tries = 0; // summed over ranks, this call's replicas only
+  double seconds = 0.0;                // wall time of this call, slowest rank
+  bool complete = true;                // false: stopped early, only `sums` is meaningful
+  ReplicaSums sums;                    // where the run stands (for its checkpoint)
 };
 
 struct ReplicaOptions {
@@ -37,16 +48,33 @@ struct ReplicaOptions {
   bool charge = false; // the charge of every site at the sample times
 };
 
-// Replica r (seeded from (seed, r)) runs on rank r % P; rank 0 reduces in replica order, so
-// the numbers are bitwise the same on any number of ranks.
+// The numbers one replica contributes (current, density, boundary currents, pairs, shock
+// positions, charges), the width of the running sums.
+std::size_t replica_width(const scene::Kmc &model, ReplicaOptions options);
+
+// Hooks of run_replicas, called on every rank. `after_round`: after each round (one replica
+// per rank) with the sums complete on rank 0; returning true stops the run there. `stop`:
+// asked every 2^20 events inside a replica (this rank only); true drops the unfinished round.
+struct ReplicaHooks {
+  std::function<bool(const ReplicaSums &)> after_round;
+  std::function<bool()> stop;
+};
+
+// Replicas run in rounds: replica start + k P + q on rank q; rank 0 reduces in replica order,
+// so the numbers are bitwise the same on any number of ranks, and the same whether or not
+// the run was resumed from `start` (the sums of an earlier run with the same model and seed).
 Summary run_replicas(const scene::Kmc &model, std::uint64_t seed, MPI_Comm comm,
-                     ReplicaOptions options = {});
+                     ReplicaOptions options = {}, ReplicaSums start = {},
+                     const ReplicaHooks &hooks = {});
 
 // What `check` / `info` print for a kmc scene.
 std::vector<std::string> describe(const scene::Scene &scene);
 
-// `narrows run` for a kmc scene: DIR/log.txt, DIR/observables.h5, the "Loop time" line.
-void run_scene(const scene::Scene &scene, const std::string &out_dir, MPI_Comm comm);
+// `narrows run` for a kmc scene: DIR/log.txt, DIR/observables.h5, the "Loop time" line,
+// checkpoints (the running sums over finished replicas); `restart` (a checkpoint file or
+// directory, or empty) continues such a run, bitwise as if never interrupted.
+void run_scene(const scene::Scene &scene, const std::string &out_dir, const std::string &restart,
+               MPI_Comm comm);
 
 // `narrows check|info|run` for a kmc scene (called by main once the scene is parsed).
 int command(const scene::Scene &scene, bool check, bool info, const std::string &restart,

@@ -30,6 +30,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace narrows::kmc {
@@ -81,8 +82,10 @@ public:
   Lattice(const scene::Kmc &model, std::uint64_t seed, std::uint64_t replica,
           LatticeOptions options = {});
 
-  // Advances to time t_end (the last event before it is done, the rest is waiting).
-  void run_until(double t_end);
+  // Advances to time t_end (the last event before it is done, the rest is waiting). If
+  // `interrupted` is given it is asked every 2^20 events; when it answers true the run stops
+  // there and returns false (the replica is then unfinished and should be dropped).
+  bool run_until(double t_end, const std::function<bool()> &interrupted = {});
   // Starts the observation window now; `window` (its planned length) sets the snapshot
   // interval so that a short window still gets >= 1000 snapshots.
   void start_observing(double window);
@@ -110,7 +113,8 @@ private:
     std::array<Transition, 8> t{};
   };
 
-  template <bool Observe, bool EveryBond> void run(double t_end);
+  template <bool Observe, bool EveryBond>
+  bool run(double t_end, const std::function<bool()> &interrupted);
   void snapshot();
   void flush_histogram();
   int code(std::size_t bond) const {
