@@ -219,3 +219,27 @@ TEST_P(LgcaVacf1dPlateau, IndependentOccupationsCancelThePlateau) {
 
 INSTANTIATE_TEST_SUITE_P(Sizes, LgcaVacf1dPlateau, ::testing::Values(500, 2000),
                          [](const auto &info) { return "L" + std::to_string(info.param); });
+
+// Long after the sound pulses have spread evenly over a small ring (L = 100: echo period 71
+// steps, pulses gone by t ~ 1000) the tagged particle moves with the centre of mass, so run by
+// run N Z(t) -> P^2 / (N <v^2>): 0 for P = 0, a random positive number for independent
+// occupations (mean 1 - d). This is the mechanism behind eq 22, seen one configuration at a time.
+TEST(LgcaVacf1d, LongTimeLimitIsTheCentreOfMassVelocity) {
+  const std::int64_t L = 100;
+  const int max_lag = 5000;
+  for (auto ensemble : {dhumieres::Ensemble::independent, dhumieres::Ensemble::zero_momentum}) {
+    for (int k = 0; k < 6; ++k) {
+      const auto r =
+          dhumieres::measure_vacf(L, d, ensemble, dhumieres::Rule::swap, 99 + 31 * k, max_lag, 1);
+      const double n = static_cast<double>(r.particles), v2 = r.vacf[0];
+      double late = 0.0;
+      for (int t = 4000; t <= max_lag; ++t)
+        late += r.vacf[t] / v2;
+      late *= n / (max_lag - 4000 + 1);
+      const double m2 = static_cast<double>(r.momentum * r.momentum) / (n * v2);
+      std::printf("  P = %3lld: N Z(t > 4000) = %.4f, P^2/(N <v^2>) = %.4f\n",
+                  static_cast<long long>(r.momentum), late, m2);
+      EXPECT_NEAR(late, n * theory::long_time_limit(n, m2), 1e-3 + 1e-3 * m2);
+    }
+  }
+}
