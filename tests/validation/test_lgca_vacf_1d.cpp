@@ -217,6 +217,20 @@ TEST_P(LgcaVacf1dPlateau, IndependentOccupationsCancelThePlateau) {
   EXPECT_LT(p.cv_err, 0.03);
 }
 
+// Exactly N particles but free total momentum: sampling N of the M = L b links without
+// replacement gives <P^2> = N <v^2> (1 - d) M / (M - 1), so the plateau is (1 - d)/(N (M - 1)),
+// zero for all purposes: fixing N alone does not produce the seed's plateau, fixing P does.
+TEST(LgcaVacf1d, FixedNumberAloneCancelsThePlateau) {
+  const std::int64_t L = 500;
+  const int t1 = window_start, t2 = window_end(L);
+  const auto p =
+      measure(L, dhumieres::Ensemble::fixed_number, dhumieres::Rule::swap, 96, 8, t1, t2, t2, 9);
+  report("fixed N:", L, p);
+  EXPECT_NEAR(p.np, 0.0, 3.0 * p.np_err + p.n * tail_bound);
+  EXPECT_NEAR(p.cv, -0.3, 3.0 * p.cv_err + p.n * tail_bound);
+  EXPECT_LT(p.cv_err, 0.03);
+}
+
 INSTANTIATE_TEST_SUITE_P(Sizes, LgcaVacf1dPlateau, ::testing::Values(500, 2000),
                          [](const auto &info) { return "L" + std::to_string(info.param); });
 
