@@ -24,6 +24,8 @@ enum class Purpose : std::uint32_t {
   wall_virtual_noise = 11,    // id = global cell index: summed MPC-AT noise of virtual particles
   srd_rotation_retry = 12,    // id = global cell index ^ (attempt << 56): further axis tries
   test = 15,
+  dhumieres_collision = 40, // id = site: outcome of a 1D d'Humieres collision
+  lgca_initial = 41,        // step = draw round (attempt), id = link or site: initial occupations
 };
 
 using Block = std::array<std::uint32_t, 4>;
