@@ -3,6 +3,7 @@
 
 #include "narrows/core/error.hpp"
 
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <system_error>
@@ -33,6 +34,18 @@ void make_output_dir(const std::string &dir, MPI_Comm comm) {
   if (failed)
     throw input_error(dir + ": cannot create output directory" +
                       (rank == 0 ? " (" + ec.message() + ")" : std::string()));
+}
+
+std::string format_duration(double seconds) {
+  char buf[32];
+  const long s = static_cast<long>(seconds + 0.5);
+  if (s >= 3600)
+    std::snprintf(buf, sizeof buf, "%ldh%02ldm", s / 3600, (s / 60) % 60);
+  else if (s >= 60)
+    std::snprintf(buf, sizeof buf, "%ldm%02lds", s / 60, s % 60);
+  else
+    std::snprintf(buf, sizeof buf, "%lds", s);
+  return buf;
 }
 
 } // namespace narrows::engine

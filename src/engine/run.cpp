@@ -29,18 +29,6 @@ bool wants(const scene::Scene &s, const std::string &name) {
   return std::find(o.begin(), o.end(), name) != o.end();
 }
 
-std::string duration(double seconds) {
-  char buf[32];
-  const long s = static_cast<long>(seconds + 0.5);
-  if (s >= 3600)
-    std::snprintf(buf, sizeof buf, "%ldh%02ldm", s / 3600, (s / 60) % 60);
-  else if (s >= 60)
-    std::snprintf(buf, sizeof buf, "%ldm%02lds", s / 60, s % 60);
-  else
-    std::snprintf(buf, sizeof buf, "%lds", s);
-  return buf;
-}
-
 // Everything written every `output.every` steps.
 class Observer {
 public:
@@ -204,7 +192,7 @@ void run_scene(const scene::Scene &scene, const RunOptions &options, MPI_Comm co
       std::snprintf(buf, sizeof buf, "step %lld / %lld (%.1f %%), %.3g particle-steps/s, ETA %s",
                     static_cast<long long>(sim.step()), static_cast<long long>(scene.run.steps),
                     100.0 * sim.step() / scene.run.steps, rate * n_particles,
-                    duration(left / rate).c_str());
+                    format_duration(left / rate).c_str());
       log.line(buf);
     }
   }

@@ -448,7 +448,10 @@ double write_checkpoint(const std::string &path, const CheckpointInfo &info,
   return bytes;
 }
 
-CheckpointInfo read_checkpoint_info(const std::string &path, MPI_Comm comm) {
+namespace {
+
+// Opens a checkpoint and reads /parameters (collective); the file stays open in `file`.
+CheckpointInfo open_checkpoint(const std::string &path, MPI_Comm comm, h5::File &file) {
   h5::silence_errors();
   std::error_code ec;
   if (!fs::exists(path, ec))
@@ -471,7 +474,7 @@ CheckpointInfo read_checkpoint_info(const std::string &path, MPI_Comm comm) {
                        " bytes); allowed: a checkpoint-*.h5 written by narrows run");
   }
   const auto fapl = mpio_fapl(comm, path);
-  const h5::File file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()));
+  file = h5::File(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()));
   if (!file) {
     const std::string err = hdf5_error_text();
     if (err.find("truncated") != std::string::npos)
@@ -499,6 +502,20 @@ CheckpointInfo read_checkpoint_info(const std::string &path, MPI_Comm comm) {
     refuse(path,
            "/parameters/dimensions = " + std::to_string(info.dimensions) + "; allowed: 2 or 3");
 
+  return info;
+}
+
+} // namespace
+
+CheckpointInfo read_checkpoint_header(const std::string &path, MPI_Comm comm) {
+  h5::File file;
+  return open_checkpoint(path, comm, file);
+}
+
+CheckpointInfo read_checkpoint_info(const std::string &path, MPI_Comm comm) {
+  h5::File file;
+  CheckpointInfo info = open_checkpoint(path, comm, file);
+  const hid_t f = file.get();
   const std::string pos = "/particles/fluid/position/value",
                     vel = "/particles/fluid/velocity/value", ids = "/particles/fluid/id/value",
                     edges = "/particles/fluid/box/edges";
@@ -528,17 +545,29 @@ CheckpointInfo read_checkpoint_info(const std::string &path, MPI_Comm comm) {
   return info;
 }
 
+std::uint64_t species_rows(const std::string &path, const SpeciesFields &s, MPI_Comm comm) {
+  h5::silence_errors();
+  const auto fapl = mpio_fapl(comm, path);
+  const h5::File file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()), path, "open file");
+  const std::string first_field =
+      "/particles/" + s.name + "/" +
+      (!s.vectors.empty() ? s.vectors.front().first : s.words.front().first) + "/value";
+  return shape_of(open_required(file.get(), first_field, path).get(), path).at(0);
+}
+
 void read_species(const std::string &path, SpeciesFields &s, MPI_Comm comm) {
+  const auto total = species_rows(path, s, comm);
+  const auto r = static_cast<std::uint64_t>(rank_of(comm));
+  const auto p = static_cast<std::uint64_t>(size_of(comm));
+  read_species_rows(path, s, total * r / p, total * (r + 1) / p - total * r / p, comm);
+}
+
+void read_species_rows(const std::string &path, SpeciesFields &s, std::uint64_t first,
+                       std::uint64_t n, MPI_Comm comm) {
   h5::silence_errors();
   const auto fapl = mpio_fapl(comm, path);
   const h5::File file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()), path, "open file");
   const std::string base = "/particles/" + s.name + "/";
-  const std::string first_field =
-      base + (!s.vectors.empty() ? s.vectors.front().first : s.words.front().first) + "/value";
-  const auto total = shape_of(open_required(file.get(), first_field, path).get(), path).at(0);
-  const auto r = static_cast<std::uint64_t>(rank_of(comm));
-  const auto p = static_cast<std::uint64_t>(size_of(comm));
-  const std::uint64_t first = total * r / p, n = total * (r + 1) / p - first;
   for (auto &[name, comp] : s.vectors) {
     const auto d = open_required(file.get(), base + name + "/value", path);
     for (int k = 0; k < s.dim; ++k)

@@ -23,4 +23,7 @@ private:
 // together with one bad-input error (exit 2) naming the directory.
 void make_output_dir(const std::string &dir, MPI_Comm comm);
 
+// "42s", "3m05s", "2h10m": for ETAs in progress lines.
+std::string format_duration(double seconds);
+
 } // namespace narrows::engine

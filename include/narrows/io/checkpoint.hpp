@@ -72,6 +72,18 @@ double write_checkpoint(const std::string &path, const CheckpointInfo &info,
 // dataset, wrong format version, row counts of the fluid fields that disagree.
 CheckpointInfo read_checkpoint_info(const std::string &path, MPI_Comm comm);
 
+// Reads and checks /parameters only (collective): for checkpoints without a fluid (lattice
+// engines). Same refusals as read_checkpoint_info for the file and the parameters.
+CheckpointInfo read_checkpoint_header(const std::string &path, MPI_Comm comm);
+
+// Rows of a species in the file (its first field).
+std::uint64_t species_rows(const std::string &path, const SpeciesFields &species, MPI_Comm comm);
+
+// Reads rows [first, first + n) of every field of `species` on this rank (collective; the
+// arrays are resized to n).
+void read_species_rows(const std::string &path, SpeciesFields &species, std::uint64_t first,
+                       std::uint64_t n, MPI_Comm comm);
+
 // Reads this rank's block of the rows of every field of `species` (collective); the arrays
 // are resized. The species must exist in the file (it was checked by read_checkpoint_info for
 // the fluid).
