@@ -8,6 +8,7 @@
 
 #include "narrows/core/error.hpp"
 #include "parse_kmc.hpp"
+#include "parse_lgca.hpp"
 
 #include <toml.hpp>
 
@@ -52,6 +53,10 @@ const std::vector<Section> &schema() {
        {"length", "boundary", "rates", "left", "right", "initial", "time", "warmup", "replicas",
         "charge", "samples", "preset", "parameters", "fugacity", "boundary_rates",
         "boundary_coupling"}},
+      {"lattice",
+       {"model", "size", "density", "initial", "amplitude", "walls", "body_force", "obstacles",
+        "block"}},
+      {"tagged", {"max_lag"}},
       {"output",
        {"dir", "every", "observables", "checkpoint_every", "checkpoint_keep", "progress",
         "trajectory_every", "trajectory_subsample"}},
@@ -548,12 +553,15 @@ Engine parse_engine(const Ctx &c, const value *run) {
     return Engine::mpcd;
   if (s == "kmc")
     return Engine::kmc;
+  if (s == "lgca")
+    return Engine::lgca;
   if (std::find(names.begin(), names.end(), s) != names.end())
     c.fail("run.engine", "run.engine = " + repr(*v) +
                              " is not available yet in this version; allowed (available): mpcd, "
-                             "kmc");
-  std::string msg = "run.engine = " + repr(*v) + " is not a known engine; allowed: mpcd, kmc (" +
-                    "lgca and continuum are not available yet in this version)";
+                             "lgca, kmc");
+  std::string msg = "run.engine = " + repr(*v) +
+                    " is not a known engine; allowed: mpcd, lgca, kmc (" +
+                    "continuum is not available yet in this version)";
   const std::string hint = closest(s, names);
   if (!hint.empty())
     msg += "; did you mean \"" + hint + "\"?";
@@ -769,6 +777,8 @@ void parse_output(const Ctx &c, const value *o, Engine engine, Output &out) {
         engine == Engine::kmc
             ? std::vector<std::string>{"current", "density_profile", "pair_correlation",
                                        "shock_position", "charge_profile"}
+        : engine == Engine::lgca
+            ? std::vector<std::string>{"shear_wave", "density", "velocity", "vacf"}
             : std::vector<std::string>(std::begin(all_observables), std::end(all_observables));
     const std::string allowed = "an array of strings from: " + join(names);
     if (!v->is_array())
@@ -801,11 +811,11 @@ void parse_output(const Ctx &c, const value *o, Engine engine, Output &out) {
         as_integer(c, *v, "output.trajectory_subsample",
                    "an integer >= 1 (frames hold the fluid particles whose id is a multiple of it)",
                    [](std::int64_t n) { return n >= 1; });
-  if (engine == Engine::kmc && out.trajectory_every > 0)
+  if ((engine == Engine::kmc || engine == Engine::lgca) && out.trajectory_every > 0)
     c.fail("output.trajectory_every",
            "output.trajectory_every = " + std::to_string(out.trajectory_every) +
-               " is for particle engines; allowed with run.engine = "
-               "\"kmc\": 0 (the kmc engine writes no trajectory)");
+               " is for particle engines; allowed with run.engine = \"" + to_string(engine) +
+               "\": 0 (the lattice engines write no trajectory)");
   if (const value *v = find(o, "progress")) {
     if (!v->is_boolean())
       c.wrong_type("output.progress", *v, "true or false");
@@ -942,11 +952,11 @@ Scene parse_scene(const std::string &text, const std::string &file,
 
   parse_run(c, run, s.run);
   if (s.run.engine == Engine::kmc) {
-    for (const char *name : {"domain", "fluid", "body_force", "walls"})
+    for (const char *name : {"domain", "fluid", "body_force", "walls", "lattice", "tagged"})
       if (section(c, root, name) != nullptr)
         c.fail(name, std::string("section [") + name +
-                         "] is for engine mpcd; allowed with run.engine = \"kmc\": [run], [kmc], "
-                         "[output]");
+                         "] is not for engine kmc; allowed with run.engine = \"kmc\": [run], "
+                         "[kmc], [output]");
     check_keys(c, section(c, root, "kmc"), "kmc");
     s.kmc = detail::parse_kmc(
         section(c, root, "kmc"),
@@ -954,12 +964,31 @@ Scene parse_scene(const std::string &text, const std::string &file,
     s.output.observables = {"current", "density_profile"};
     if (s.kmc->samples > 0)
       s.output.observables.insert(s.output.observables.end(), {"shock_position", "charge_profile"});
+  } else if (s.run.engine == Engine::lgca) {
+    for (const char *name : {"domain", "fluid", "body_force", "walls", "kmc"})
+      if (section(c, root, name) != nullptr)
+        c.fail(name, std::string("section [") + name +
+                         "] is not for engine lgca; allowed with run.engine = \"lgca\": [run], "
+                         "[lattice], [tagged], [output]");
+    check_keys(c, section(c, root, "lattice"), "lattice");
+    const auto fail = [&c](const std::string &key, const std::string &message) {
+      c.fail(key, message);
+    };
+    s.lgca = detail::parse_lgca(section(c, root, "lattice"), fail);
+    if (const value *t = section(c, root, "tagged")) {
+      check_keys(c, t, "tagged");
+      s.tagged = detail::parse_tagged(*t, *s.lgca, fail);
+    }
+    s.output.observables = {"shear_wave"};
+    if (s.tagged)
+      s.output.observables.push_back("vacf");
   } else {
-    if (section(c, root, "kmc") != nullptr)
-      c.fail("kmc", "section [kmc] needs run.engine = \"kmc\"; allowed with run.engine = \"" +
-                        std::string(to_string(s.run.engine)) +
-                        "\": [run], [domain], [fluid], "
-                        "[body_force], [walls], [output]");
+    for (const char *name : {"kmc", "lattice", "tagged"})
+      if (section(c, root, name) != nullptr)
+        c.fail(name, std::string("section [") + name + "] needs run.engine = \"" +
+                         (name[0] == 'k' ? "kmc" : "lgca") + "\"; allowed with run.engine = \"" +
+                         std::string(to_string(s.run.engine)) +
+                         "\": [run], [domain], [fluid], [body_force], [walls], [output]");
     parse_domain(c, section(c, root, "domain"), s.run.dimensions, s.domain);
     parse_fluid(c, section(c, root, "fluid"), s.domain, s.run.dimensions, s.fluid);
     s.body_force = parse_body_force(c, section(c, root, "body_force"), s.run.dimensions);
