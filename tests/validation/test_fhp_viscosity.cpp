@@ -1,8 +1,22 @@
 // Kinematic viscosity of the FHP models from the decay of a shear wave u_x = A sin(k y),
 // A(t) = A(0) exp(-nu k^2 t), k = 2 pi / (size_y sqrt(3)/2), against the Boltzmann formulas of
 // PHYSICS.md. The fit is a straight line through ln of the seed-averaged amplitude over a
-// window that starts after the initial transient (a few mean free times) and ends while the
-// signal is still well above the noise; the error is the jackknife over independent seeds.
+// window that starts after the initial transient (a few mean free times) and ends when the
+// Boltzmann estimate of A has fallen by 1/e; the error is the jackknife over independent seeds.
+//
+// What the measurements show (lattice 524288 sites, 16 seeds, A = 0.05; see the report in the
+// commit that added this file):
+// - the measurement itself: a mean-field (lattice Boltzmann equation) run of the same tables,
+//   geometry, initial state and fit gives the closed forms within 0.7 % (L_y = 64 rows), so
+//   k, the row spacing sqrt(3)/2, amplitude and window are not the cause of deviations;
+// - FHP-III at d = 1/2, where the long-time tail of the stress correlation vanishes (the
+//   Galilean factor g is zero), agrees with Boltzmann within 1 % at size_y = 32, 64, 128;
+// - away from d = 1/2 the FHP-III viscosity grows with size_y like ln L_y (d = 0.3: +11.7,
+//   +15.1, +19.9, +23.9 % at 32, 64, 128, 256 rows): the 2D long-time tail, no k -> 0 limit;
+// - FHP-I, FHP-II and the 6-bit saturated model at d = 1/2 do not depend on size_y but differ
+//   from Boltzmann (+6 %, +11 %, -5 %); an independent numpy implementation of FHP-II gives
+//   the same +11 %: correlations the Boltzmann approximation leaves out. Those are checked
+//   here against the measured values (regression), not against the formulas.
 #include "narrows/lattice/fhp_lattice.hpp"
 #include "narrows/lattice/fhp_observables.hpp"
 
@@ -27,9 +41,10 @@ struct WaveSetup {
   double density;
   int size_x, size_y;
   double amplitude = 0.05;
-  int seeds = 8;
+  int seeds = 16;
+  std::uint64_t seed_base = 1000; // run.seed of the first run
   double t_first = 20.0;   // steps skipped (transient)
-  double decay_last = 1.5; // fit until A has fallen by exp(-decay_last) (Boltzmann estimate)
+  double decay_last = 1.0; // fit until A has fallen by exp(-decay_last) (Boltzmann estimate)
 };
 
 // Least-squares slope of ln a over [first, last).
@@ -57,7 +72,7 @@ Measure measure(const WaveSetup &s) {
     p.model = s.model;
     p.size_x = s.size_x;
     p.size_y = s.size_y;
-    p.seed = 1000 + static_cast<std::uint64_t>(seed);
+    p.seed = s.seed_base + static_cast<std::uint64_t>(seed);
     FhpLattice l(p, MPI_COMM_SELF);
     l.initialise(s.density, s.amplitude);
     std::vector<double> a{shear_wave_amplitude(l)};
@@ -99,6 +114,30 @@ Measure measure(const WaveSetup &s) {
 }
 
 } // namespace
+
+// FHP-III at half filling: the Boltzmann viscosity 0.075, within 3 %.
+TEST(FhpViscosity, FhpIIIHalfFillingIsBoltzmann) {
+  const Measure m = measure({FhpModel::fhp_iii, 0.5, 8192, 64});
+  EXPECT_LT(m.error, 0.01 * m.theory);
+  EXPECT_NEAR(m.nu, m.theory, 0.03 * m.theory);
+}
+
+// The other models at half filling, against the values measured with more statistics
+// (size_y 64; 16 seeds of 8192 x 64): tolerance 4 combined standard errors.
+TEST(FhpViscosity, HalfFillingRegression) {
+  struct Ref {
+    FhpModel model;
+    double nu, error;
+  };
+  for (const Ref r : {Ref{FhpModel::fhp_i, 1.2761, 0.0096}, Ref{FhpModel::fhp_ii, 0.7500, 0.0043},
+                      Ref{FhpModel::fhp_saturated, 0.09216, 0.00076}}) {
+    WaveSetup s{r.model, 0.5, 8192, 64};
+    s.t_first = r.model == FhpModel::fhp_saturated ? 20 : 10;
+    s.seed_base = 5000; // other seeds than the reference's (1000..1015)
+    const Measure m = measure(s);
+    EXPECT_NEAR(m.nu, r.nu, 4.0 * std::hypot(m.error, r.error)) << to_string(r.model);
+  }
+}
 
 // A sweep by hand: NARROWS_FHP_SWEEP="model d X Y A seeds t0 decay" ./validation_tests
 // --gtest_also_run_disabled_tests --gtest_filter='*Sweep*'
