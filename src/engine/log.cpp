@@ -48,4 +48,15 @@ std::string format_duration(double seconds) {
   return buf;
 }
 
+std::string progress_line(std::int64_t step, std::int64_t first, std::int64_t end, double seconds,
+                          double per_step, const char *rate_unit) {
+  const double rate = static_cast<double>(step - first) / seconds;
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "step %lld / %lld (%.1f %%), %.3g %s, ETA %s",
+                static_cast<long long>(step), static_cast<long long>(end),
+                100.0 * static_cast<double>(step) / static_cast<double>(end), rate * per_step,
+                rate_unit, format_duration(static_cast<double>(end - step) / rate).c_str());
+  return buf;
+}
+
 } // namespace narrows::engine

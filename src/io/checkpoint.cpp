@@ -691,17 +691,8 @@ void check_restart_scene(const scene::Scene &given, const CheckpointInfo &info,
                       "D run; allowed: the scene the checkpoint was written by");
   const auto stored = scene::parse_scene(info.scene_text, checkpoint + ":/parameters/scene");
   // Everything but run.steps and output.* must match: the continuation is that run.
-  std::string key, found, wanted;
-  auto differ = [&](const std::string &k, auto a, auto b) {
-    if (!key.empty() || a == b)
-      return;
-    std::ostringstream x, y;
-    x.precision(17);
-    y.precision(17);
-    x << a;
-    y << b;
-    key = k, found = x.str(), wanted = y.str();
-  };
+  FirstDifference diff;
+  const auto differ = [&diff](const std::string &k, auto a, auto b) { diff.compare(k, a, b); };
   const auto &g = given, &s = stored;
   differ("run.dimensions", g.run.dimensions, s.run.dimensions);
   differ("run.seed", g.run.seed, s.run.seed);
@@ -724,9 +715,7 @@ void check_restart_scene(const scene::Scene &given, const CheckpointInfo &info,
              s.body_force->value[k]);
     differ("body_force.amplitude", g.body_force->amplitude, s.body_force->amplitude);
   }
-  if (!key.empty())
-    throw input_error(head + key + " = " + found + " but checkpoint " + checkpoint + " has " +
-                      wanted + "; allowed: on a restart only run.steps and output.* may change");
+  diff.refuse(head, checkpoint);
   const auto scene_box = [&] {
     double n = 1;
     for (int k = 0; k < g.run.dimensions; ++k)
@@ -737,6 +726,12 @@ void check_restart_scene(const scene::Scene &given, const CheckpointInfo &info,
     throw input_error(checkpoint + ": holds " + std::to_string(info.fluid_particles) +
                       " fluid particles, the scene has " + std::to_string(scene_box) +
                       "; allowed: a checkpoint of this scene");
+}
+
+void FirstDifference::refuse(const std::string &head, const std::string &checkpoint) const {
+  if (!key_.empty())
+    throw input_error(head + key_ + " = " + found_ + " but checkpoint " + checkpoint + " has " +
+                      wanted_ + "; allowed: on a restart only run.steps and output.* may change");
 }
 
 // ---- stopping cleanly on a signal --------------------------------------------------------

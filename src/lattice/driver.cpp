@@ -54,20 +54,11 @@ void refuse_unavailable(const scene::Scene &scene) {
 void check_restart_lattice(const scene::Scene &given, const io::CheckpointInfo &info,
                            const std::string &checkpoint) {
   const auto stored = scene::parse_scene(info.scene_text, checkpoint + ":/parameters/scene");
-  std::string key, found, wanted;
-  const auto differ = [&](const std::string &k, auto a, auto b) {
-    if (!key.empty() || a == b)
-      return;
-    std::ostringstream x, y;
-    x.precision(17);
-    y.precision(17);
-    x << a;
-    y << b;
-    key = k, found = x.str(), wanted = y.str();
-  };
+  io::FirstDifference diff;
+  const auto differ = [&diff](const std::string &k, auto a, auto b) { diff.compare(k, a, b); };
   differ("run.engine", std::string(scene::to_string(given.run.engine)),
          std::string(scene::to_string(stored.run.engine)));
-  if (key.empty() && stored.lgca) {
+  if (given.run.engine == stored.run.engine && stored.lgca) {
     const auto &g = *given.lgca, &s = *stored.lgca;
     differ("run.seed", given.run.seed, stored.run.seed);
     differ("lattice.model", std::string(scene::to_string(g.model)),
@@ -87,10 +78,7 @@ void check_restart_lattice(const scene::Scene &given, const io::CheckpointInfo &
       differ(k + "[2]", g.obstacles[i].radius, s.obstacles[i].radius);
     }
   }
-  if (!key.empty())
-    throw input_error(given.file + ": " + key + " = " + found + " but checkpoint " + checkpoint +
-                      " has " + wanted +
-                      "; allowed: on a restart only run.steps and output.* may change");
+  diff.refuse(given.file + ": ", checkpoint);
 }
 
 // Everything written every output.every steps (rank 0 writes).
@@ -294,16 +282,8 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, const std:
       save_checkpoint();
     if (scene.output.progress && since_progress.seconds() > 10.0) {
       since_progress.restart();
-      const double done = static_cast<double>(lattice.time() - first);
-      const double left = static_cast<double>(scene.run.steps - lattice.time());
-      const double rate = done / clock.seconds();
-      char buf[160];
-      std::snprintf(buf, sizeof buf, "step %lld / %lld (%.1f %%), %.3g site-updates/s, ETA %s",
-                    static_cast<long long>(lattice.time()), static_cast<long long>(scene.run.steps),
-                    100.0 * static_cast<double>(lattice.time()) / scene.run.steps,
-                    rate * static_cast<double>(sites),
-                    engine::format_duration(left / rate).c_str());
-      log.line(buf);
+      log.line(engine::progress_line(lattice.time(), first, scene.run.steps, clock.seconds(),
+                                     static_cast<double>(sites), "site-updates/s"));
     }
   }
   const double seconds = clock.seconds();

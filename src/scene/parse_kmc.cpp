@@ -79,7 +79,7 @@ std::array<double, 3> parse_probabilities(const Checker &c, const toml::value &p
     sum += out[s];
   }
   if (std::abs(sum - 1.0) > 1e-9)
-    c.fail(key, key + " = " + repr(p) + " sums to " + number_text(sum) + "; allowed: " + allowed);
+    c.fail(key, key + " = " + repr(p) + " sums to " + float_text(sum) + "; allowed: " + allowed);
   return out;
 }
 

@@ -109,7 +109,7 @@ Lgca parse_lgca(const toml::value *sec, const SectionFail &fail) {
     const double b = out.model == LgcaModel::fhp_ii || out.model == LgcaModel::fhp_iii ? 7 : 6;
     const double most = std::min(out.density, 1.0 - out.density) * 3.0 / (b * out.density);
     out.amplitude = c.number(*v, "lattice.amplitude",
-                             "a number with 0 <= amplitude <= " + number_text(most) +
+                             "a number with 0 <= amplitude <= " + float_text(most) +
                                  " (occupations stay in [0, 1] at this density)",
                              [most](double a) { return a >= 0.0 && a <= most; });
     if (out.initial != LgcaInitial::shear_wave && out.amplitude != 0.0)

@@ -18,10 +18,10 @@ namespace narrows::scene::detail {
 // source (file or --set).
 using SectionFail = std::function<void(const std::string &key, const std::string &message)>;
 
-// Shortest round-trip text of a number, always with a '.' or exponent.
-std::string number_text(double x);
-// A short one-line rendering of a value for messages.
-std::string repr(const toml::value &v);
+// Shortest round-trip text of a number, always with a '.' or exponent (nan, inf as such).
+std::string float_text(double x);
+// A short one-line rendering of a value for messages (nested arrays and tables abridged).
+std::string repr(const toml::value &v, int depth = 0);
 const char *type_name(const toml::value &v);
 // The value of `key` in `table` (null table or missing key: null).
 const toml::value *find(const toml::value *table, const char *key);

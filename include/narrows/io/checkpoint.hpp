@@ -29,6 +29,7 @@
 #include <array>
 #include <csignal>
 #include <cstdint>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -118,6 +119,28 @@ void check_restart_overrides(const std::vector<std::string> &overrides);
 // it (dimensions, particle count). Throws input_error naming the first difference.
 void check_restart_scene(const scene::Scene &given, const CheckpointInfo &info,
                          const std::string &checkpoint);
+
+// The first scene key, of those compared in turn, whose value in the given scene differs
+// from the checkpoint's; refuse() throws the one-line input_error naming it (if any).
+class FirstDifference {
+public:
+  template <class A, class B>
+  void compare(const std::string &key, const A &given, const B &stored) {
+    if (!key_.empty() || given == stored)
+      return;
+    std::ostringstream x, y;
+    x.precision(17);
+    y.precision(17);
+    x << given;
+    y << stored;
+    key_ = key, found_ = x.str(), wanted_ = y.str();
+  }
+  // head: "<scene file>: "
+  void refuse(const std::string &head, const std::string &checkpoint) const;
+
+private:
+  std::string key_, found_, wanted_;
+};
 
 // ---- stopping cleanly on a signal --------------------------------------------------------
 
