@@ -178,8 +178,8 @@ void FhpLattice::step() {
   const int Y = params_.size_y;
   std::vector<std::uint64_t> chir;
   RowUpdate r;
-  r.table0 = table_.out[0].data();
-  r.table1 = table_.out[1].data();
+  static_assert(sizeof(table_.out) == 256, "the kernels index the table as [chirality][state]");
+  r.table = table_.out[0].data();
   r.bounce = bounce_.data();
   r.n = nx_;
   for (int y = 0; y < Y; ++y) {

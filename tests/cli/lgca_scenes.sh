@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Every lgca scene in run/ passes `check` and runs briefly with its observables; 2 ranks write
 # the 1-rank numbers; a restart (on another rank count) ends in the same lattice as the
-# uninterrupted run; bad lattice keys, [tagged] and dhumieres-1d exit 2 with one line.
+# uninterrupted run; tools/lgca_plot.py draws the output; bad lattice keys, [tagged] and dhumieres-1d exit 2 with one line.
 set -u
 source "$(dirname "$0")/common.bash"
 
@@ -36,6 +36,13 @@ ca = h5py.File(sys.argv[1] + "/checkpoint-0000000040.h5", "r")
 cb = h5py.File(sys.argv[2] + "/checkpoint-0000000040.h5", "r")
 assert np.array_equal(ca["particles/lattice/state/value"][()], cb["particles/lattice/state/value"][()])
 PY'
+done
+
+# The plot tool draws both kinds of output.
+for name in lgca_shear_wave lgca_channel; do
+  /usr/bin/python3 "$src/tools/lgca_plot.py" "$tmp/$name/observables.h5" --first 5 \
+    --png "$tmp/$name.png" > "$tmp/$name.plot" 2>&1
+  check "$name: tools/lgca_plot.py writes a PNG" '[ $? -eq 0 ] && [ -s "$tmp/$name.png" ]'
 done
 
 # Restart: 20 steps on 2 ranks, then on to 40 on 1 rank = 40 steps straight on 1 rank.

@@ -61,8 +61,7 @@ TEST(FhpKernel, PortableAndVbmiAgree) {
         r.above = rows.data() + 2 * (n + 2) + 1;
         r.solid = with_solid ? solid.data() : nullptr;
         r.chirality = chir.data();
-        r.table0 = t.out[0].data();
-        r.table1 = t.out[1].data();
+        r.table = t.out[0].data();
         r.bounce = bounce.data();
         r.n = n;
         r.odd = odd;

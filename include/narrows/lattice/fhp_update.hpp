@@ -19,8 +19,7 @@ struct RowUpdate {
   std::uint8_t *out = nullptr;         // row y after propagation and collision
   const std::uint8_t *solid = nullptr; // 0xFF at solid (bounce-back) sites, 0 else; may be null
   const std::uint64_t *chirality = nullptr; // bit x of the row: which table entry
-  const std::uint8_t *table0 = nullptr;     // 128 entries: chirality bit 0
-  const std::uint8_t *table1 = nullptr;     // 128 entries: chirality bit 1
+  const std::uint8_t *table = nullptr;      // 256 entries [chirality][state] (CollisionTable::out)
   const std::uint8_t *bounce = nullptr;     // 128 entries: bounce-back
   int n = 0;
   int odd = 0; // y mod 2
