@@ -5,6 +5,7 @@
 #include "narrows/engine/run.hpp"
 #include "narrows/io/checkpoint.hpp"
 #include "narrows/kmc/driver.hpp"
+#include "narrows/lattice/driver.hpp"
 #include "narrows/scene/parse.hpp"
 
 #include <CLI/CLI.hpp>
@@ -55,6 +56,11 @@ int main_inner(int argc, char **argv) {
   double kmc_sites = 0.0;
   bench->add_option("--kmc", kmc_sites, "only the kmc engine, on this many sites (e.g. 1e6)")
       ->check(CLI::PositiveNumber);
+  int lgca_sites = 0;
+  bench
+      ->add_option("--lgca", lgca_sites,
+                   "only the lgca engine: FHP-III on an N x N lattice (e.g. 4096), 1 and all ranks")
+      ->check(CLI::PositiveNumber);
   bench->add_option("--particles", bench_opt.particles, "particles per case (default 1e6)")
       ->check(CLI::PositiveNumber);
   bench->add_option("--steps", bench_opt.steps, "timed steps per case (default 100)")
@@ -80,6 +86,11 @@ int main_inner(int argc, char **argv) {
       narrows::kmc::run_bench(std::cout, kmc_sites, bench_opt.json);
     return 0;
   }
+  if (*bench && lgca_sites > 0) {
+    narrows::lattice::run_bench(std::cout, lgca_sites, static_cast<int>(bench_opt.steps),
+                                bench_opt.json, MPI_COMM_WORLD);
+    return 0;
+  }
   if (*bench) {
     if (root)
       narrows::engine::run_bench(bench_opt, std::cout);
@@ -89,6 +100,12 @@ int main_inner(int argc, char **argv) {
   if (scene.run.engine == narrows::scene::Engine::kmc)
     return narrows::kmc::command(scene, static_cast<bool>(*check), static_cast<bool>(*info),
                                  restart, out_dir, MPI_COMM_WORLD);
+  if (scene.run.engine == narrows::scene::Engine::lgca) {
+    if (!restart.empty())
+      narrows::io::check_restart_overrides(sets);
+    return narrows::lattice::command(scene, static_cast<bool>(*check), static_cast<bool>(*info),
+                                     restart, out_dir, MPI_COMM_WORLD);
+  }
   if (*check || *info) {
     if (root) {
       if (*check)

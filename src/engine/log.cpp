@@ -3,6 +3,7 @@
 
 #include "narrows/core/error.hpp"
 
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <system_error>
@@ -22,18 +23,6 @@ void Log::line(const std::string &text) {
     file_ << text << '\n' << std::flush;
 }
 
-std::string duration(double seconds) {
-  char buf[32];
-  const long s = static_cast<long>(seconds + 0.5);
-  if (s >= 3600)
-    std::snprintf(buf, sizeof buf, "%ldh%02ldm", s / 3600, (s / 60) % 60);
-  else if (s >= 60)
-    std::snprintf(buf, sizeof buf, "%ldm%02lds", s / 60, s % 60);
-  else
-    std::snprintf(buf, sizeof buf, "%lds", s);
-  return buf;
-}
-
 void make_output_dir(const std::string &dir, MPI_Comm comm) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
@@ -45,6 +34,29 @@ void make_output_dir(const std::string &dir, MPI_Comm comm) {
   if (failed)
     throw input_error(dir + ": cannot create output directory" +
                       (rank == 0 ? " (" + ec.message() + ")" : std::string()));
+}
+
+std::string format_duration(double seconds) {
+  char buf[32];
+  const long s = static_cast<long>(seconds + 0.5);
+  if (s >= 3600)
+    std::snprintf(buf, sizeof buf, "%ldh%02ldm", s / 3600, (s / 60) % 60);
+  else if (s >= 60)
+    std::snprintf(buf, sizeof buf, "%ldm%02lds", s / 60, s % 60);
+  else
+    std::snprintf(buf, sizeof buf, "%lds", s);
+  return buf;
+}
+
+std::string progress_line(std::int64_t step, std::int64_t first, std::int64_t end, double seconds,
+                          double per_step, const char *rate_unit) {
+  const double rate = static_cast<double>(step - first) / seconds;
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "step %lld / %lld (%.1f %%), %.3g %s, ETA %s",
+                static_cast<long long>(step), static_cast<long long>(end),
+                100.0 * static_cast<double>(step) / static_cast<double>(end), rate * per_step,
+                rate_unit, format_duration(static_cast<double>(end - step) / rate).c_str());
+  return buf;
 }
 
 } // namespace narrows::engine

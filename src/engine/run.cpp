@@ -185,15 +185,8 @@ void run_scene(const scene::Scene &scene, const RunOptions &options, MPI_Comm co
       save_checkpoint();
     if (scene.output.progress && since_progress.seconds() > 10.0) {
       since_progress.restart();
-      const double done = static_cast<double>(sim.step() - first);
-      const double left = static_cast<double>(scene.run.steps - sim.step());
-      const double rate = done / clock.seconds();
-      char buf[160];
-      std::snprintf(buf, sizeof buf, "step %lld / %lld (%.1f %%), %.3g particle-steps/s, ETA %s",
-                    static_cast<long long>(sim.step()), static_cast<long long>(scene.run.steps),
-                    100.0 * sim.step() / scene.run.steps, rate * n_particles,
-                    duration(left / rate).c_str());
-      log.line(buf);
+      log.line(progress_line(sim.step(), first, scene.run.steps, clock.seconds(),
+                             static_cast<double>(n_particles), "particle-steps/s"));
     }
   }
   const double seconds = clock.seconds();

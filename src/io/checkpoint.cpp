@@ -466,7 +466,10 @@ double write_checkpoint(const std::string &path, const CheckpointInfo &info,
   return bytes;
 }
 
-CheckpointInfo read_checkpoint_info(const std::string &path, MPI_Comm comm, bool fluid) {
+namespace {
+
+// Opens a checkpoint and reads /parameters (collective); the file stays open in `file`.
+CheckpointInfo open_checkpoint(const std::string &path, MPI_Comm comm, h5::File &file) {
   h5::silence_errors();
   std::error_code ec;
   if (!fs::exists(path, ec))
@@ -489,7 +492,7 @@ CheckpointInfo read_checkpoint_info(const std::string &path, MPI_Comm comm, bool
                        " bytes); allowed: a checkpoint-*.h5 written by narrows run");
   }
   const auto fapl = mpio_fapl(comm, path);
-  const h5::File file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()));
+  file = h5::File(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()));
   if (!file) {
     const std::string err = hdf5_error_text();
     if (err.find("truncated") != std::string::npos)
@@ -516,11 +519,22 @@ CheckpointInfo read_checkpoint_info(const std::string &path, MPI_Comm comm, bool
   if (info.dimensions < 1 || info.dimensions > 3)
     refuse(path,
            "/parameters/dimensions = " + std::to_string(info.dimensions) + "; allowed: 1, 2 or 3");
-  if (!fluid)
-    return info;
+  return info;
+}
+
+} // namespace
+
+CheckpointInfo read_checkpoint_header(const std::string &path, MPI_Comm comm) {
+  h5::File file;
+  return open_checkpoint(path, comm, file);
+}
+
+CheckpointInfo read_checkpoint_info(const std::string &path, MPI_Comm comm) {
+  h5::File file;
+  CheckpointInfo info = open_checkpoint(path, comm, file);
   if (info.dimensions == 1)
     refuse(path, "a checkpoint of a kmc run; allowed: a checkpoint of an mpcd run");
-
+  const hid_t f = file.get();
   const std::string pos = "/particles/fluid/position/value",
                     vel = "/particles/fluid/velocity/value", ids = "/particles/fluid/id/value",
                     edges = "/particles/fluid/box/edges";
@@ -566,17 +580,29 @@ std::vector<double> read_checkpoint_array(const std::string &path, const std::st
   return v;
 }
 
+std::uint64_t species_rows(const std::string &path, const SpeciesFields &s, MPI_Comm comm) {
+  h5::silence_errors();
+  const auto fapl = mpio_fapl(comm, path);
+  const h5::File file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()), path, "open file");
+  const std::string first_field =
+      "/particles/" + s.name + "/" +
+      (!s.vectors.empty() ? s.vectors.front().first : s.words.front().first) + "/value";
+  return shape_of(open_required(file.get(), first_field, path).get(), path).at(0);
+}
+
 void read_species(const std::string &path, SpeciesFields &s, MPI_Comm comm) {
+  const auto total = species_rows(path, s, comm);
+  const auto r = static_cast<std::uint64_t>(rank_of(comm));
+  const auto p = static_cast<std::uint64_t>(size_of(comm));
+  read_species_rows(path, s, total * r / p, total * (r + 1) / p - total * r / p, comm);
+}
+
+void read_species_rows(const std::string &path, SpeciesFields &s, std::uint64_t first,
+                       std::uint64_t n, MPI_Comm comm) {
   h5::silence_errors();
   const auto fapl = mpio_fapl(comm, path);
   const h5::File file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()), path, "open file");
   const std::string base = "/particles/" + s.name + "/";
-  const std::string first_field =
-      base + (!s.vectors.empty() ? s.vectors.front().first : s.words.front().first) + "/value";
-  const auto total = shape_of(open_required(file.get(), first_field, path).get(), path).at(0);
-  const auto r = static_cast<std::uint64_t>(rank_of(comm));
-  const auto p = static_cast<std::uint64_t>(size_of(comm));
-  const std::uint64_t first = total * r / p, n = total * (r + 1) / p - first;
   for (auto &[name, comp] : s.vectors) {
     const auto d = open_required(file.get(), base + name + "/value", path);
     for (int k = 0; k < s.dim; ++k)
@@ -700,17 +726,8 @@ void check_restart_scene(const scene::Scene &given, const CheckpointInfo &info,
                       "D run; allowed: the scene the checkpoint was written by");
   const auto stored = scene::parse_scene(info.scene_text, checkpoint + ":/parameters/scene");
   // Everything but run.steps and output.* must match: the continuation is that run.
-  std::string key, found, wanted;
-  auto differ = [&](const std::string &k, auto a, auto b) {
-    if (!key.empty() || a == b)
-      return;
-    std::ostringstream x, y;
-    x.precision(17);
-    y.precision(17);
-    x << a;
-    y << b;
-    key = k, found = x.str(), wanted = y.str();
-  };
+  FirstDifference diff;
+  const auto differ = [&diff](const std::string &k, auto a, auto b) { diff.compare(k, a, b); };
   const auto &g = given, &s = stored;
   differ("run.dimensions", g.run.dimensions, s.run.dimensions);
   differ("run.seed", g.run.seed, s.run.seed);
@@ -733,9 +750,7 @@ void check_restart_scene(const scene::Scene &given, const CheckpointInfo &info,
              s.body_force->value[k]);
     differ("body_force.amplitude", g.body_force->amplitude, s.body_force->amplitude);
   }
-  if (!key.empty())
-    throw input_error(head + key + " = " + found + " but checkpoint " + checkpoint + " has " +
-                      wanted + "; allowed: on a restart only run.steps and output.* may change");
+  diff.refuse(head, checkpoint);
   const auto scene_box = [&] {
     double n = 1;
     for (int k = 0; k < g.run.dimensions; ++k)
@@ -746,6 +761,13 @@ void check_restart_scene(const scene::Scene &given, const CheckpointInfo &info,
     throw input_error(checkpoint + ": holds " + std::to_string(info.fluid_particles) +
                       " fluid particles, the scene has " + std::to_string(scene_box) +
                       "; allowed: a checkpoint of this scene");
+}
+
+void FirstDifference::refuse(const std::string &head, const std::string &checkpoint,
+                             const std::string &allowed) const {
+  if (!key_.empty())
+    throw input_error(head + key_ + " = " + found_ + " but checkpoint " + checkpoint + " has " +
+                      wanted_ + "; allowed: " + allowed);
 }
 
 // ---- stopping cleanly on a signal --------------------------------------------------------

@@ -27,7 +27,7 @@ ObservablesWriter::ObservablesWriter(const std::string &path, const std::string 
 ObservablesWriter::Series &ObservablesWriter::series(const std::string &name, Kind kind,
                                                      std::vector<hsize_t> sample_shape,
                                                      std::span<const double> bins) {
-  static constexpr const char *kind_names[] = {"scalar", "vector", "profile"};
+  static constexpr const char *kind_names[] = {"scalar", "vector", "profile", "field"};
   if (const auto it = series_.find(name); it != series_.end()) {
     Series &s = it->second;
     if (s.kind != kind || s.sample_shape != sample_shape)
@@ -88,6 +88,19 @@ void ObservablesWriter::append_profile(const std::string &name, std::int64_t ste
   if (components > 1)
     shape.push_back(components);
   append(series(name, Kind::profile, std::move(shape), bins), name, step, time, values.data());
+}
+
+void ObservablesWriter::append_field(const std::string &name, std::int64_t step, double time,
+                                     const std::vector<hsize_t> &shape,
+                                     std::span<const double> values) {
+  hsize_t n = 1;
+  for (const hsize_t k : shape)
+    n *= k;
+  if (shape.empty() || n == 0 || values.size() != n)
+    throw Error(ExitCode::other, path_ + ": field '" + name + "' has " +
+                                     std::to_string(values.size()) + " values for shape " +
+                                     shape_string(shape));
+  append(series(name, Kind::field, shape, {}), name, step, time, values.data());
 }
 
 void ObservablesWriter::flush() { h5::flush(file_, path_); }

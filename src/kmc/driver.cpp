@@ -275,40 +275,33 @@ void check_restart_scene(const scene::Scene &given, const scene::Scene &stored, 
                       scene::to_string(stored.run.engine) +
                       "; allowed: a checkpoint of a kmc run of this scene");
   const scene::Kmc &g = *given.kmc, &s = *stored.kmc;
-  std::string key, found, wanted;
-  const auto differ = [&](const std::string &name, double a, double b) {
-    if (key.empty() && a != b)
-      key = name, found = fmt("%.17g", a), wanted = fmt("%.17g", b);
-  };
-  differ("run.seed", static_cast<double>(given.run.seed), static_cast<double>(stored.run.seed));
-  differ("kmc.length", static_cast<double>(g.length), static_cast<double>(s.length));
-  differ("kmc.boundary", static_cast<double>(g.boundary), static_cast<double>(s.boundary));
+  io::FirstDifference d;
+  d.compare("run.seed", given.run.seed, stored.run.seed);
+  d.compare("kmc.length", g.length, s.length);
+  d.compare("kmc.boundary", static_cast<int>(g.boundary), static_cast<int>(s.boundary));
   for (int i = 0; i < 81; ++i)
-    differ("kmc rate " + pair_name(i / 9, i % 9), g.rates[i], s.rates[i]);
+    d.compare("kmc rate " + pair_name(i / 9, i % 9), g.rates[i], s.rates[i]);
   for (int i = 0; i < 9; ++i) {
-    differ("kmc.left " + site_name(i / 3, i % 3), g.left[i], s.left[i]);
-    differ("kmc.right " + site_name(i / 3, i % 3), g.right[i], s.right[i]);
+    d.compare("kmc.left " + site_name(i / 3, i % 3), g.left[i], s.left[i]);
+    d.compare("kmc.right " + site_name(i / 3, i % 3), g.right[i], s.right[i]);
   }
-  differ("kmc.initial kind", static_cast<double>(g.initial_kind),
-         static_cast<double>(s.initial_kind));
+  d.compare("kmc.initial kind", static_cast<int>(g.initial_kind), static_cast<int>(s.initial_kind));
   for (int i = 0; i < 3; ++i) {
-    differ("kmc.initial P(" + std::to_string(i) + ")", g.initial[i], s.initial[i]);
-    differ("kmc.initial right P(" + std::to_string(i) + ")", g.initial_right[i],
-           s.initial_right[i]);
-    differ("kmc charge C(" + std::to_string(i) + ")", g.charge[i], s.charge[i]);
+    d.compare("kmc.initial P(" + std::to_string(i) + ")", g.initial[i], s.initial[i]);
+    d.compare("kmc.initial right P(" + std::to_string(i) + ")", g.initial_right[i],
+              s.initial_right[i]);
+    d.compare("kmc charge C(" + std::to_string(i) + ")", g.charge[i], s.charge[i]);
   }
-  differ("kmc.initial site", static_cast<double>(g.shock_site), static_cast<double>(s.shock_site));
-  differ("kmc.time", g.time, s.time);
-  differ("kmc.warmup", g.warmup, s.warmup);
-  differ("kmc.samples", static_cast<double>(g.samples), static_cast<double>(s.samples));
+  d.compare("kmc.initial site", g.shock_site, s.shock_site);
+  d.compare("kmc.time", g.time, s.time);
+  d.compare("kmc.warmup", g.warmup, s.warmup);
+  d.compare("kmc.samples", g.samples, s.samples);
   const ReplicaOptions og = replica_options(given), os = replica_options(stored);
-  differ("output.observables pair_correlation", og.pairs, os.pairs);
-  differ("output.observables charge_profile", og.charge, os.charge);
-  if (!key.empty())
-    throw input_error(head + key + " = " + found + " but checkpoint " + checkpoint + " has " +
-                      wanted +
-                      "; allowed: the checkpoint's scene (only kmc.replicas, run.steps and "
-                      "output.* other than the replica observables may change)");
+  d.compare("output.observables pair_correlation", og.pairs, os.pairs);
+  d.compare("output.observables charge_profile", og.charge, os.charge);
+  d.refuse(head, checkpoint,
+           "the checkpoint's scene (only kmc.replicas, run.steps and output.* other than the "
+           "replica observables may change)");
   if (g.replicas < done)
     throw input_error(head + "kmc.replicas = " + std::to_string(g.replicas) + " but checkpoint " +
                       checkpoint + " holds " + std::to_string(done) +
@@ -331,7 +324,7 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, const std:
   std::string restart_file;
   if (!restart.empty()) {
     restart_file = io::resolve_restart(restart);
-    const io::CheckpointInfo info = io::read_checkpoint_info(restart_file, comm, false);
+    const io::CheckpointInfo info = io::read_checkpoint_header(restart_file, comm);
     const auto stored = scene::parse_scene(info.scene_text, restart_file + ":/parameters/scene");
     check_restart_scene(scene, stored, info.step, restart_file);
     const auto counters = io::read_checkpoint_array(restart_file, "kmc/counters", 3, comm);
@@ -426,7 +419,7 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, const std:
       std::snprintf(buf, sizeof buf, "replica %lld / %lld (%.1f %%), ETA %s",
                     static_cast<long long>(sums.done), static_cast<long long>(k.replicas),
                     100.0 * static_cast<double>(sums.done) / static_cast<double>(k.replicas),
-                    engine::duration(left * clock.seconds() / done).c_str());
+                    engine::format_duration(left * clock.seconds() / done).c_str());
       log.line(buf);
     }
     return false;

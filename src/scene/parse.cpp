@@ -8,6 +8,7 @@
 
 #include "narrows/core/error.hpp"
 #include "parse_kmc.hpp"
+#include "parse_lgca.hpp"
 
 #include <toml.hpp>
 
@@ -32,6 +33,10 @@
 namespace narrows::scene {
 namespace {
 
+using detail::find;
+using detail::float_text;
+using detail::repr;
+using detail::type_name;
 using toml::value;
 
 // ---- the schema -------------------------------------------------------------------------------
@@ -52,6 +57,10 @@ const std::vector<Section> &schema() {
        {"length", "boundary", "rates", "left", "right", "initial", "time", "warmup", "replicas",
         "charge", "samples", "preset", "parameters", "fugacity", "boundary_rates",
         "boundary_coupling"}},
+      {"lattice",
+       {"model", "size", "density", "initial", "amplitude", "walls", "body_force", "obstacles",
+        "block"}},
+      {"tagged", {"max_lag"}},
       {"output",
        {"dir", "every", "observables", "checkpoint_every", "checkpoint_keep", "progress",
         "trajectory_every", "trajectory_subsample"}},
@@ -130,145 +139,6 @@ std::string closest(const std::string &word, const std::vector<std::string> &can
     }
   }
   return best;
-}
-
-const char *type_name(const value &v) {
-  switch (v.type()) {
-  case toml::value_t::empty:
-    return "empty";
-  case toml::value_t::boolean:
-    return "boolean";
-  case toml::value_t::integer:
-    return "integer";
-  case toml::value_t::floating:
-    return "float";
-  case toml::value_t::string:
-    return "string";
-  case toml::value_t::offset_datetime:
-    return "offset date-time";
-  case toml::value_t::local_datetime:
-    return "local date-time";
-  case toml::value_t::local_date:
-    return "local date";
-  case toml::value_t::local_time:
-    return "local time";
-  case toml::value_t::array:
-    return "array";
-  case toml::value_t::table:
-    return "table";
-  }
-  return "unknown";
-}
-
-std::string float_text(double x) {
-  if (std::isnan(x))
-    return "nan";
-  if (std::isinf(x))
-    return x > 0 ? "inf" : "-inf";
-  char buf[64];
-  const auto res = std::to_chars(buf, buf + sizeof buf, x);
-  std::string s(buf, res.ptr);
-  if (s.find_first_of(".e") == std::string::npos)
-    s += ".0";
-  return s;
-}
-
-std::string quote_string(const std::string &s) {
-  std::string out = "\"";
-  for (const char ch : s) {
-    switch (ch) {
-    case '"':
-      out += "\\\"";
-      break;
-    case '\\':
-      out += "\\\\";
-      break;
-    case '\n':
-      out += "\\n";
-      break;
-    case '\r':
-      out += "\\r";
-      break;
-    case '\t':
-      out += "\\t";
-      break;
-    default:
-      if (static_cast<unsigned char>(ch) < 0x20) {
-        char buf[8];
-        std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(ch));
-        out += buf;
-      } else {
-        out += ch;
-      }
-    }
-  }
-  return out + "\"";
-}
-
-// A short one-line rendering of a TOML value for messages.
-std::string repr(const value &v, int depth = 0) {
-  constexpr std::size_t max_items = 6;
-  switch (v.type()) {
-  case toml::value_t::boolean:
-    return v.as_boolean() ? "true" : "false";
-  case toml::value_t::integer:
-    return std::to_string(v.as_integer());
-  case toml::value_t::floating:
-    return float_text(v.as_floating());
-  case toml::value_t::string: {
-    std::string s = v.as_string().str;
-    if (s.size() > 60)
-      s = s.substr(0, 57) + "...";
-    return quote_string(s);
-  }
-  case toml::value_t::array: {
-    if (depth > 1)
-      return "[...]";
-    const auto &a = v.as_array();
-    std::vector<std::string> parts;
-    for (std::size_t i = 0; i < a.size() && i < max_items; ++i)
-      parts.push_back(repr(a[i], depth + 1));
-    if (a.size() > max_items)
-      parts.push_back("... (" + std::to_string(a.size()) + " entries)");
-    return "[" + join(parts) + "]";
-  }
-  case toml::value_t::table: {
-    if (depth > 1)
-      return "{...}";
-    std::map<std::string, const value *> sorted;
-    for (const auto &[k, x] : v.as_table())
-      sorted.emplace(k, &x);
-    std::vector<std::string> parts;
-    for (const auto &[k, x] : sorted) {
-      if (parts.size() == max_items) {
-        parts.push_back("...");
-        break;
-      }
-      parts.push_back(k + " = " + repr(*x, depth + 1));
-    }
-    return parts.empty() ? "{}" : "{ " + join(parts) + " }";
-  }
-  case toml::value_t::empty:
-    return "(empty)";
-  default: {
-    std::ostringstream os;
-    switch (v.type()) {
-    case toml::value_t::offset_datetime:
-      os << v.as_offset_datetime();
-      break;
-    case toml::value_t::local_datetime:
-      os << v.as_local_datetime();
-      break;
-    case toml::value_t::local_date:
-      os << v.as_local_date();
-      break;
-    default:
-      os << v.as_local_time();
-      break;
-    }
-    return one_line(os.str());
-  }
-  }
 }
 
 // ---- TOML syntax errors -------------------------------------------------------------------------
@@ -460,14 +330,6 @@ std::vector<std::pair<std::string, const value *>> in_file_order(const value &ta
 
 // ---- typed getters ------------------------------------------------------------------------------
 
-const value *find(const value *table, const char *key) {
-  if (table == nullptr)
-    return nullptr;
-  const auto &t = table->as_table();
-  const auto it = t.find(key);
-  return it == t.end() ? nullptr : &it->second;
-}
-
 // A number (integers accepted) that must be finite and satisfy ok(x).
 template <class Pred>
 double as_number(const Ctx &c, const value &v, const std::string &key, const std::string &allowed,
@@ -538,6 +400,15 @@ void check_keys(const Ctx &c, const value *sec, const char *name) {
   }
 }
 
+// The engine a section belongs to, for messages.
+const char *engine_of(const std::string &section) {
+  if (section == "kmc")
+    return "kmc";
+  if (section == "lattice" || section == "tagged")
+    return "lgca";
+  return "mpcd";
+}
+
 Engine parse_engine(const Ctx &c, const value *run) {
   const value *v = find(run, "engine");
   if (v == nullptr)
@@ -548,12 +419,15 @@ Engine parse_engine(const Ctx &c, const value *run) {
     return Engine::mpcd;
   if (s == "kmc")
     return Engine::kmc;
+  if (s == "lgca")
+    return Engine::lgca;
   if (std::find(names.begin(), names.end(), s) != names.end())
     c.fail("run.engine", "run.engine = " + repr(*v) +
                              " is not available yet in this version; allowed (available): mpcd, "
-                             "kmc");
-  std::string msg = "run.engine = " + repr(*v) + " is not a known engine; allowed: mpcd, kmc (" +
-                    "lgca and continuum are not available yet in this version)";
+                             "lgca, kmc");
+  std::string msg = "run.engine = " + repr(*v) +
+                    " is not a known engine; allowed: mpcd, lgca, kmc (" +
+                    "continuum is not available yet in this version)";
   const std::string hint = closest(s, names);
   if (!hint.empty())
     msg += "; did you mean \"" + hint + "\"?";
@@ -769,6 +643,8 @@ void parse_output(const Ctx &c, const value *o, Engine engine, Output &out) {
         engine == Engine::kmc
             ? std::vector<std::string>{"current", "density_profile", "pair_correlation",
                                        "shock_position", "charge_profile"}
+        : engine == Engine::lgca
+            ? std::vector<std::string>{"shear_wave", "density", "velocity", "vacf"}
             : std::vector<std::string>(std::begin(all_observables), std::end(all_observables));
     const std::string allowed = "an array of strings from: " + join(names);
     if (!v->is_array())
@@ -801,11 +677,11 @@ void parse_output(const Ctx &c, const value *o, Engine engine, Output &out) {
         as_integer(c, *v, "output.trajectory_subsample",
                    "an integer >= 1 (frames hold the fluid particles whose id is a multiple of it)",
                    [](std::int64_t n) { return n >= 1; });
-  if (engine == Engine::kmc && out.trajectory_every > 0)
+  if ((engine == Engine::kmc || engine == Engine::lgca) && out.trajectory_every > 0)
     c.fail("output.trajectory_every",
            "output.trajectory_every = " + std::to_string(out.trajectory_every) +
-               " is for particle engines; allowed with run.engine = "
-               "\"kmc\": 0 (the kmc engine writes no trajectory)");
+               " is for particle engines; allowed with run.engine = \"" + to_string(engine) +
+               "\": 0 (the lattice engines write no trajectory)");
   if (const value *v = find(o, "progress")) {
     if (!v->is_boolean())
       c.wrong_type("output.progress", *v, "true or false");
@@ -942,11 +818,10 @@ Scene parse_scene(const std::string &text, const std::string &file,
 
   parse_run(c, run, s.run);
   if (s.run.engine == Engine::kmc) {
-    for (const char *name : {"domain", "fluid", "body_force", "walls"})
+    for (const char *name : {"domain", "fluid", "body_force", "walls", "lattice", "tagged"})
       if (section(c, root, name) != nullptr)
-        c.fail(name, std::string("section [") + name +
-                         "] is for engine mpcd; allowed with run.engine = \"kmc\": [run], [kmc], "
-                         "[output]");
+        c.fail(name, std::string("section [") + name + "] is for engine " + engine_of(name) +
+                         "; allowed with run.engine = \"kmc\": [run], [kmc], [output]");
     check_keys(c, section(c, root, "kmc"), "kmc");
     s.kmc = detail::parse_kmc(
         section(c, root, "kmc"),
@@ -954,12 +829,30 @@ Scene parse_scene(const std::string &text, const std::string &file,
     s.output.observables = {"current", "density_profile"};
     if (s.kmc->samples > 0)
       s.output.observables.insert(s.output.observables.end(), {"shock_position", "charge_profile"});
+  } else if (s.run.engine == Engine::lgca) {
+    for (const char *name : {"domain", "fluid", "body_force", "walls", "kmc"})
+      if (section(c, root, name) != nullptr)
+        c.fail(name, std::string("section [") + name + "] is for engine " + engine_of(name) +
+                         "; allowed with run.engine = \"lgca\": [run], [lattice], [tagged], "
+                         "[output]");
+    check_keys(c, section(c, root, "lattice"), "lattice");
+    const auto fail = [&c](const std::string &key, const std::string &message) {
+      c.fail(key, message);
+    };
+    s.lgca = detail::parse_lgca(section(c, root, "lattice"), fail);
+    if (const value *t = section(c, root, "tagged")) {
+      check_keys(c, t, "tagged");
+      s.tagged = detail::parse_tagged(*t, *s.lgca, fail);
+    }
+    s.output.observables = {"shear_wave"};
+    if (s.tagged)
+      s.output.observables.push_back("vacf");
   } else {
-    if (section(c, root, "kmc") != nullptr)
-      c.fail("kmc", "section [kmc] needs run.engine = \"kmc\"; allowed with run.engine = \"" +
-                        std::string(to_string(s.run.engine)) +
-                        "\": [run], [domain], [fluid], "
-                        "[body_force], [walls], [output]");
+    for (const char *name : {"kmc", "lattice", "tagged"})
+      if (section(c, root, name) != nullptr)
+        c.fail(name, std::string("section [") + name + "] needs run.engine = \"" + engine_of(name) +
+                         "\"; allowed with run.engine = \"" + std::string(to_string(s.run.engine)) +
+                         "\": [run], [domain], [fluid], [body_force], [walls], [output]");
     parse_domain(c, section(c, root, "domain"), s.run.dimensions, s.domain);
     parse_fluid(c, section(c, root, "fluid"), s.domain, s.run.dimensions, s.fluid);
     s.body_force = parse_body_force(c, section(c, root, "body_force"), s.run.dimensions);

@@ -1,6 +1,7 @@
 // Validation of the [kmc] section: lattice, rate tables, initial measure, times, replicas.
 // Unknown keys of [kmc] itself are refused by the generic schema check in parse.cpp.
 #include "parse_kmc.hpp"
+#include "section_checker.hpp"
 
 #include "narrows/kmc/preset.hpp"
 #include "narrows/kmc/rates.hpp"
@@ -15,113 +16,6 @@
 namespace narrows::scene::detail {
 
 namespace {
-
-std::string number_text(double x) {
-  char buf[64];
-  const auto res = std::to_chars(buf, buf + sizeof buf, x);
-  std::string s(buf, res.ptr);
-  if (s.find_first_of(".en") == std::string::npos)
-    s += ".0";
-  return s;
-}
-
-// A short one-line rendering of a value for messages.
-std::string repr(const toml::value &v) {
-  if (v.is_integer())
-    return std::to_string(v.as_integer());
-  if (v.is_floating())
-    return number_text(v.as_floating());
-  if (v.is_string())
-    return "\"" + v.as_string().str + "\"";
-  std::string s = toml::format(v);
-  for (char &c : s)
-    if (c == '\n' || c == '\r')
-      c = ' ';
-  if (s.size() > 70)
-    s = s.substr(0, 67) + "...";
-  return s;
-}
-
-const char *type_name(const toml::value &v) {
-  switch (v.type()) {
-  case toml::value_t::boolean:
-    return "boolean";
-  case toml::value_t::integer:
-    return "integer";
-  case toml::value_t::floating:
-    return "float";
-  case toml::value_t::string:
-    return "string";
-  case toml::value_t::array:
-    return "array";
-  case toml::value_t::table:
-    return "table";
-  default:
-    return "other";
-  }
-}
-
-class Checker {
-public:
-  explicit Checker(const KmcFail &fail) : fail_(fail) {}
-
-  [[noreturn]] void fail(const std::string &key, const std::string &message) const {
-    fail_(key, message);
-    std::abort(); // fail_ throws
-  }
-  [[noreturn]] void wrong_type(const std::string &key, const toml::value &v,
-                               const std::string &allowed) const {
-    fail(key, key + ": found " + repr(v) + " (" + type_name(v) + "); allowed: " + allowed);
-  }
-  [[noreturn]] void out_of_range(const std::string &key, const toml::value &v,
-                                 const std::string &allowed) const {
-    fail(key, key + " = " + repr(v) + " is out of range; allowed: " + allowed);
-  }
-
-  template <class Pred>
-  double number(const toml::value &v, const std::string &key, const std::string &allowed,
-                Pred ok) const {
-    double x = 0.0;
-    if (v.is_integer())
-      x = static_cast<double>(v.as_integer());
-    else if (v.is_floating())
-      x = v.as_floating();
-    else
-      wrong_type(key, v, allowed);
-    if (!std::isfinite(x) || !ok(x))
-      out_of_range(key, v, allowed);
-    return x;
-  }
-
-  template <class Pred>
-  std::int64_t integer(const toml::value &v, const std::string &key, const std::string &allowed,
-                       Pred ok) const {
-    if (!v.is_integer())
-      wrong_type(key, v, allowed);
-    if (!ok(v.as_integer()))
-      out_of_range(key, v, allowed);
-    return v.as_integer();
-  }
-
-private:
-  const KmcFail &fail_;
-};
-
-const toml::value *find(const toml::value *table, const char *key) {
-  if (table == nullptr)
-    return nullptr;
-  const auto &t = table->as_table();
-  const auto it = t.find(key);
-  return it == t.end() ? nullptr : &it->second;
-}
-
-// Keys sorted by name: messages do not depend on hash order.
-std::map<std::string, const toml::value *> sorted(const toml::value &table) {
-  std::map<std::string, const toml::value *> out;
-  for (const auto &[k, v] : table.as_table())
-    out.emplace(k, &v);
-  return out;
-}
 
 const std::string rate_allowed = "a rate >= 0";
 
@@ -185,7 +79,7 @@ std::array<double, 3> parse_probabilities(const Checker &c, const toml::value &p
     sum += out[s];
   }
   if (std::abs(sum - 1.0) > 1e-9)
-    c.fail(key, key + " = " + repr(p) + " sums to " + number_text(sum) + "; allowed: " + allowed);
+    c.fail(key, key + " = " + repr(p) + " sums to " + float_text(sum) + "; allowed: " + allowed);
   return out;
 }
 

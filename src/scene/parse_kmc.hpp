@@ -3,6 +3,8 @@
 
 #include "narrows/scene/scene.hpp"
 
+#include "section_checker.hpp"
+
 #include <toml.hpp>
 
 #include <functional>
@@ -10,9 +12,8 @@
 
 namespace narrows::scene::detail {
 
-// fail(key, message) throws the one-line input error (it never returns); the caller adds the
-// source (file or --set). `section` may be null (missing [kmc]).
-using KmcFail = std::function<void(const std::string &key, const std::string &message)>;
+// `section` may be null (missing [kmc]); fail(key, message) throws (section_checker.hpp).
+using KmcFail = SectionFail;
 
 Kmc parse_kmc(const toml::value *section, const KmcFail &fail);
 

@@ -33,4 +33,20 @@ const char *to_string(Collision c) {
   return "unknown";
 }
 
+const char *to_string(LgcaModel m) {
+  switch (m) {
+  case LgcaModel::fhp_i:
+    return "fhp-i";
+  case LgcaModel::fhp_ii:
+    return "fhp-ii";
+  case LgcaModel::fhp_iii:
+    return "fhp-iii";
+  case LgcaModel::fhp_saturated:
+    return "fhp-saturated";
+  case LgcaModel::dhumieres_1d:
+    return "dhumieres-1d";
+  }
+  return "unknown";
+}
+
 } // namespace narrows::scene

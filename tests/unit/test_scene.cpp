@@ -336,7 +336,8 @@ TEST(SceneErrors, BadSetValueNamesSet) {
 }
 
 TEST(SceneErrors, EngineNotAvailableYet) {
-  bad(with("run", "engine = \"lgca\""), {"run.engine = \"lgca\"", "not available yet", "mpcd"});
+  bad(with("run", "engine = \"continuum\""),
+      {"run.engine = \"continuum\"", "not available yet", "mpcd"});
   bad(with("run", "engine = \"lbm\""), {"run.engine = \"lbm\"", "mpcd"});
 }
 

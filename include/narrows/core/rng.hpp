@@ -24,6 +24,9 @@ enum class Purpose : std::uint32_t {
   wall_virtual_noise = 11,    // id = global cell index: summed MPC-AT noise of virtual particles
   srd_rotation_retry = 12,    // id = global cell index ^ (attempt << 56): further axis tries
   test = 15,
+  lgca_chirality = 16,      // step = lattice step, id = row * blocks + x / 128: 128 chirality bits
+  lgca_init = 17,           // step = link / 4, id = global site index: initial occupations
+  lgca_force = 18,          // step = lattice step, id = row * blocks + x / 8: 8 16-bit uniforms
   dhumieres_collision = 40, // id = site: outcome of a 1D d'Humieres collision
   lgca_initial = 41,        // step = draw round (attempt), id = link or site: initial occupations
 };

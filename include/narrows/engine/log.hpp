@@ -3,6 +3,7 @@
 
 #include <mpi.h>
 
+#include <cstdint>
 #include <fstream>
 #include <string>
 
@@ -24,6 +25,11 @@ private:
 void make_output_dir(const std::string &dir, MPI_Comm comm);
 
 // "42s", "3m05s", "2h10m": for ETAs in progress lines.
-std::string duration(double seconds);
+std::string format_duration(double seconds);
+
+// "step S / END (P %), R <rate_unit>, ETA T": progress of a run that started at step `first`
+// `seconds` ago; `per_step` is what one step updates (particles, sites).
+std::string progress_line(std::int64_t step, std::int64_t first, std::int64_t end, double seconds,
+                          double per_step, const char *rate_unit);
 
 } // namespace narrows::engine

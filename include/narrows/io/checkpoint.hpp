@@ -30,6 +30,7 @@
 #include <array>
 #include <csignal>
 #include <cstdint>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -79,14 +80,25 @@ double write_checkpoint(const std::string &path, const CheckpointInfo &info,
 
 // Reads and checks the header of a checkpoint (collective). Anything that makes it unusable
 // throws input_error with one line: missing file, not HDF5, truncated or damaged, missing
-// dataset, wrong format version, row counts of the fluid fields that disagree. Checkpoints of
-// engines without particles (kmc) pass fluid = false: the particle groups are not looked at.
-CheckpointInfo read_checkpoint_info(const std::string &path, MPI_Comm comm, bool fluid = true);
+// dataset, wrong format version, row counts of the fluid fields that disagree.
+CheckpointInfo read_checkpoint_info(const std::string &path, MPI_Comm comm);
 
 // A CheckpointArray back (every rank reads it); input_error naming the dataset if it is
 // missing or not of shape [size].
 std::vector<double> read_checkpoint_array(const std::string &path, const std::string &name,
                                           std::size_t size, MPI_Comm comm);
+
+// Reads and checks /parameters only (collective): for checkpoints without a fluid (lattice
+// engines). Same refusals as read_checkpoint_info for the file and the parameters.
+CheckpointInfo read_checkpoint_header(const std::string &path, MPI_Comm comm);
+
+// Rows of a species in the file (its first field).
+std::uint64_t species_rows(const std::string &path, const SpeciesFields &species, MPI_Comm comm);
+
+// Reads rows [first, first + n) of every field of `species` on this rank (collective; the
+// arrays are resized to n).
+void read_species_rows(const std::string &path, SpeciesFields &species, std::uint64_t first,
+                       std::uint64_t n, MPI_Comm comm);
 
 // Reads this rank's block of the rows of every field of `species` (collective); the arrays
 // are resized. The species must exist in the file (it was checked by read_checkpoint_info for
@@ -122,6 +134,30 @@ void check_restart_overrides(const std::vector<std::string> &overrides);
 // it (dimensions, particle count). Throws input_error naming the first difference.
 void check_restart_scene(const scene::Scene &given, const CheckpointInfo &info,
                          const std::string &checkpoint);
+
+// The first scene key, of those compared in turn, whose value in the given scene differs
+// from the checkpoint's; refuse() throws the one-line input_error naming it (if any).
+class FirstDifference {
+public:
+  template <class A, class B>
+  void compare(const std::string &key, const A &given, const B &stored) {
+    if (!key_.empty() || given == stored)
+      return;
+    std::ostringstream x, y;
+    x.precision(17);
+    y.precision(17);
+    x << given;
+    y << stored;
+    key_ = key, found_ = x.str(), wanted_ = y.str();
+  }
+  // head: "<scene file>: "; allowed: what may change on a restart of this engine.
+  void refuse(const std::string &head, const std::string &checkpoint,
+              const std::string &allowed = "on a restart only run.steps and output.* may "
+                                           "change") const;
+
+private:
+  std::string key_, found_, wanted_;
+};
 
 // ---- stopping cleanly on a signal --------------------------------------------------------
 

@@ -33,13 +33,17 @@ public:
                       std::span<const double> bins, std::span<const double> values,
                       std::size_t components);
 
+  // One sample of a field of any shape (row-major `values`): value shape [T][shape...].
+  void append_field(const std::string &name, std::int64_t step, double time,
+                    const std::vector<hsize_t> &shape, std::span<const double> values);
+
   // H5Fflush: what was appended so far survives a crash of the run.
   void flush();
 
   const std::string &path() const { return path_; }
 
 private:
-  enum class Kind { scalar, vector, profile };
+  enum class Kind { scalar, vector, profile, field };
   struct Series {
     Kind kind;
     std::vector<hsize_t> sample_shape; // shape of one sample (value without the T axis)

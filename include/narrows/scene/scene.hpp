@@ -96,6 +96,33 @@ struct Kmc {
   double boundary_coupling = 1.0;      // base rate of those generated boundary rates
 };
 
+// Engine "lgca": FHP lattice gases on the triangular lattice and the 1D d'Humieres model (seed
+// 002; DESIGN.md, "Scene keys of the lattice engines"). Lattice units: spacing 1, step 1.
+enum class LgcaModel { fhp_i, fhp_ii, fhp_iii, fhp_saturated, dhumieres_1d };
+enum class LgcaInitial { equilibrium, shear_wave };
+
+// A solid disc of sites (bounce-back) at (x, y) in lattice coordinates (row y at y sqrt(3)/2).
+struct LgcaObstacle {
+  double x = 0.0, y = 0.0, radius = 0.0;
+};
+
+struct Lgca {
+  LgcaModel model = LgcaModel::fhp_i;
+  std::vector<std::int64_t> size; // sites along x, y (2D; size[1] even) or [L] (1D)
+  double density = 0.0;           // mean occupation per link d
+  LgcaInitial initial = LgcaInitial::equilibrium;
+  double amplitude = 0.0;  // shear wave: u_x = amplitude sin(2 pi y / L_y)
+  bool walls = false;      // solid rows y = 0 and y = size[1] - 1 (no-slip bounce-back)
+  double body_force = 0.0; // probability per site and step of moving a particle from -x to +x
+  std::vector<LgcaObstacle> obstacles;
+  std::int64_t block = 0; // side of the square blocks of the density/velocity fields
+};
+
+// Tagged-particle VACF by moment propagation (optional section [tagged]).
+struct Tagged {
+  std::int64_t max_lag = 100;
+};
+
 struct Scene {
   std::string file; // where it came from, for messages
   std::string text; // the scene as read (stored in output files)
@@ -105,11 +132,14 @@ struct Scene {
   std::optional<BodyForce> body_force;
   std::optional<Walls> walls;
   Output output;
-  std::optional<Kmc> kmc; // engine kmc only
+  std::optional<Kmc> kmc;       // engine kmc only
+  std::optional<Lgca> lgca;     // engine lgca only
+  std::optional<Tagged> tagged; // engine lgca, [tagged] given
 };
 
 // Names used in messages and files.
 const char *to_string(Engine e);
 const char *to_string(Collision c);
+const char *to_string(LgcaModel m);
 
 } // namespace narrows::scene

@@ -1,0 +1,383 @@
+// Engine "lgca": scene -> lattice, check/info text, the run loop with observables,
+// checkpoints and restarts, and the lattice benchmark.
+#include "narrows/lattice/driver.hpp"
+
+#include "narrows/core/error.hpp"
+#include "narrows/core/timer.hpp"
+#include "narrows/engine/log.hpp"
+#include "narrows/io/checkpoint.hpp"
+#include "narrows/io/observables_writer.hpp"
+#include "narrows/lattice/fhp_checkpoint.hpp"
+#include "narrows/lattice/fhp_observables.hpp"
+#include "narrows/lattice/fhp_update.hpp"
+#include "narrows/scene/parse.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <thread>
+
+namespace narrows::lattice {
+
+namespace {
+
+constexpr double sqrt3_2 = 0.8660254037844386;
+constexpr double two_pi = 6.283185307179586;
+
+std::string fmt(const char *format, double v) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+bool wants(const scene::Scene &s, const char *name) {
+  const auto &o = s.output.observables;
+  return std::find(o.begin(), o.end(), name) != o.end();
+}
+
+// Parts of the engine that are not in this version: one line, exit code 2.
+void refuse_unavailable(const scene::Scene &scene) {
+  if (scene.lgca->model == scene::LgcaModel::dhumieres_1d)
+    throw input_error(scene.file +
+                      ": lattice.model = \"dhumieres-1d\" is not available yet in this version; "
+                      "allowed: \"fhp-i\", \"fhp-ii\", \"fhp-iii\", \"fhp-saturated\"");
+  if (scene.tagged || wants(scene, "vacf"))
+    throw input_error(scene.file +
+                      ": [tagged] (moment-propagation VACF) is not available yet in this "
+                      "version; allowed: lgca scenes without [tagged] and without \"vacf\"");
+}
+
+// The scene given with --restart must be the checkpoint's (only run.steps and output.* may
+// differ): the continuation is that run.
+void check_restart_lattice(const scene::Scene &given, const io::CheckpointInfo &info,
+                           const std::string &checkpoint) {
+  const auto stored = scene::parse_scene(info.scene_text, checkpoint + ":/parameters/scene");
+  io::FirstDifference diff;
+  const auto differ = [&diff](const std::string &k, auto a, auto b) { diff.compare(k, a, b); };
+  differ("run.engine", std::string(scene::to_string(given.run.engine)),
+         std::string(scene::to_string(stored.run.engine)));
+  if (given.run.engine == stored.run.engine && stored.lgca) {
+    const auto &g = *given.lgca, &s = *stored.lgca;
+    differ("run.seed", given.run.seed, stored.run.seed);
+    differ("lattice.model", std::string(scene::to_string(g.model)),
+           std::string(scene::to_string(s.model)));
+    differ("lattice.size[0]", g.size.at(0), s.size.at(0));
+    differ("lattice.size[1]", g.size.at(1), s.size.at(1));
+    differ("lattice.density", g.density, s.density);
+    differ("lattice.initial", static_cast<int>(g.initial), static_cast<int>(s.initial));
+    differ("lattice.amplitude", g.amplitude, s.amplitude);
+    differ("lattice.walls", g.walls, s.walls);
+    differ("lattice.body_force", g.body_force, s.body_force);
+    differ("lattice.obstacles (count)", g.obstacles.size(), s.obstacles.size());
+    for (std::size_t i = 0; i < std::min(g.obstacles.size(), s.obstacles.size()); ++i) {
+      const std::string k = "lattice.obstacles[" + std::to_string(i) + "]";
+      differ(k + "[0]", g.obstacles[i].x, s.obstacles[i].x);
+      differ(k + "[1]", g.obstacles[i].y, s.obstacles[i].y);
+      differ(k + "[2]", g.obstacles[i].radius, s.obstacles[i].radius);
+    }
+  }
+  diff.refuse(given.file + ": ", checkpoint);
+}
+
+// Everything written every output.every steps (rank 0 writes).
+class Observer {
+public:
+  Observer(const scene::Scene &scene, const FhpLattice &lattice,
+           std::unique_ptr<io::ObservablesWriter> writer)
+      : writer_(std::move(writer)), fields_(lattice, static_cast<int>(scene.lgca->block)) {
+    shear_ = wants(scene, "shear_wave");
+    density_ = wants(scene, "density");
+    velocity_ = wants(scene, "velocity");
+  }
+  void every_step(const FhpLattice &l) {
+    if (density_ || velocity_)
+      fields_.add(l);
+  }
+  void sample(const FhpLattice &l) {
+    const std::int64_t step = l.time();
+    const double t = static_cast<double>(step);
+    if (shear_) {
+      const double a = shear_wave_amplitude(l);
+      if (writer_)
+        writer_->append_scalar("shear_wave", step, t, a);
+    }
+    std::vector<double> rho, u;
+    if ((density_ || velocity_) && fields_.finish(l.comm(), rho, u) && writer_) {
+      const auto by = static_cast<hsize_t>(fields_.blocks_y()),
+                 bx = static_cast<hsize_t>(fields_.blocks_x());
+      if (density_)
+        writer_->append_field("density", step, t, {by, bx}, rho);
+      if (velocity_)
+        writer_->append_field("velocity", step, t, {by, bx, 2}, u);
+    }
+    if (writer_)
+      writer_->flush();
+  }
+
+private:
+  std::unique_ptr<io::ObservablesWriter> writer_;
+  FieldAccumulator fields_;
+  bool shear_ = false, density_ = false, velocity_ = false;
+};
+
+} // namespace
+
+FhpModel fhp_model(scene::LgcaModel m) {
+  switch (m) {
+  case scene::LgcaModel::fhp_i:
+    return FhpModel::fhp_i;
+  case scene::LgcaModel::fhp_ii:
+    return FhpModel::fhp_ii;
+  case scene::LgcaModel::fhp_iii:
+    return FhpModel::fhp_iii;
+  case scene::LgcaModel::fhp_saturated:
+    return FhpModel::fhp_saturated;
+  case scene::LgcaModel::dhumieres_1d:
+    break;
+  }
+  throw input_error("lattice.model = \"dhumieres-1d\" is not an FHP model");
+}
+
+FhpParams fhp_params(const scene::Scene &scene) {
+  const scene::Lgca &g = *scene.lgca;
+  FhpParams p;
+  p.model = fhp_model(g.model);
+  p.size_x = static_cast<int>(g.size.at(0));
+  p.size_y = static_cast<int>(g.size.at(1));
+  p.seed = scene.run.seed;
+  p.walls = g.walls;
+  p.force = g.body_force;
+  for (const auto &o : g.obstacles)
+    p.obstacles.push_back({o.x, o.y, o.radius});
+  return p;
+}
+
+std::vector<std::string> describe(const scene::Scene &scene, MPI_Comm comm) {
+  const scene::Lgca &g = *scene.lgca;
+  std::vector<std::string> out;
+  if (g.model == scene::LgcaModel::dhumieres_1d) {
+    out.push_back("engine lgca: d'Humieres 1D model, " + std::to_string(g.size.at(0)) + " sites");
+    return out;
+  }
+  int ranks = 1;
+  MPI_Comm_size(comm, &ranks);
+  const FhpModel m = fhp_model(g.model);
+  const std::int64_t X = g.size[0], Y = g.size[1];
+  out.push_back(std::string("engine lgca: ") + to_string(m) + " (" + std::to_string(links(m)) +
+                " links per site) on a " + std::to_string(X) + " x " + std::to_string(Y) +
+                " triangular lattice (" + std::to_string(X * Y) + " sites, rows sqrt(3)/2 apart, " +
+                "L_y = " + fmt("%.6g", Y * sqrt3_2) + "), periodic in x" +
+                (g.walls
+                     ? ", no-slip walls (solid rows y = 0 and y = " + std::to_string(Y - 1) + ")"
+                     : " and y"));
+  const double nu = boltzmann_viscosity(m, g.density);
+  const double nu_table = table_viscosity(make_collision_table(m), g.density);
+  out.push_back("density d = " + fmt("%.6g", g.density) + " per link (" +
+                fmt("%.6g", links(m) * g.density) + " particles per site); Boltzmann viscosity " +
+                fmt("%.6g", nu) + " (PHYSICS.md), " + fmt("%.6g", nu_table) +
+                " from the collision table");
+  if (g.initial == scene::LgcaInitial::shear_wave) {
+    const double k = two_pi / (Y * sqrt3_2);
+    out.push_back("initial: shear wave u_x = " + fmt("%.4g", g.amplitude) +
+                  " sin(2 pi y / L_y); Boltzmann decay rate nu k^2 = " + fmt("%.6g", nu * k * k) +
+                  " per step (1/e after " + fmt("%.4g", 1.0 / (nu * k * k)) + " steps)");
+  } else {
+    out.push_back("initial: equilibrium (every link occupied with probability d)");
+  }
+  if (g.body_force > 0.0)
+    out.push_back("body force: a particle moves from link 3 (-x) to link 0 (+x) with "
+                  "probability " +
+                  fmt("%.4g", g.body_force) + " per fluid site and step");
+  if (!g.obstacles.empty())
+    out.push_back(std::to_string(g.obstacles.size()) + " solid disc(s) (bounce-back)");
+  out.push_back(std::string("kernel: ") +
+                (vbmi_kernel() ? "AVX-512 VBMI byte permutes, 64 sites per instruction"
+                               : "portable table look-up") +
+                "; chirality bits from Philox (seed, step, row, 128 columns)");
+  const double bytes = static_cast<double>(X * Y) * ((g.walls || !g.obstacles.empty()) ? 3 : 2);
+  out.push_back(std::to_string(ranks) + " rank(s): slabs of about " + std::to_string(X / ranks) +
+                " columns, memory about " + fmt("%.3g", bytes / ranks / 1048576.0) +
+                " MiB per rank");
+  out.push_back("run: " + std::to_string(scene.run.steps) + " steps, observables every " +
+                std::to_string(scene.output.every) + " steps, fields in blocks of " +
+                std::to_string(g.block) + " x " + std::to_string(g.block) + " sites");
+  return out;
+}
+
+void run_scene(const scene::Scene &scene, const std::string &out_dir, const std::string &restart,
+               MPI_Comm comm) {
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  // The lattice first: a decomposition the lattice cannot take is refused before any output.
+  FhpLattice lattice(fhp_params(scene), comm);
+  std::string restart_file;
+  io::CheckpointInfo restart_info;
+  if (!restart.empty()) {
+    restart_file = io::resolve_restart(restart);
+    restart_info = io::read_checkpoint_header(restart_file, comm);
+    check_restart_lattice(scene, restart_info, restart_file);
+  }
+  const bool restarting = !restart_file.empty();
+  const std::string dir = out_dir.empty() ? scene.output.dir : out_dir;
+  engine::make_output_dir(dir, comm);
+  char from[16] = "";
+  if (restarting)
+    std::snprintf(from, sizeof from, "-%010lld", static_cast<long long>(restart_info.step));
+  engine::Log log(rank == 0, dir + "/log" + from + ".txt");
+  log.line("narrows " NARROWS_VERSION " run " + scene.file + " on " + std::to_string(ranks) +
+           " rank(s), output in " + dir);
+  for (const auto &line : describe(scene, comm))
+    log.line(line);
+
+  if (restarting) {
+    read_lattice_checkpoint(restart_file, restart_info, lattice);
+    log.line("restarted from " + restart_file + " at step " + std::to_string(lattice.time()));
+  } else {
+    lattice.initialise(scene.lgca->density, scene.lgca->amplitude);
+  }
+  std::unique_ptr<io::ObservablesWriter> writer;
+  if (rank == 0)
+    writer =
+        std::make_unique<io::ObservablesWriter>(dir + "/observables" + from + ".h5", scene.text);
+  Observer observer(scene, lattice, std::move(writer));
+  if (!restarting)
+    observer.sample(lattice); // the initial shear wave belongs to the decay curve
+
+  const std::int64_t mass = total_mass(lattice);
+  const std::int64_t sites = static_cast<std::int64_t>(lattice.size_x()) * lattice.size_y();
+  auto save_checkpoint = [&] {
+    Stopwatch watch;
+    const std::string path = io::checkpoint_path(dir, lattice.time());
+    const double bytes = write_lattice_checkpoint(path, lattice, scene.text);
+    if (rank == 0)
+      io::prune_checkpoints(dir, scene.output.checkpoint_keep);
+    char line[300];
+    std::snprintf(line, sizeof line, "checkpoint %s: %.1f MB of lattice in %.3g s", path.c_str(),
+                  bytes / 1e6, watch.seconds());
+    log.line(line);
+    return path;
+  };
+  const io::StopSignals signals;
+  int stop = 0;
+  const std::int64_t every = scene.output.every;
+  Stopwatch clock, since_progress;
+  const std::int64_t first = lattice.time();
+  while (lattice.time() < scene.run.steps) {
+    lattice.step();
+    observer.every_step(lattice);
+    if (lattice.time() % every == 0 || lattice.time() == scene.run.steps) {
+      const std::int64_t now = total_mass(lattice);
+      if (now != mass)
+        throw invariant_error("lattice mass changed from " + std::to_string(mass) + " to " +
+                              std::to_string(now) + " at step " + std::to_string(lattice.time()));
+      observer.sample(lattice);
+    }
+    if ((stop = signals.requested(comm)) != 0)
+      break;
+    const std::int64_t cadence = scene.output.checkpoint_every;
+    if (cadence > 0 && lattice.time() % cadence == 0 && lattice.time() < scene.run.steps)
+      save_checkpoint();
+    if (scene.output.progress && since_progress.seconds() > 10.0) {
+      since_progress.restart();
+      log.line(engine::progress_line(lattice.time(), first, scene.run.steps, clock.seconds(),
+                                     static_cast<double>(sites), "site-updates/s"));
+    }
+  }
+  const double seconds = clock.seconds();
+  const std::int64_t steps = lattice.time() - first;
+  const std::string last = save_checkpoint();
+  if (stop != 0)
+    log.line(std::string("received ") + io::signal_name(stop) + ": stopped after step " +
+             std::to_string(lattice.time()) + ", checkpoint " + last +
+             " written; exit 0 (continue with --restart " + dir + ")");
+  char buf[220];
+  std::snprintf(buf, sizeof buf,
+                "Loop time of %.4g s on %d ranks for %lld steps with %lld sites (%.4g "
+                "site-updates/s)",
+                seconds, ranks, static_cast<long long>(steps), static_cast<long long>(sites),
+                seconds > 0 ? static_cast<double>(steps) * static_cast<double>(sites) / seconds
+                            : 0.0);
+  log.line(buf);
+}
+
+int command(const scene::Scene &scene, bool check, bool info, const std::string &restart,
+            const std::string &out_dir, MPI_Comm comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  refuse_unavailable(scene);
+  if (check || info) {
+    // The decomposition is checked here too, so `check` refuses what `run` would.
+    const parallel::Slabs slabs(comm, static_cast<int>(scene.lgca->size.at(0)), 2);
+    if (rank == 0) {
+      if (check)
+        std::cout << scene.file << ": scene is valid\n";
+      for (const auto &line : describe(scene, comm))
+        std::cout << line << '\n';
+    }
+    return 0;
+  }
+  run_scene(scene, out_dir, restart, comm);
+  return 0;
+}
+
+void run_bench(std::ostream &out, int n, int steps, bool json, MPI_Comm comm) {
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  FhpParams p;
+  p.model = FhpModel::fhp_iii;
+  p.size_x = n;
+  p.size_y = n + n % 2;
+  p.seed = 1;
+  const double sites = static_cast<double>(p.size_x) * p.size_y;
+  const auto time_steps = [&](MPI_Comm c) {
+    FhpLattice l(p, c);
+    l.initialise(0.3, 0.0);
+    for (int i = 0; i < 3; ++i)
+      l.step();
+    MPI_Barrier(c);
+    Stopwatch clock;
+    for (int i = 0; i < steps; ++i)
+      l.step();
+    MPI_Barrier(c);
+    return clock.seconds();
+  };
+  // The other ranks wait for rank 0's one-rank timing asleep: a busy-polling MPI_Bcast would
+  // take a core from it when ranks share cores.
+  double one = 0.0;
+  if (rank == 0)
+    one = time_steps(MPI_COMM_SELF);
+  MPI_Request request;
+  MPI_Ibcast(&one, 1, MPI_DOUBLE, 0, comm, &request);
+  for (int done = 0; !done;) {
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+    if (!done)
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  const double all = ranks > 1 ? time_steps(comm) : one;
+  if (rank != 0)
+    return;
+  const double rate1 = sites * steps / one, rate_p = sites * steps / all;
+  if (json) {
+    out << "{\"lgca\": {\"model\": \"fhp-iii\", \"size\": [" << p.size_x << ", " << p.size_y
+        << "], \"steps\": " << steps << ", \"kernel\": \"" << (vbmi_kernel() ? "vbmi" : "portable")
+        << "\", \"site_updates_per_s_one_rank\": " << rate1 << ", \"ranks\": " << ranks
+        << ", \"site_updates_per_s\": " << rate_p << ", \"per_core\": " << rate_p / ranks
+        << ", \"speedup\": " << rate_p / rate1 << "}}\n";
+    return;
+  }
+  char buf[300];
+  std::snprintf(buf, sizeof buf,
+                "lgca fhp-iii %d x %d, %d steps, %s kernel: 1 rank %.3g site-updates/s; %d "
+                "ranks %.3g site-updates/s (%.3g per core), speedup %.2f",
+                p.size_x, p.size_y, steps, vbmi_kernel() ? "AVX-512 VBMI" : "portable", rate1,
+                ranks, rate_p, rate_p / ranks, rate_p / rate1);
+  out << buf << '\n';
+}
+
+} // namespace narrows::lattice

@@ -1,0 +1,174 @@
+// Validation of the [lattice] and [tagged] sections: model, size, density, initial state,
+// walls, body force, obstacles, field blocks, VACF lags. Unknown keys of the sections
+// themselves are refused by the generic schema check in parse.cpp.
+#include "parse_lgca.hpp"
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+namespace narrows::scene::detail {
+
+namespace {
+
+constexpr std::int64_t max_sites_per_axis = std::int64_t{1} << 20;
+
+const char *const model_names[] = {"fhp-i", "fhp-ii", "fhp-iii", "fhp-saturated", "dhumieres-1d"};
+
+std::string model_list() {
+  std::string s;
+  for (const char *n : model_names)
+    s += std::string(s.empty() ? "" : ", ") + "\"" + n + "\"";
+  return s;
+}
+
+void parse_obstacles(const Checker &c, const toml::value &v, Lgca &out) {
+  const std::string allowed =
+      "an array of discs [x, y, radius] in lattice coordinates (row y at y sqrt(3)/2), "
+      "radius > 0";
+  if (!v.is_array())
+    c.wrong_type("lattice.obstacles", v, allowed);
+  const auto &a = v.as_array();
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const std::string key = "lattice.obstacles[" + std::to_string(i) + "]";
+    if (!a[i].is_array() || a[i].as_array().size() != 3)
+      c.wrong_type(key, a[i], allowed);
+    const auto &d = a[i].as_array();
+    LgcaObstacle ob;
+    ob.x = c.number(d[0], key + "[0]", allowed, [](double) { return true; });
+    ob.y = c.number(d[1], key + "[1]", allowed, [](double) { return true; });
+    ob.radius = c.number(d[2], key + "[2]", allowed, [](double r) { return r > 0.0; });
+    out.obstacles.push_back(ob);
+  }
+}
+
+} // namespace
+
+Lgca parse_lgca(const toml::value *sec, const SectionFail &fail) {
+  const Checker c(fail);
+  Lgca out;
+  const toml::value *model = find(sec, "model");
+  if (model == nullptr)
+    c.fail("lattice.model", "missing required key 'lattice.model'; allowed: " + model_list());
+  if (!model->is_string())
+    c.wrong_type("lattice.model", *model, model_list());
+  {
+    const std::string m = model->as_string().str;
+    bool known = false;
+    for (int i = 0; i < 5; ++i)
+      if (m == model_names[i]) {
+        out.model = static_cast<LgcaModel>(i);
+        known = true;
+      }
+    if (!known)
+      c.fail("lattice.model",
+             "lattice.model = " + repr(*model) + " is not known; allowed: " + model_list());
+  }
+  const bool one_d = out.model == LgcaModel::dhumieres_1d;
+
+  const std::string size_allowed =
+      one_d ? "an array [L] of one integer from 2 to " + std::to_string(max_sites_per_axis)
+            : "an array [size_x, size_y] of integers from 2 to " +
+                  std::to_string(max_sites_per_axis) + ", size_y even";
+  const toml::value *size = find(sec, "size");
+  if (size == nullptr)
+    c.fail("lattice.size", "missing required key 'lattice.size'; allowed: " + size_allowed);
+  if (!size->is_array() || size->as_array().size() != (one_d ? 1u : 2u))
+    c.wrong_type("lattice.size", *size, size_allowed);
+  for (std::size_t k = 0; k < size->as_array().size(); ++k)
+    out.size.push_back(c.integer(size->as_array()[k], "lattice.size[" + std::to_string(k) + "]",
+                                 size_allowed, [k, one_d](std::int64_t n) {
+                                   return n >= 2 && n <= max_sites_per_axis &&
+                                          (one_d || k == 0 || n % 2 == 0);
+                                 }));
+
+  const std::string density_allowed = "a number with 0 < density < 1 (mean occupation per link)";
+  if (const toml::value *v = find(sec, "density"))
+    out.density = c.number(*v, "lattice.density", density_allowed,
+                           [](double d) { return d > 0.0 && d < 1.0; });
+  else
+    c.fail("lattice.density",
+           "missing required key 'lattice.density'; allowed: " + density_allowed);
+
+  if (const toml::value *v = find(sec, "initial")) {
+    const std::string allowed = "\"equilibrium\" or \"shear-wave\"";
+    if (!v->is_string())
+      c.wrong_type("lattice.initial", *v, allowed);
+    const std::string s = v->as_string().str;
+    if (s == "equilibrium")
+      out.initial = LgcaInitial::equilibrium;
+    else if (s == "shear-wave" && !one_d)
+      out.initial = LgcaInitial::shear_wave;
+    else
+      c.fail("lattice.initial", "lattice.initial = " + repr(*v) + " is not known" +
+                                    (one_d ? " for the 1D model" : "") + "; allowed: " +
+                                    (one_d ? std::string("\"equilibrium\"") : allowed));
+  }
+  if (const toml::value *v = find(sec, "amplitude")) {
+    // Occupations d + (rho/3) c_i.u must stay in [0, 1]: |u| <= min(d, 1 - d) 3 / rho.
+    const double b = out.model == LgcaModel::fhp_ii || out.model == LgcaModel::fhp_iii ? 7 : 6;
+    const double most = std::min(out.density, 1.0 - out.density) * 3.0 / (b * out.density);
+    out.amplitude = c.number(*v, "lattice.amplitude",
+                             "a number with 0 <= amplitude <= " + float_text(most) +
+                                 " (occupations stay in [0, 1] at this density)",
+                             [most](double a) { return a >= 0.0 && a <= most; });
+    if (out.initial != LgcaInitial::shear_wave && out.amplitude != 0.0)
+      c.fail("lattice.amplitude", "lattice.amplitude = " + repr(*v) +
+                                      " needs lattice.initial = \"shear-wave\"; allowed: 0 with "
+                                      "an equilibrium start");
+  } else if (out.initial == LgcaInitial::shear_wave) {
+    out.amplitude = 0.05;
+  }
+  if (const toml::value *v = find(sec, "walls")) {
+    if (!v->is_boolean())
+      c.wrong_type("lattice.walls", *v, "true or false (solid rows y = 0 and y = size_y - 1)");
+    out.walls = v->as_boolean();
+  }
+  if (const toml::value *v = find(sec, "body_force"))
+    out.body_force = c.number(
+        *v, "lattice.body_force",
+        "a probability from 0 to 1 per site and step of moving a particle from link 3 (-x) to "
+        "link 0 (+x)",
+        [](double p) { return p >= 0.0 && p <= 1.0; });
+  if (const toml::value *v = find(sec, "obstacles"))
+    parse_obstacles(c, *v, out);
+  if (one_d && (out.walls || out.body_force > 0.0 || !out.obstacles.empty()))
+    c.fail(out.walls              ? "lattice.walls"
+           : out.body_force > 0.0 ? "lattice.body_force"
+                                  : "lattice.obstacles",
+           "walls, body_force and obstacles are for the FHP models; allowed with model "
+           "\"dhumieres-1d\": model, size, density, initial");
+  if (!one_d) {
+    const std::int64_t X = out.size[0], Y = out.size[1];
+    const std::string allowed = "an integer >= 1 dividing both lattice sizes (" +
+                                std::to_string(X) + ", " + std::to_string(Y) + ")";
+    if (const toml::value *v = find(sec, "block"))
+      out.block = c.integer(*v, "lattice.block", allowed,
+                            [X, Y](std::int64_t n) { return n >= 1 && X % n == 0 && Y % n == 0; });
+    else
+      for (std::int64_t b : {8, 4, 2, 1})
+        if (X % b == 0 && Y % b == 0) {
+          out.block = b;
+          break;
+        }
+  } else if (find(sec, "block") != nullptr) {
+    c.fail("lattice.block", "lattice.block is for the FHP models; allowed with model "
+                            "\"dhumieres-1d\": model, size, density, initial");
+  }
+  return out;
+}
+
+Tagged parse_tagged(const toml::value &sec, const Lgca &lattice, const SectionFail &fail) {
+  const Checker c(fail);
+  (void)lattice;
+  Tagged out;
+  const std::string allowed = "an integer from 1 to 1000000 (VACF lags 0..max_lag)";
+  if (const toml::value *v = find(&sec, "max_lag"))
+    out.max_lag = c.integer(*v, "tagged.max_lag", allowed,
+                            [](std::int64_t n) { return n >= 1 && n <= 1000000; });
+  else
+    c.fail("tagged.max_lag", "missing required key 'tagged.max_lag'; allowed: " + allowed);
+  return out;
+}
+
+} // namespace narrows::scene::detail
