@@ -9,7 +9,9 @@
 #include "narrows/engine/invariants.hpp"
 #include "narrows/engine/log.hpp"
 #include "narrows/engine/mpcd_simulation.hpp"
+#include "narrows/engine/totals.hpp"
 #include "narrows/io/checkpoint.hpp"
+#include "narrows/io/colloid_checkpoint.hpp"
 #include "narrows/io/observables_writer.hpp"
 #include "narrows/io/trajectory_writer.hpp"
 #include "narrows/parallel/slabs.hpp"
@@ -32,7 +34,7 @@ bool wants(const scene::Scene &s, const std::string &name) {
 // Everything written every `output.every` steps.
 class Observer {
 public:
-  Observer(const MpcdSimulation &sim, std::unique_ptr<io::ObservablesWriter> writer)
+  Observer(MpcdSimulation &sim, std::unique_ptr<io::ObservablesWriter> writer)
       : sim_(sim), writer_(std::move(writer)), profiles_(sim.box()) {
     const auto &s = sim.scene();
     temperature_ = wants(s, "temperature");
@@ -40,6 +42,7 @@ public:
     velocity_ = wants(s, "velocity_profile");
     density_ = wants(s, "density_profile");
     viscosity_ = wants(s, "viscosity");
+    energy_ = wants(s, "energy");
   }
   void every_step() {
     if (velocity_ || density_ || viscosity_)
@@ -54,8 +57,13 @@ public:
       if (writer_)
         writer_->append_scalar("temperature", step, t, kT);
     }
+    if (energy_) {
+      const double e = total_energy(sim_);
+      if (writer_)
+        writer_->append_scalar("energy", step, t, e);
+    }
     if (momentum_) {
-      const auto p = analysis::total_momentum(sim_.fluid(), comm).value();
+      const auto p = total_momentum(sim_);
       if (writer_)
         writer_->append_vector("momentum", step, t, std::span(p.data(), sim_.box().dim));
     }
@@ -81,11 +89,11 @@ public:
   }
 
 private:
-  const MpcdSimulation &sim_;
+  MpcdSimulation &sim_;
   std::unique_ptr<io::ObservablesWriter> writer_;
   analysis::ProfileAccumulator profiles_;
   bool temperature_ = false, momentum_ = false, velocity_ = false, density_ = false,
-       viscosity_ = false;
+       viscosity_ = false, energy_ = false;
 };
 
 } // namespace
@@ -124,6 +132,9 @@ void run_scene(const scene::Scene &scene, const RunOptions &options, MPI_Comm co
   MpcdSimulation sim(scene, comm, !restarting);
   if (restarting) {
     sim.restore(io::read_fluid(restart_file, restart_info, comm), restart_info.step);
+    if (scene.colloids)
+      sim.restore_colloids(io::read_colloids(restart_file, *scene.colloids, scene.run.dimensions,
+                                             scene.fluid.density, comm));
     log.line("restarted from " + restart_file + " at step " + std::to_string(sim.step()));
   }
   std::unique_ptr<io::ObservablesWriter> writer;
@@ -154,7 +165,11 @@ void run_scene(const scene::Scene &scene, const RunOptions &options, MPI_Comm co
                             sim.box().dim, sim.box().length, false};
     info.walls_y = sim.box().walls_y;
     const std::string path = io::checkpoint_path(dir, sim.step());
-    const double bytes = io::write_checkpoint(path, info, {io::fluid_fields(sim.fluid())}, comm);
+    std::vector<io::SpeciesFields> species{io::fluid_fields(sim.fluid())};
+    colloids::Colloids none;
+    if (scene.colloids)
+      species.push_back(io::colloid_fields(sim.colloids(), none, comm));
+    const double bytes = io::write_checkpoint(path, info, species, comm);
     if (rank == 0)
       io::prune_checkpoints(dir, scene.output.checkpoint_keep);
     const double s = watch.seconds();

@@ -48,6 +48,9 @@ const std::vector<Section> &schema() {
       {"fluid", {"collision", "density", "dt", "angle", "kT", "sort_every"}},
       {"body_force", {"kind", "value", "amplitude"}},
       {"walls", {"slip", "virtual_particles", "virtual_flow"}},
+      {"colloids",
+       {"radius", "mass", "count", "placement", "positions", "gravity", "md_substeps", "epsilon",
+        "wall_sigma", "wall_q"}},
       {"kmc",
        {"length", "boundary", "rates", "left", "right", "initial", "time", "warmup", "replicas",
         "charge", "samples", "preset", "parameters", "fugacity", "boundary_rates",
@@ -69,8 +72,8 @@ const Section *find_section(const std::string &name) {
 constexpr std::int64_t max_cells_per_axis = std::int64_t{1} << 20;
 constexpr double max_particles = 1099511627776.0; // 2^40
 
-const char *const all_observables[] = {"temperature", "momentum", "velocity_profile",
-                                       "density_profile", "viscosity"};
+const char *const all_observables[] = {"temperature",     "momentum",  "velocity_profile",
+                                       "density_profile", "viscosity", "energy"};
 
 // ---- small text helpers -----------------------------------------------------------------------
 
@@ -725,6 +728,130 @@ std::optional<BodyForce> parse_body_force(const Ctx &c, const value *bf, int dim
   return out;
 }
 
+// A vector of `dims` finite numbers at `key`.
+std::array<double, 3> as_vector(const Ctx &c, const value &v, const std::string &key, int dims,
+                                const std::string &what) {
+  const std::string allowed =
+      "an array of " + std::to_string(dims) + " finite numbers (" + what + ")";
+  if (!v.is_array())
+    c.wrong_type(key, v, allowed);
+  const auto &a = v.as_array();
+  if (static_cast<int>(a.size()) != dims)
+    c.fail(key, key + " = " + repr(v) + " has " + std::to_string(a.size()) +
+                    (a.size() == 1 ? " entry" : " entries") + "; allowed: " + std::to_string(dims) +
+                    " entries (run.dimensions = " + std::to_string(dims) + ")");
+  std::array<double, 3> out{0.0, 0.0, 0.0};
+  for (int d = 0; d < dims; ++d)
+    out[d] = as_number(c, a[d], key + "[" + std::to_string(d) + "]", "a finite number",
+                       [](double) { return true; });
+  return out;
+}
+
+std::optional<Colloids> parse_colloids(const Ctx &c, const value *sec, const Domain &domain,
+                                       int dims, bool walls) {
+  if (sec == nullptr)
+    return std::nullopt;
+  check_keys(c, sec, "colloids");
+  Colloids out;
+  const auto positive = [](double x) { return x > 0.0; };
+  if (const value *v = find(sec, "radius"))
+    out.radius = as_number(c, *v, "colloids.radius", "a number > 0 (cell units)", positive);
+  else
+    c.missing("colloids.radius", "a number > 0 (cell units; seed 000 uses 2)");
+  const double r = out.radius;
+  if (const value *v = find(sec, "mass"))
+    out.mass =
+        as_number(c, *v, "colloids.mass",
+                  "a number > 0 (default: fluid mass density times the colloid volume)", positive);
+  if (const value *v = find(sec, "epsilon"))
+    out.epsilon = as_number(c, *v, "colloids.epsilon", "a number > 0 (kT units)", positive);
+  if (const value *v = find(sec, "wall_q"))
+    out.wall_q = as_number(c, *v, "colloids.wall_q", "a number > 0", positive);
+  if (const value *v = find(sec, "md_substeps"))
+    out.md_substeps =
+        static_cast<int>(as_integer(c, *v, "colloids.md_substeps", "an integer from 1 to 10000",
+                                    [](std::int64_t n) { return n >= 1 && n <= 10000; }));
+  if (const value *v = find(sec, "gravity"))
+    out.gravity = as_vector(c, *v, "colloids.gravity", dims, "the force on each colloid");
+  const double half_width = domain.size[1] / 2.0;
+  if (const value *v = find(sec, "wall_sigma")) {
+    if (!walls)
+      c.fail("colloids.wall_sigma", "colloids.wall_sigma = " + repr(*v) +
+                                        " sets the colloid-wall potential; allowed only with "
+                                        "[walls]");
+    out.wall_sigma =
+        as_number(c, *v, "colloids.wall_sigma",
+                  "a number > 0 whose cut-off 1.0631 wall_sigma is below half the channel width (" +
+                      float_text(half_width) + ")",
+                  [&](double x) { return x > 0.0 && 1.0631 * x < half_width; });
+  } else if (walls && 1.0631 * out.effective_wall_sigma() >= half_width) {
+    c.fail("colloids.wall_sigma",
+           "colloids.wall_sigma defaults to 2 radius = " + float_text(2.0 * r) +
+               ", whose cut-off 1.0631 wall_sigma does not fit in half the channel width (" +
+               float_text(half_width) + "); allowed: a smaller radius or an explicit wall_sigma");
+  }
+  const value *count = find(sec, "count");
+  const value *placement = find(sec, "placement");
+  const value *positions = find(sec, "positions");
+  if (placement != nullptr) {
+    const std::size_t i = as_choice(c, *placement, "colloids.placement", "a known placement",
+                                    {"lattice", "list", "random"});
+    out.placement = static_cast<ColloidPlacement>(i);
+  }
+  if (out.placement == ColloidPlacement::list) {
+    if (count != nullptr)
+      c.fail("colloids.count", "colloids.count = " + repr(*count) +
+                                   " cannot be mixed with placement = \"list\"; allowed: the "
+                                   "number of colloids is the length of colloids.positions");
+    const std::string allowed =
+        "an array of [x, y" + std::string(dims == 3 ? ", z" : "") + "] positions inside the box";
+    if (positions == nullptr)
+      c.missing("colloids.positions", allowed);
+    if (!positions->is_array() || positions->as_array().empty())
+      c.wrong_type("colloids.positions", *positions, allowed);
+    const auto &a = positions->as_array();
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      const std::string key = "colloids.positions[" + std::to_string(i) + "]";
+      const auto p = as_vector(c, a[i], key, dims, "a position inside the box");
+      for (int d = 0; d < dims; ++d)
+        if (!(p[d] >= 0.0 && p[d] < domain.size[d]))
+          c.fail(key, key + " = " + repr(a[i]) +
+                          " lies outside the box; allowed: 0 <= x_k < "
+                          "domain.size[k]");
+      if (walls && !(p[1] > 0.0 && p[1] < domain.size[1]))
+        c.fail(key, key + " = " + repr(a[i]) + " lies on a wall; allowed: 0 < y < L_y");
+      out.positions.push_back(p);
+    }
+    out.count = static_cast<std::int64_t>(a.size());
+  } else {
+    if (positions != nullptr)
+      c.fail("colloids.positions", "colloids.positions needs placement = \"list\"; allowed with "
+                                   "placement = \"lattice\" or \"random\": count");
+    if (count == nullptr)
+      c.missing("colloids.count", "an integer >= 1");
+    out.count = as_integer(c, *count, "colloids.count", "an integer from 1 to 1000000",
+                           [](std::int64_t n) { return n >= 1 && n <= 1000000; });
+    const double sigma_cc = 2.0 * r;
+    if (out.placement == ColloidPlacement::lattice &&
+        static_cast<double>(out.count) * sigma_cc > domain.size[0])
+      c.fail("colloids.count",
+             "colloids.count = " + repr(*count) + " colloids of diameter " + float_text(sigma_cc) +
+                 " do not fit in a row along x of length " + float_text(domain.size[0]) +
+                 "; allowed: at most " +
+                 std::to_string(static_cast<std::int64_t>(domain.size[0] / sigma_cc)) +
+                 " (placement = \"lattice\")");
+  }
+  double box_volume = 1.0,
+         colloid_volume = dims == 2 ? 3.14159265358979 * r * r : 4.18879020478639 * r * r * r;
+  for (int d = 0; d < dims; ++d)
+    box_volume *= domain.size[d];
+  if (static_cast<double>(out.count) * colloid_volume > 0.9 * box_volume)
+    c.fail("colloids.count", "colloids.count = " + std::to_string(out.count) +
+                                 " colloids fill more than 90 % of the box; allowed: fewer or "
+                                 "smaller colloids");
+  return out;
+}
+
 std::optional<Walls> parse_walls(const Ctx &c, const value *w,
                                  const std::optional<BodyForce> &force) {
   if (w == nullptr)
@@ -942,7 +1069,7 @@ Scene parse_scene(const std::string &text, const std::string &file,
 
   parse_run(c, run, s.run);
   if (s.run.engine == Engine::kmc) {
-    for (const char *name : {"domain", "fluid", "body_force", "walls"})
+    for (const char *name : {"domain", "fluid", "body_force", "walls", "colloids"})
       if (section(c, root, name) != nullptr)
         c.fail(name, std::string("section [") + name +
                          "] is for engine mpcd; allowed with run.engine = \"kmc\": [run], [kmc], "
@@ -959,11 +1086,13 @@ Scene parse_scene(const std::string &text, const std::string &file,
       c.fail("kmc", "section [kmc] needs run.engine = \"kmc\"; allowed with run.engine = \"" +
                         std::string(to_string(s.run.engine)) +
                         "\": [run], [domain], [fluid], "
-                        "[body_force], [walls], [output]");
+                        "[body_force], [walls], [colloids], [output]");
     parse_domain(c, section(c, root, "domain"), s.run.dimensions, s.domain);
     parse_fluid(c, section(c, root, "fluid"), s.domain, s.run.dimensions, s.fluid);
     s.body_force = parse_body_force(c, section(c, root, "body_force"), s.run.dimensions);
     s.walls = parse_walls(c, section(c, root, "walls"), s.body_force);
+    s.colloids = parse_colloids(c, section(c, root, "colloids"), s.domain, s.run.dimensions,
+                                s.walls.has_value());
   }
   parse_output(c, section(c, root, "output"), s.run.engine, s.output);
   const auto &obs = s.output.observables;

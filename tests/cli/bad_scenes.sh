@@ -78,6 +78,16 @@ add syntax_error "$(replace_line dt 'dt = = 0.1')"
 add unknown_engine "$(replace_line engine 'engine = "lgca"')"
 add walls_slip_not_boolean "$(good_scene; echo; echo '[walls]'; echo 'slip = 1')"
 add steps_float "$(replace_line steps 'steps = 2.5')"
+# [colloids] in the 8 x 8 box (with walls where the wall potential is involved)
+colloids() { good_scene; echo; echo '[colloids]'; printf '%s\n' "$@"; }
+add colloids_missing_radius "$(colloids 'count = 1')"
+add colloids_unknown_key "$(colloids 'radius = 1' 'count = 1' 'substeps = 5')"
+add colloids_count_too_many "$(colloids 'radius = 1' 'count = 5')"
+add colloids_bad_placement "$(colloids 'radius = 1' 'count = 1' 'placement = "hexagonal"')"
+add colloids_gravity_length "$(colloids 'radius = 1' 'count = 1' 'gravity = [0.1, 0.0, 0.0]')"
+add colloids_wall_sigma_no_walls "$(colloids 'radius = 1' 'count = 1' 'wall_sigma = 1.0')"
+add colloids_too_wide_for_channel "$(good_scene; echo; echo '[walls]'; echo; echo '[colloids]'; echo 'radius = 2'; echo 'count = 1')"
+add colloids_position_outside "$(colloids 'radius = 1' 'placement = "list"' 'positions = [[9.0, 4.0]]')"
 
 # check_bad NAME CMD...: runs CMD, expects exit 2 and one stderr line naming NAME.toml
 check_bad() {
@@ -140,6 +150,16 @@ if [[ $rc -eq 0 ]]; then
   pass
 else
   fail "check good.toml: exit code $rc, expected 0: $(head -c 300 "$TMP/stderr")"
+fi
+
+# A good scene with colloids passes `check` too.
+{ good_scene; echo; echo '[walls]'; echo; echo '[colloids]'; echo 'radius = 1'; echo 'count = 2'; } >"$TMP/good_colloids.toml"
+"$NARROWS" check "$TMP/good_colloids.toml" >"$TMP/stdout" 2>"$TMP/stderr"
+rc=$?
+if [[ $rc -eq 0 ]]; then
+  pass
+else
+  fail "check good_colloids.toml: exit code $rc, expected 0: $(head -c 300 "$TMP/stderr")"
 fi
 
 echo "$passed passed, $failed failed"

@@ -23,6 +23,7 @@ enum class Purpose : std::uint32_t {
   wall_virtual_momentum = 10, // id = global cell index: summed velocity of virtual particles
   wall_virtual_noise = 11,    // id = global cell index: summed MPC-AT noise of virtual particles
   srd_rotation_retry = 12,    // id = global cell index ^ (attempt << 56): further axis tries
+  colloid_placement = 13,     // step = attempt, id = colloid index: random placement
   test = 15,
 };
 
