@@ -43,10 +43,14 @@ public:
     density_ = wants(s, "density_profile");
     viscosity_ = wants(s, "viscosity");
     energy_ = wants(s, "energy");
+    settling_ = wants(s, "settling_velocity");
+    positions_ = wants(s, "colloid_positions");
   }
   void every_step() {
     if (velocity_ || density_ || viscosity_)
       profiles_.add(sim_.fluid());
+    if (settling_)
+      settling_sum_.add(sim_);
   }
   void sample() {
     const auto step = sim_.step();
@@ -61,6 +65,23 @@ public:
       const double e = total_energy(sim_);
       if (writer_)
         writer_->append_scalar("energy", step, t, e);
+    }
+    if (settling_) {
+      const auto v = settling_sum_.mean();
+      if (writer_)
+        writer_->append_vector("settling_velocity", step, t, std::span(v.data(), sim_.box().dim));
+      settling_sum_ = SettlingSum{};
+    }
+    if (positions_ && writer_) {
+      const auto &c = sim_.colloids();
+      const int d = c.dim;
+      std::vector<double> ids(c.size()), x(c.size() * d);
+      for (std::size_t a = 0; a < c.size(); ++a) {
+        ids[a] = static_cast<double>(c.id[a]);
+        for (int k = 0; k < d; ++k)
+          x[a * d + k] = c.x[k][a];
+      }
+      writer_->append_profile("colloid_positions", step, t, ids, x, d);
     }
     if (momentum_) {
       const auto p = total_momentum(sim_);
@@ -92,8 +113,9 @@ private:
   MpcdSimulation &sim_;
   std::unique_ptr<io::ObservablesWriter> writer_;
   analysis::ProfileAccumulator profiles_;
+  SettlingSum settling_sum_;
   bool temperature_ = false, momentum_ = false, velocity_ = false, density_ = false,
-       viscosity_ = false, energy_ = false;
+       viscosity_ = false, energy_ = false, settling_ = false, positions_ = false;
 };
 
 } // namespace

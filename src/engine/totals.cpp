@@ -31,4 +31,27 @@ double total_energy(MpcdSimulation &sim) {
   return e;
 }
 
+void SettlingSum::add(const MpcdSimulation &sim) {
+  const auto p = total_momentum(sim);
+  const auto &c = sim.colloids();
+  double mass = static_cast<double>(particle_count(sim.scene())); // fluid, m_f = 1
+  for (std::size_t a = 0; a < c.size(); ++a)
+    mass += c.mass[a];
+  const double n = static_cast<double>(c.size());
+  for (int k = 0; k < c.dim; ++k) {
+    double v = 0.0;
+    for (std::size_t a = 0; a < c.size(); ++a)
+      v += c.v[k][a];
+    sum_[k] += v / n - p[k] / mass;
+  }
+  ++steps_;
+}
+
+std::array<double, 3> SettlingSum::mean() const {
+  std::array<double, 3> m{0.0, 0.0, 0.0};
+  for (int k = 0; k < 3 && steps_ > 0; ++k)
+    m[k] = sum_[k] / static_cast<double>(steps_);
+  return m;
+}
+
 } // namespace narrows::engine

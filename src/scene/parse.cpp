@@ -72,8 +72,9 @@ const Section *find_section(const std::string &name) {
 constexpr std::int64_t max_cells_per_axis = std::int64_t{1} << 20;
 constexpr double max_particles = 1099511627776.0; // 2^40
 
-const char *const all_observables[] = {"temperature",     "momentum",  "velocity_profile",
-                                       "density_profile", "viscosity", "energy"};
+const char *const all_observables[] = {"temperature",       "momentum",         "velocity_profile",
+                                       "density_profile",   "viscosity",        "energy",
+                                       "settling_velocity", "colloid_positions"};
 
 // ---- small text helpers -----------------------------------------------------------------------
 
@@ -1098,6 +1099,10 @@ Scene parse_scene(const std::string &text, const std::string &file,
   const auto &obs = s.output.observables;
   const bool poiseuille = s.walls && s.body_force && s.body_force->kind == ForceKind::constant &&
                           s.body_force->value[0] != 0.0;
+  for (const char *name : {"settling_velocity", "colloid_positions"})
+    if (std::find(obs.begin(), obs.end(), name) != obs.end() && !s.colloids)
+      c.fail("output.observables", std::string("output.observables lists \"") + name +
+                                       "\", which follows colloids; allowed only with [colloids]");
   if (std::find(obs.begin(), obs.end(), "viscosity") != obs.end() && !poiseuille)
     c.fail("output.observables",
            "output.observables lists \"viscosity\", which fits the Poiseuille profile; allowed "

@@ -450,4 +450,6 @@ TEST(SceneErrors, ColloidsKeys) {
   bad(with("colloids", "radius = 1\ncount = 1\nwall_sigma = 1"),
       {"colloids.wall_sigma", "[walls]"});
   bad(col("radius = 1\ncount = 1\nmass = 0"), {"colloids.mass = 0"});
+  bad(with("output", "observables = [\"settling_velocity\"]"),
+      {"settling_velocity", "only with [colloids]"});
 }
