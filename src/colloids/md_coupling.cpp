@@ -15,6 +15,9 @@ namespace narrows::colloids {
 
 namespace {
 
+// Added to each colloid's path over a step when choosing the fluid particles of the sub-steps.
+constexpr double path_allowance = 0.25;
+
 // Minimum image of a separation along a periodic axis of length L.
 inline double minimum_image(double d, double L) {
   if (d > 0.5 * L)
@@ -60,6 +63,92 @@ void MdCoupling::clear_fluid_forces() {
   touched_.clear();
 }
 
+void MdCoupling::build_cell_list(const mpcd::Fluid &f) {
+  const std::size_t n = f.size();
+  std::fill(head_.begin(), head_.end(), -1);
+  next_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::size_t cell = 0;
+    for (int k = dim_ - 1; k >= 0; --k) {
+      const int ck = std::min(cells_[k] - 1, static_cast<int>(f.x[k][i] * inv_cell_[k]));
+      cell = cell * static_cast<std::size_t>(cells_[k]) + static_cast<std::size_t>(ck);
+    }
+    next_[i] = head_[cell];
+    head_[cell] = static_cast<std::int32_t>(i);
+  }
+}
+
+template <int D, bool WallsY>
+void MdCoupling::select_near(const mpcd::Fluid &f, const Colloids &c) {
+  // Uses the cell list of f built by the force evaluation just before.
+  const std::size_t n = f.size();
+  const double dt = params_.tau * params_.substeps;
+  const double half_a_dt2 = 0.5 * params_.fluid_accel * dt * dt;
+  const double *X[3] = {f.x[0].data(), f.x[1].data(), D == 3 ? f.x[2].data() : nullptr};
+  const double *V[3] = {f.v[0].data(), f.v[1].data(), D == 3 ? f.v[2].data() : nullptr};
+  auto reach = [&](std::size_t i) {
+    double v2 = 0.0;
+    for (int k = 0; k < D; ++k)
+      v2 += V[k][i] * V[k][i];
+    return std::sqrt(v2) * dt + half_a_dt2;
+  };
+  double max_reach = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+    max_reach = std::max(max_reach, reach(i));
+  near_flag_.assign(n, 0);
+  near_index_.clear();
+  const double cut = repulsive_cutoff(6, params_.sigma_cf);
+  const auto &L = box_.length;
+  for (std::size_t a = 0; a < c.size(); ++a) {
+    const double range = cut + margin_[a];
+    // Cells along each axis within range + max_reach of the colloid's cell (all if that covers
+    // the axis); along a wall axis clipped at the ends.
+    std::array<std::vector<int>, 3> axis;
+    for (int k = 0; k < D; ++k) {
+      const int nk = cells_[k];
+      const int home = std::min(nk - 1, static_cast<int>(c.x[k][a] * inv_cell_[k]));
+      const int w = static_cast<int>(std::ceil((range + max_reach) * inv_cell_[k]));
+      if (2 * w + 1 >= nk) {
+        for (int q = 0; q < nk; ++q)
+          axis[k].push_back(q);
+      } else if (WallsY && k == 1) {
+        for (int q = std::max(0, home - w); q <= std::min(nk - 1, home + w); ++q)
+          axis[k].push_back(q);
+      } else {
+        for (int q = home - w; q <= home + w; ++q)
+          axis[k].push_back(q < 0 ? q + nk : (q >= nk ? q - nk : q));
+      }
+    }
+    if constexpr (D == 2)
+      axis[2] = {0};
+    for (const int cz : axis[2])
+      for (const int cy : axis[1])
+        for (const int cx : axis[0]) {
+          const std::size_t cell =
+              (static_cast<std::size_t>(cz) * cells_[1] + static_cast<std::size_t>(cy)) *
+                  cells_[0] +
+              static_cast<std::size_t>(cx);
+          for (std::int32_t j = head_[cell]; j >= 0; j = next_[j]) {
+            const auto js = static_cast<std::size_t>(j);
+            if (near_flag_[js])
+              continue;
+            double r2 = 0.0;
+            for (int k = 0; k < D; ++k) {
+              double d = X[k][js] - c.x[k][a];
+              if (!(WallsY && k == 1))
+                d = minimum_image(d, L[k]);
+              r2 += d * d;
+            }
+            const double limit = range + reach(js);
+            if (r2 < limit * limit) {
+              near_flag_[js] = 1;
+              near_index_.push_back(static_cast<std::uint32_t>(j));
+            }
+          }
+        }
+  }
+}
+
 template <int D, bool WallsY>
 PotentialEnergy MdCoupling::forces(const mpcd::Fluid &f, const Colloids &c, MPI_Comm comm,
                                    bool want_energy) {
@@ -70,19 +159,8 @@ PotentialEnergy MdCoupling::forces(const mpcd::Fluid &f, const Colloids &c, MPI_
   fluid_flag_.resize(n, 0);
   const auto &L = box_.length;
 
-  // Cell list of the local fluid.
-  std::fill(head_.begin(), head_.end(), -1);
-  next_.resize(n);
+  build_cell_list(f);
   const double *X[3] = {f.x[0].data(), f.x[1].data(), D == 3 ? f.x[2].data() : nullptr};
-  for (std::size_t i = 0; i < n; ++i) {
-    std::size_t cell = 0;
-    for (int k = D - 1; k >= 0; --k) {
-      const int ck = std::min(cells_[k] - 1, static_cast<int>(X[k][i] * inv_cell_[k]));
-      cell = cell * static_cast<std::size_t>(cells_[k]) + static_cast<std::size_t>(ck);
-    }
-    next_[i] = head_[cell];
-    head_[cell] = static_cast<std::int32_t>(i);
-  }
 
   // Colloid-fluid pairs: each colloid scans the cells within one cell of its own (all cells of
   // an axis with fewer than three, so none is visited twice).
@@ -234,19 +312,78 @@ void MdCoupling::advance(mpcd::Fluid &fluid, Colloids &colloids, MPI_Comm comm) 
   // Forces depend on positions only, which the collision does not change: they are computed
   // afresh here rather than carried across the migration of the fluid.
   compute_forces(fluid, colloids, comm);
-  const double tau = params_.tau;
+  const double tau = params_.tau, dt = tau * params_.substeps;
+  const std::size_t nc = colloids.size();
+  margin_.resize(nc);
+  for (int k = 0; k < dim_; ++k)
+    start_[k] = colloids.x[k];
+  for (std::size_t a = 0; a < nc; ++a) {
+    double v2 = 0.0, f2 = 0.0;
+    for (int k = 0; k < dim_; ++k) {
+      v2 += colloids.v[k][a] * colloids.v[k][a];
+      const double f = fixed::to_double(colloid_force_[a * dim_ + k]);
+      f2 += f * f;
+    }
+    // Fluid kicks change the force within the step, so a fixed allowance is added to the path
+    // the start values give (a thermal colloid moves ~0.01 per step of 0.1).
+    margin_[a] = std::sqrt(v2) * dt + std::sqrt(f2) / colloids.mass[a] * dt * dt + path_allowance;
+  }
+  // The particles that may meet a colloid this step are copied out; everybody streams the
+  // whole step, then the copies are integrated with the colloids and written back.
+  if (dim_ == 3)
+    box_.walls_y ? select_near<3, true>(fluid, colloids) : select_near<3, false>(fluid, colloids);
+  else
+    box_.walls_y ? select_near<2, true>(fluid, colloids) : select_near<2, false>(fluid, colloids);
+  const std::size_t m = near_index_.size();
+  near_.dim = dim_;
+  near_.resize(m);
+  for (std::size_t j = 0; j < m; ++j) {
+    const std::uint32_t i = near_index_[j];
+    for (int k = 0; k < dim_; ++k) {
+      near_.x[k][j] = fluid.x[k][i];
+      near_.v[k][j] = fluid.v[k][i];
+    }
+    near_.id[j] = fluid.id[i];
+  }
+  drift_(fluid, dt);
+  compute_forces(near_, colloids, comm); // the same colloid forces: every pair is in near_
   for (int s = 0; s < params_.substeps; ++s) {
-    kick(fluid, colloids);
-    drift_(fluid, tau);
-    for (std::size_t a = 0; a < colloids.size(); ++a)
+    kick(near_, colloids);
+    drift_(near_, tau);
+    for (std::size_t a = 0; a < nc; ++a)
       for (int k = 0; k < dim_; ++k) {
         double x = colloids.x[k][a] + colloids.v[k][a] * tau;
         if (!(k == 1 && box_.walls_y))
           x = mpcd::wrap_periodic(x, box_.length[k]);
         colloids.x[k][a] = x;
       }
-    compute_forces(fluid, colloids, comm);
-    kick(fluid, colloids);
+    compute_forces(near_, colloids, comm);
+    kick(near_, colloids);
+  }
+  for (std::size_t j = 0; j < m; ++j) {
+    const std::uint32_t i = near_index_[j];
+    for (int k = 0; k < dim_; ++k) {
+      fluid.x[k][i] = near_.x[k][j];
+      fluid.v[k][i] = near_.v[k][j];
+    }
+  }
+  // A colloid that went further than assumed might have met a particle left out.
+  for (std::size_t a = 0; a < nc; ++a) {
+    double d2 = 0.0;
+    for (int k = 0; k < dim_; ++k) {
+      double d = colloids.x[k][a] - start_[k][a];
+      if (!(k == 1 && box_.walls_y))
+        d = minimum_image(d, box_.length[k]);
+      d2 += d * d;
+    }
+    if (std::sqrt(d2) > margin_[a] + 1e-12) {
+      std::ostringstream os;
+      os << "colloid id " << colloids.id[a] << " moved " << std::sqrt(d2)
+         << " in one step, more than the " << margin_[a]
+         << " its velocity and force allowed (a sudden force: more colloids.md_substeps or a "
+            "smaller fluid.dt)";
+      throw invariant_error(os.str());
+    }
   }
 }
 

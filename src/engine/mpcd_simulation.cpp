@@ -184,6 +184,13 @@ void MpcdSimulation::build_pipeline() {
     p.sigma_wall = c.effective_wall_sigma();
     p.wall_q = c.wall_q;
     p.gravity = c.gravity;
+    if (scene_.body_force) {
+      const auto &b = *scene_.body_force;
+      p.fluid_accel = b.kind == scene::ForceKind::sine
+                          ? std::abs(b.amplitude)
+                          : std::sqrt(b.value[0] * b.value[0] + b.value[1] * b.value[1] +
+                                      b.value[2] * b.value[2]);
+    }
     md_.emplace(p, box_, drift);
     std::string md = "MD: " + std::to_string(c.count) + " colloids (r " + format_number(c.radius) +
                      ", M " + format_number(c.effective_mass(dim, f.density)) + "), " +

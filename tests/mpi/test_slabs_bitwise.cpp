@@ -65,8 +65,8 @@ TEST_P(Bitwise, TwoRanksEqualOneRank) {
   }
   // 2000 steps in CI (~4 s); longer by hand: NARROWS_BITWISE_STEPS=20000 mpirun -n 2 mpi_tests
   const char *env = std::getenv("NARROWS_BITWISE_STEPS");
-  // (colloid cases: 600 steps of 50 MD sub-steps, ~4 s each)
-  const int steps = env ? std::atoi(env) : (c.colloids ? 600 : 2000);
+  // (colloid cases: 1000 steps of 50 MD sub-steps, 2-6 s each)
+  const int steps = env ? std::atoi(env) : (c.colloids ? 1000 : 2000);
   engine::MpcdSimulation par(s, MPI_COMM_WORLD);
   for (int i = 0; i < steps; ++i)
     par.advance();

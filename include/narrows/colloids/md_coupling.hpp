@@ -2,10 +2,17 @@
 // of velocity Verlet with tau_MD = dt / k for the colloids and the fluid. Forces: colloid-fluid
 // WCA, colloid-colloid 48-24, integrated LJ wall, gravity on colloids (potentials.hpp).
 //
-// The fluid between kicks streams exactly (body force, bounce-back walls) with the kernel the
-// pipeline chose once; a particle without colloid force gets no kick, so far from colloids the
-// sub-steps reproduce plain streaming. Colloid-fluid pairs come from a cell list of the fluid
-// (cells at least the WCA cut-off wide, over the whole box, rebuilt every sub-step).
+// Only fluid particles that can come within the WCA cut-off of a colloid during the step take
+// part in the sub-steps: a particle is left out when its distance to every colloid exceeds
+// r_cut + (its largest possible path |v| dt + |a| dt^2/2) + (the colloid's possible path
+// |V| dt + |F|/M dt^2 + 0.25: twice the constant-force value, plus an allowance for the fluid's
+// kicks within the step). Those far particles stream the whole
+// step at once, exactly (body force, bounce-back walls) with the kernel the pipeline chose once;
+// the near ones stream with the same kernel between the velocity-Verlet kicks. After the step
+// every colloid's displacement is checked against its assumed path (invariant_error if it went
+// further, which would mean a missed pair). Colloid-fluid pairs come from a cell list (cells
+// at least the WCA cut-off wide, over the whole box): of all local fluid once per step, of the
+// near particles every sub-step.
 //
 // Parallel model: every rank holds all colloids (they are few: at most a few thousand, and
 // each carries d + d + ... words). Each rank adds the forces of its own fluid particles on
@@ -34,6 +41,7 @@ struct MdParams {
   double sigma_cf = 2.0, sigma_cc = 4.0, epsilon = 1.0;
   double sigma_wall = 4.0, wall_q = 1.0; // used when the box has walls along y
   std::array<double, 3> gravity{0.0, 0.0, 0.0};
+  double fluid_accel = 0.0; // largest body-force acceleration of a fluid particle
 };
 
 // Streams the fluid by tau (walls and body force exact); chosen once by the pipeline.
@@ -71,6 +79,8 @@ private:
   PotentialEnergy forces(const mpcd::Fluid &f, const Colloids &c, MPI_Comm comm, bool want_energy);
   void kick(mpcd::Fluid &fluid, Colloids &colloids) const;
   void clear_fluid_forces();
+  template <int D, bool WallsY> void select_near(const mpcd::Fluid &f, const Colloids &c);
+  void build_cell_list(const mpcd::Fluid &f);
 
   MdParams params_;
   mpcd::Box box_;
@@ -83,6 +93,11 @@ private:
   std::vector<std::uint8_t> fluid_flag_;  // 1 if fluid particle i has a force
   std::vector<std::uint32_t> touched_;    // the flagged particles
   std::vector<std::int64_t> colloid_force_, colloid_local_;
+  std::vector<double> margin_;            // per colloid: its largest possible path this step
+  std::vector<std::uint32_t> near_index_; // local fluid particles taking part in the sub-steps
+  std::vector<std::uint8_t> near_flag_;
+  mpcd::Fluid near_;                         // their copy during the sub-steps
+  std::array<std::vector<double>, 3> start_; // colloid positions at the start of the step
 };
 
 } // namespace narrows::colloids
