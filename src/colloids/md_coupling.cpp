@@ -27,6 +27,21 @@ inline double minimum_image(double d, double L) {
   return d;
 }
 
+// The separation a - b of two points (minimum image along the periodic axes) into d; returns
+// its square.
+template <int D, bool WallsY>
+inline double separation(const double *a, const double *b, const std::array<double, 3> &L,
+                         double *d) {
+  double r2 = 0.0;
+  for (int k = 0; k < D; ++k) {
+    d[k] = a[k] - b[k];
+    if (!(WallsY && k == 1))
+      d[k] = minimum_image(d[k], L[k]);
+    r2 += d[k] * d[k];
+  }
+  return r2;
+}
+
 // A pair force component in fixed point; refuses values the 64-bit sums cannot hold.
 inline std::int64_t to_fixed(double f) {
   if (!(std::abs(f) < fixed::max_magnitude)) {
@@ -101,6 +116,7 @@ void MdCoupling::select_near(const mpcd::Fluid &f, const Colloids &c) {
   const auto &L = box_.length;
   for (std::size_t a = 0; a < c.size(); ++a) {
     const double range = cut + margin_[a];
+    const double xc[3] = {c.x[0][a], c.x[1][a], D == 3 ? c.x[2][a] : 0.0};
     // Cells along each axis within range + max_reach of the colloid's cell (all if that covers
     // the axis); along a wall axis clipped at the ends.
     std::array<std::vector<int>, 3> axis;
@@ -132,13 +148,9 @@ void MdCoupling::select_near(const mpcd::Fluid &f, const Colloids &c) {
             const auto js = static_cast<std::size_t>(j);
             if (near_flag_[js])
               continue;
-            double r2 = 0.0;
-            for (int k = 0; k < D; ++k) {
-              double d = X[k][js] - c.x[k][a];
-              if (!(WallsY && k == 1))
-                d = minimum_image(d, L[k]);
-              r2 += d * d;
-            }
+            const double xj[3] = {X[0][js], X[1][js], D == 3 ? X[2][js] : 0.0};
+            double d[3];
+            const double r2 = separation<D, WallsY>(xj, xc, L, d);
             const double limit = range + reach(js);
             if (r2 < limit * limit) {
               near_flag_[js] = 1;
@@ -169,7 +181,7 @@ PotentialEnergy MdCoupling::forces(const mpcd::Fluid &f, const Colloids &c, MPI_
   const double cut2 = std::pow(repulsive_cutoff(6, params_.sigma_cf), 2);
   const double s2cf = params_.sigma_cf * params_.sigma_cf, eps = params_.epsilon;
   for (std::size_t a = 0; a < nc; ++a) {
-    double xc[3];
+    double xc[3] = {0.0, 0.0, 0.0};
     int lo[3], hi[3], home[3];
     for (int k = 0; k < D; ++k) {
       xc[k] = c.x[k][a];
@@ -194,13 +206,9 @@ PotentialEnergy MdCoupling::forces(const mpcd::Fluid &f, const Colloids &c, MPI_
             cell = cell * static_cast<std::size_t>(cells_[k]) + static_cast<std::size_t>(ck);
           }
           for (std::int32_t j = head_[cell]; j >= 0; j = next_[j]) {
-            double d[3], r2 = 0.0;
-            for (int k = 0; k < D; ++k) {
-              d[k] = X[k][j] - xc[k];
-              if (!(WallsY && k == 1))
-                d[k] = minimum_image(d[k], L[k]);
-              r2 += d[k] * d[k];
-            }
+            const double xj[3] = {X[0][j], X[1][j], D == 3 ? X[2][j] : 0.0};
+            double d[3];
+            const double r2 = separation<D, WallsY>(xj, xc, L, d);
             if (r2 >= cut2)
               continue;
             const PairTerm t = repulsive_pair<6>(r2, s2cf, eps);
@@ -237,13 +245,10 @@ PotentialEnergy MdCoupling::forces(const mpcd::Fluid &f, const Colloids &c, MPI_
   const double s2cc = params_.sigma_cc * params_.sigma_cc;
   for (std::size_t a = 0; a < nc; ++a)
     for (std::size_t b = a + 1; b < nc; ++b) {
-      double d[3], r2 = 0.0;
-      for (int k = 0; k < D; ++k) {
-        d[k] = c.x[k][a] - c.x[k][b];
-        if (!(WallsY && k == 1))
-          d[k] = minimum_image(d[k], L[k]);
-        r2 += d[k] * d[k];
-      }
+      const double xa[3] = {c.x[0][a], c.x[1][a], D == 3 ? c.x[2][a] : 0.0};
+      const double xb[3] = {c.x[0][b], c.x[1][b], D == 3 ? c.x[2][b] : 0.0};
+      double d[3];
+      const double r2 = separation<D, WallsY>(xa, xb, L, d);
       if (r2 >= cutcc2)
         continue;
       const PairTerm t = repulsive_pair<24>(r2, s2cc, eps);

@@ -9,21 +9,29 @@
 
 namespace narrows::io {
 
-SpeciesFields colloid_fields(colloids::Colloids &c, colloids::Colloids &empty, MPI_Comm comm) {
-  int rank = 0;
-  MPI_Comm_rank(comm, &rank);
-  colloids::Colloids &src = rank == 0 ? c : empty;
-  if (rank != 0) {
-    empty.dim = c.dim;
-    empty.resize(0);
-  }
+namespace {
+
+// The stored fields of c: position, velocity, id.
+SpeciesFields fields_of(colloids::Colloids &c) {
   SpeciesFields s;
   s.name = "colloids";
   s.dim = c.dim;
-  s.vectors.push_back({"position", {&src.x[0], &src.x[1], &src.x[2]}});
-  s.vectors.push_back({"velocity", {&src.v[0], &src.v[1], &src.v[2]}});
-  s.words.push_back({"id", &src.id});
+  s.vectors.push_back({"position", {&c.x[0], &c.x[1], &c.x[2]}});
+  s.vectors.push_back({"velocity", {&c.v[0], &c.v[1], &c.v[2]}});
+  s.words.push_back({"id", &c.id});
   return s;
+}
+
+} // namespace
+
+SpeciesFields colloid_fields(colloids::Colloids &c, colloids::Colloids &empty, MPI_Comm comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  if (rank == 0)
+    return fields_of(c);
+  empty.dim = c.dim;
+  empty.resize(0);
+  return fields_of(empty);
 }
 
 colloids::Colloids read_colloids(const std::string &path, const scene::Colloids &spec, int dim,
@@ -31,12 +39,7 @@ colloids::Colloids read_colloids(const std::string &path, const scene::Colloids 
   colloids::Colloids block;
   block.dim = dim;
   block.resize(0);
-  SpeciesFields s;
-  s.name = "colloids";
-  s.dim = dim;
-  s.vectors.push_back({"position", {&block.x[0], &block.x[1], &block.x[2]}});
-  s.vectors.push_back({"velocity", {&block.v[0], &block.v[1], &block.v[2]}});
-  s.words.push_back({"id", &block.id});
+  SpeciesFields s = fields_of(block);
   read_species(path, s, comm);
 
   // Gather every rank's block everywhere: rows of 2 dim + 1 words.

@@ -143,24 +143,21 @@ check_bad "good" "run --set unknown key" "$NARROWS" run "$TMP/good.toml" --set f
   --out "$TMP/out_set2"
 if [[ -e $TMP/out_set2 ]]; then fail "run --set fluid.desnity=3: created the output directory"; else pass; fi
 
-# The good scene passes `check`.
-"$NARROWS" check "$TMP/good.toml" >"$TMP/stdout" 2>"$TMP/stderr"
-rc=$?
-if [[ $rc -eq 0 ]]; then
-  pass
-else
-  fail "check good.toml: exit code $rc, expected 0: $(head -c 300 "$TMP/stderr")"
-fi
+# check_good NAME: `check` of $TMP/NAME.toml exits 0.
+check_good() {
+  "$NARROWS" check "$TMP/$1.toml" >"$TMP/stdout" 2>"$TMP/stderr"
+  local rc=$?
+  if [[ $rc -eq 0 ]]; then
+    pass
+  else
+    fail "check $1.toml: exit code $rc, expected 0: $(head -c 300 "$TMP/stderr")"
+  fi
+}
 
-# A good scene with colloids passes `check` too.
+# The good scene passes `check`, and so does one with colloids in a channel.
+check_good good
 { good_scene; echo; echo '[walls]'; echo; echo '[colloids]'; echo 'radius = 1'; echo 'count = 2'; } >"$TMP/good_colloids.toml"
-"$NARROWS" check "$TMP/good_colloids.toml" >"$TMP/stdout" 2>"$TMP/stderr"
-rc=$?
-if [[ $rc -eq 0 ]]; then
-  pass
-else
-  fail "check good_colloids.toml: exit code $rc, expected 0: $(head -c 300 "$TMP/stderr")"
-fi
+check_good good_colloids
 
 echo "$passed passed, $failed failed"
 [[ $failed -eq 0 ]]

@@ -140,18 +140,22 @@ TEST(ColloidForces, AreMinusGradientsOfThePotentialEnergy) {
     auto energy = [&] {
       return md.compute_forces(c.fluid, c.colloids, MPI_COMM_NULL, true).total();
     };
+    // -dE/dx by central differences at the coordinate x (restored afterwards).
+    auto minus_gradient = [&](double &x) {
+      const double x0 = x;
+      x = x0 + h;
+      const double ep = energy();
+      x = x0 - h;
+      const double em = energy();
+      x = x0;
+      return -(ep - em) / (2 * h);
+    };
     // every colloid coordinate
     for (std::size_t a = 0; a < 3; ++a)
       for (int k = 0; k < 2; ++k) {
         md.compute_forces(c.fluid, c.colloids, MPI_COMM_NULL);
         const double f = fixed::to_double(md.colloid_force(a, k));
-        const double x0 = c.colloids.x[k][a];
-        c.colloids.x[k][a] = x0 + h;
-        const double ep = energy();
-        c.colloids.x[k][a] = x0 - h;
-        const double em = energy();
-        c.colloids.x[k][a] = x0;
-        EXPECT_NEAR(f, -(ep - em) / (2 * h), 1e-5 * (1.0 + std::abs(f)))
+        EXPECT_NEAR(f, minus_gradient(c.colloids.x[k][a]), 1e-5 * (1.0 + std::abs(f)))
             << "colloid " << a << " axis " << k << " walls " << walls;
       }
     // fluid coordinates of the particles that feel a force
@@ -164,13 +168,8 @@ TEST(ColloidForces, AreMinusGradientsOfThePotentialEnergy) {
       for (int k = 0; k < 2; ++k) {
         md.compute_forces(c.fluid, c.colloids, MPI_COMM_NULL);
         const double f = fixed::to_double(md.fluid_force(i, k));
-        const double x0 = c.fluid.x[k][i];
-        c.fluid.x[k][i] = x0 + h;
-        const double ep = energy();
-        c.fluid.x[k][i] = x0 - h;
-        const double em = energy();
-        c.fluid.x[k][i] = x0;
-        EXPECT_NEAR(f, -(ep - em) / (2 * h), 1e-5 * (1.0 + std::abs(f))) << "fluid " << i;
+        EXPECT_NEAR(f, minus_gradient(c.fluid.x[k][i]), 1e-5 * (1.0 + std::abs(f)))
+            << "fluid " << i;
       }
     }
     EXPECT_GT(checked, 10);
@@ -178,35 +177,33 @@ TEST(ColloidForces, AreMinusGradientsOfThePotentialEnergy) {
 }
 
 TEST(ColloidForces, NewtonsThirdLawIsExactInFixedPoint) {
-  // Periodic box, no gravity: the fixed-point forces on all particles sum to exactly zero.
+  // The fixed-point forces on all particles (fluid and colloids) along axis k.
+  auto total = [](const Config &c, const MdCoupling &md, int k) {
+    std::int64_t sum = 0;
+    for (std::size_t i = 0; i < c.fluid.size(); ++i)
+      sum += md.fluid_force(i, k);
+    for (std::size_t a = 0; a < c.colloids.size(); ++a)
+      sum += md.colloid_force(a, k);
+    return sum;
+  };
+  // Periodic box, no gravity: they sum to exactly zero.
   Config c = make_config(false, 9);
   c.params.gravity = {0.0, 0.0, 0.0};
   MdCoupling md = make_md(c);
   md.compute_forces(c.fluid, c.colloids, MPI_COMM_NULL);
-  int pairs_cc = 0;
+  int nonzero = 0;
   for (int k = 0; k < 2; ++k) {
-    std::int64_t sum = 0;
-    for (std::size_t i = 0; i < c.fluid.size(); ++i)
-      sum += md.fluid_force(i, k);
-    for (std::size_t a = 0; a < 3; ++a) {
-      sum += md.colloid_force(a, k);
-      pairs_cc += md.colloid_force(a, k) != 0;
-    }
-    EXPECT_EQ(sum, 0) << "axis " << k;
+    EXPECT_EQ(total(c, md, k), 0) << "axis " << k;
+    for (std::size_t a = 0; a < 3; ++a)
+      nonzero += md.colloid_force(a, k) != 0;
   }
-  EXPECT_GT(pairs_cc, 0);
-  // With gravity the colloids' sum is exactly N_c g in fixed point.
+  EXPECT_GT(nonzero, 0);
+  // With gravity the sum is exactly N_c g in fixed point.
   c.params.gravity = {0.3, -0.1, 0.0};
   MdCoupling mg = make_md(c);
   mg.compute_forces(c.fluid, c.colloids, MPI_COMM_NULL);
-  for (int k = 0; k < 2; ++k) {
-    std::int64_t sum = 0;
-    for (std::size_t i = 0; i < c.fluid.size(); ++i)
-      sum += mg.fluid_force(i, k);
-    for (std::size_t a = 0; a < 3; ++a)
-      sum += mg.colloid_force(a, k);
-    EXPECT_EQ(sum, 3 * fixed::from_double(c.params.gravity[k]));
-  }
+  for (int k = 0; k < 2; ++k)
+    EXPECT_EQ(total(c, mg, k), 3 * fixed::from_double(c.params.gravity[k]));
 }
 
 TEST(ColloidPlacement, RandomKeepsCollodsApartAndOffTheWalls) {

@@ -3,6 +3,8 @@
 #include "narrows/engine/mpcd_simulation.hpp"
 #include "narrows/engine/totals.hpp"
 
+#include "colloid_scene.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,19 +13,11 @@
 using namespace narrows;
 
 TEST(ColloidConservation, TotalMomentumOverTenThousandSteps) {
-  scene::Scene s;
-  s.run.dimensions = 2;
-  s.run.seed = 8;
-  s.domain.size = {32.0, 16.0, 0.0};
-  s.fluid.collision = scene::Collision::srd;
-  s.fluid.density = 10.0;
-  s.fluid.dt = 0.1;
-  s.fluid.angle_deg = 90.0;
   scene::Colloids c;
   c.radius = 2.0;
   c.count = 3;
   c.placement = scene::ColloidPlacement::random;
-  s.colloids = c;
+  const scene::Scene s = narrows::testing::srd_colloid_scene(32.0, 16.0, false, 8, c);
   engine::MpcdSimulation sim(s, MPI_COMM_WORLD);
   const auto p0 = engine::total_momentum(sim);
   const double e0 = engine::total_energy(sim);

@@ -11,6 +11,8 @@
 #include "narrows/engine/invariants.hpp"
 #include "narrows/engine/mpcd_simulation.hpp"
 
+#include "colloid_scene.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -20,22 +22,13 @@
 using namespace narrows;
 
 TEST(ColloidHardCase, TouchingStartUnderStrongGravity) {
-  scene::Scene s;
-  s.run.dimensions = 2;
-  s.run.seed = 7;
-  s.domain.size = {40.0, 10.0, 0.0};
-  s.fluid.collision = scene::Collision::srd;
-  s.fluid.density = 10.0;
-  s.fluid.dt = 0.1;
-  s.fluid.angle_deg = 90.0;
-  s.walls = scene::Walls{};
   scene::Colloids c;
   c.radius = 2.0;
   c.placement = scene::ColloidPlacement::list;
   c.positions = {{10.0, 2.0, 0}, {14.0, 2.0, 0}, {18.0, 2.0, 0}, {22.0, 8.0, 0}, {26.0, 8.0, 0}};
   c.count = 5;
   c.gravity = {1.0, 0.0, 0.0};
-  s.colloids = c;
+  const scene::Scene s = narrows::testing::srd_colloid_scene(40.0, 10.0, true, 7, c);
   engine::MpcdSimulation sim(s, MPI_COMM_WORLD);
   const engine::InvariantCheck invariants(sim);
   const double L = 40.0, sigma = c.radius;
