@@ -52,6 +52,8 @@ std::size_t bytes_per_particle(const scene::Scene &s) {
     b += d * 8;
   if (s.fluid.sort_every > 0)
     b += 8 + 8 + 4 + 4;
+  if (s.colloids) // MD: fixed-point force, flags, cell-list link (near copies not counted)
+    b += d * 8 + 1 + 1 + 4;
   return b;
 }
 
