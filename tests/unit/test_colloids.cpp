@@ -206,7 +206,7 @@ TEST(ColloidForces, NewtonsThirdLawIsExactInFixedPoint) {
     EXPECT_EQ(total(c, mg, k), 3 * fixed::from_double(c.params.gravity[k]));
 }
 
-TEST(ColloidPlacement, RandomKeepsCollodsApartAndOffTheWalls) {
+TEST(ColloidPlacement, RandomKeepsColloidsApartAndOffTheWalls) {
   scene::Colloids spec;
   spec.radius = 1.5;
   spec.count = 12;
