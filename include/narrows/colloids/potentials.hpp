@@ -13,7 +13,8 @@
 // where U(h_cut) = -(3 pi eps q / 2)(6/11)(160/231)^(5/6). Truncated at h_cut and shifted by
 // that value, U and the force F = -dU/dh = (15 pi eps q / 2)[(231/160)(sigma/h)^11 -
 // (sigma/h)^5]/h (eq 3.37) both vanish at the cut-off, so the potential is continuous with a
-// continuous force.
+// continuous force. The seed is 2D (a wall is a line of LJ centres); in a 3D slit the same
+// profile is used as a smooth repulsive wall (the plane-integrated 9-3 form is not implemented).
 #pragma once
 
 #include <cmath>
