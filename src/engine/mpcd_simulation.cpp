@@ -4,6 +4,7 @@
 #include "narrows/colloids/placement.hpp"
 #include "narrows/colloids/potentials.hpp"
 #include "narrows/mpcd/streaming.hpp"
+#include "narrows/mpcd/thermostat.hpp"
 #include "narrows/walls/bounce_back.hpp"
 #include "narrows/walls/virtual_particles.hpp"
 
@@ -285,6 +286,15 @@ void MpcdSimulation::build_pipeline() {
                                           : "permute all velocities (random solvent)",
                        [this, seed](std::uint64_t step) {
                          mpcd::permute_velocities(fluid_, collision_scratch_, seed, step);
+                       }});
+
+  // Thermostat: per-layer rescaling relative to the cell means (seed 000 eq 3.53-3.54).
+  if (scene_.thermostat)
+    stages_.push_back({"thermostat: rescale velocities relative to the cell means per layer of "
+                       "cells to kT " +
+                           format_number(kT) + " (seed 000 eq 3.53-3.54)",
+                       [this, kT](std::uint64_t) {
+                         mpcd::rescale_layers(fluid_, grid_, kT, layer_sums_, comm_);
                        }});
 
   // 5. Locality: counting sort by cell on a schedule.

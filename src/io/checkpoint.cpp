@@ -733,6 +733,8 @@ void check_restart_scene(const scene::Scene &given, const CheckpointInfo &info,
              s.body_force->value[k]);
     differ("body_force.amplitude", g.body_force->amplitude, s.body_force->amplitude);
   }
+  differ("[thermostat]", std::string(g.thermostat ? "present" : "absent"),
+         std::string(s.thermostat ? "present" : "absent"));
   differ("[colloids]", std::string(g.colloids ? "present" : "absent"),
          std::string(s.colloids ? "present" : "absent"));
   if (g.colloids && s.colloids) {

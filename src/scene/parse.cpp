@@ -48,6 +48,7 @@ const std::vector<Section> &schema() {
       {"fluid", {"collision", "density", "dt", "angle", "kT", "sort_every"}},
       {"body_force", {"kind", "value", "amplitude"}},
       {"walls", {"slip", "virtual_particles", "virtual_flow"}},
+      {"thermostat", {"kind"}},
       {"colloids",
        {"radius", "mass", "count", "placement", "positions", "gravity", "md_substeps", "epsilon",
         "wall_sigma", "wall_q"}},
@@ -853,6 +854,22 @@ std::optional<Colloids> parse_colloids(const Ctx &c, const value *sec, const Dom
   return out;
 }
 
+std::optional<Thermostat> parse_thermostat(const Ctx &c, const value *sec, Collision rule) {
+  if (sec == nullptr)
+    return std::nullopt;
+  check_keys(c, sec, "thermostat");
+  Thermostat out;
+  const value *kind = find(sec, "kind");
+  if (kind == nullptr)
+    c.missing("thermostat.kind", "\"layers\" (seed 000 eq 3.53-3.54)");
+  as_choice(c, *kind, "thermostat.kind", "a known thermostat", {"layers"});
+  if (rule != Collision::srd && rule != Collision::random_permute)
+    c.fail("thermostat", std::string("[thermostat] with fluid.collision = \"") + to_string(rule) +
+                             "\"; allowed with srd or random-permute (MPC-AT thermostats "
+                             "itself, random-maxwell draws at kT)");
+  return out;
+}
+
 std::optional<Walls> parse_walls(const Ctx &c, const value *w,
                                  const std::optional<BodyForce> &force) {
   if (w == nullptr)
@@ -1070,7 +1087,7 @@ Scene parse_scene(const std::string &text, const std::string &file,
 
   parse_run(c, run, s.run);
   if (s.run.engine == Engine::kmc) {
-    for (const char *name : {"domain", "fluid", "body_force", "walls", "colloids"})
+    for (const char *name : {"domain", "fluid", "body_force", "walls", "colloids", "thermostat"})
       if (section(c, root, name) != nullptr)
         c.fail(name, std::string("section [") + name +
                          "] is for engine mpcd; allowed with run.engine = \"kmc\": [run], [kmc], "
@@ -1087,13 +1104,14 @@ Scene parse_scene(const std::string &text, const std::string &file,
       c.fail("kmc", "section [kmc] needs run.engine = \"kmc\"; allowed with run.engine = \"" +
                         std::string(to_string(s.run.engine)) +
                         "\": [run], [domain], [fluid], "
-                        "[body_force], [walls], [colloids], [output]");
+                        "[body_force], [walls], [colloids], [thermostat], [output]");
     parse_domain(c, section(c, root, "domain"), s.run.dimensions, s.domain);
     parse_fluid(c, section(c, root, "fluid"), s.domain, s.run.dimensions, s.fluid);
     s.body_force = parse_body_force(c, section(c, root, "body_force"), s.run.dimensions);
     s.walls = parse_walls(c, section(c, root, "walls"), s.body_force);
     s.colloids = parse_colloids(c, section(c, root, "colloids"), s.domain, s.run.dimensions,
                                 s.walls.has_value());
+    s.thermostat = parse_thermostat(c, section(c, root, "thermostat"), s.fluid.collision);
   }
   parse_output(c, section(c, root, "output"), s.run.engine, s.output);
   const auto &obs = s.output.observables;

@@ -87,6 +87,7 @@ add colloids_bad_placement "$(colloids 'radius = 1' 'count = 1' 'placement = "he
 add colloids_gravity_length "$(colloids 'radius = 1' 'count = 1' 'gravity = [0.1, 0.0, 0.0]')"
 add colloids_wall_sigma_no_walls "$(colloids 'radius = 1' 'count = 1' 'wall_sigma = 1.0')"
 add colloids_too_wide_for_channel "$(good_scene; echo; echo '[walls]'; echo; echo '[colloids]'; echo 'radius = 2'; echo 'count = 1')"
+add thermostat_unknown_kind "$(good_scene; echo; echo '[thermostat]'; echo 'kind = "andersen"')"
 add colloids_position_outside "$(colloids 'radius = 1' 'placement = "list"' 'positions = [[9.0, 4.0]]')"
 
 # check_bad NAME CMD...: runs CMD, expects exit 2 and one stderr line naming NAME.toml

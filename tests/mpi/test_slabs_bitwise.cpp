@@ -28,10 +28,11 @@ struct Case {
   const char *name;
   int dim;
   scene::Collision rule;
-  bool sine;             // sine force, else constant force
-  bool walls = false;    // no-slip walls at y = 0 and y = L_y with virtual particles
-  bool mirror = false;   // ... whose mean velocity continues the flow (walls.virtual_flow)
-  bool colloids = false; // MD-coupled colloids with gravity (walls: also the wall potential)
+  bool sine;               // sine force, else constant force
+  bool walls = false;      // no-slip walls at y = 0 and y = L_y with virtual particles
+  bool mirror = false;     // ... whose mean velocity continues the flow (walls.virtual_flow)
+  bool colloids = false;   // MD-coupled colloids with gravity (walls: also the wall potential)
+  bool thermostat = false; // per-layer rescaling thermostat
 };
 
 class Bitwise : public ::testing::TestWithParam<Case> {};
@@ -54,6 +55,8 @@ TEST_P(Bitwise, TwoRanksEqualOneRank) {
   if (c.walls)
     s.walls =
         scene::Walls{false, true, c.mirror ? scene::VirtualFlow::mirror : scene::VirtualFlow::rest};
+  if (c.thermostat)
+    s.thermostat = scene::Thermostat{};
   if (c.colloids) {
     scene::Colloids col;
     col.radius = c.dim == 2 ? 2.0 : 1.0;
@@ -110,5 +113,8 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"at3d_walls", 3, scene::Collision::at, false, true},
         Case{"srd2d_colloids", 2, scene::Collision::srd, false, false, false, true},
         Case{"srd2d_walls_colloids", 2, scene::Collision::srd, false, true, false, true},
-        Case{"srd3d_walls_colloids", 3, scene::Collision::srd, false, true, false, true}),
+        Case{"srd3d_walls_colloids", 3, scene::Collision::srd, false, true, false, true},
+        Case{"srd2d_walls_colloids_thermostat", 2, scene::Collision::srd, false, true, false, true,
+             true},
+        Case{"srd3d_sine_thermostat", 3, scene::Collision::srd, true, false, false, false, true}),
     [](const auto &info) { return std::string(info.param.name); });

@@ -453,3 +453,13 @@ TEST(SceneErrors, ColloidsKeys) {
   bad(with("output", "observables = [\"settling_velocity\"]"),
       {"settling_velocity", "only with [colloids]"});
 }
+
+TEST(Scene, Thermostat) {
+  const Scene s = parse_scene(with("thermostat", "kind = \"layers\"", channel_scene), "t.toml");
+  ASSERT_TRUE(s.thermostat.has_value());
+  EXPECT_EQ(s.thermostat->kind, ThermostatKind::layers);
+  bad(with("thermostat", "kind = \"layer\"", channel_scene), {"thermostat.kind", "layers"});
+  bad(with("thermostat", "", channel_scene), {"thermostat.kind", "missing"});
+  bad(with("thermostat", "kind = \"layers\"\nevery = 2", channel_scene), {"thermostat.every"});
+  bad(with("thermostat", "kind = \"layers\""), {"[thermostat]", "at+a", "srd"});
+}

@@ -8,6 +8,7 @@
 #include "narrows/mpcd/cell_sort.hpp"
 #include "narrows/mpcd/collision.hpp"
 #include "narrows/mpcd/fluid.hpp"
+#include "narrows/mpcd/thermostat.hpp"
 #include "narrows/parallel/exchange.hpp"
 #include "narrows/parallel/slabs.hpp"
 #include "narrows/scene/scene.hpp"
@@ -85,6 +86,7 @@ private:
   mpcd::CellGrid grid_;
   mpcd::CollisionScratch collision_scratch_;
   mpcd::SortScratch sort_scratch_;
+  mpcd::LayerSums layer_sums_;
   std::vector<Stage> stages_;
   std::int64_t step_ = 0;
 };

@@ -72,6 +72,14 @@ struct Colloids {
   double effective_wall_sigma() const { return wall_sigma > 0.0 ? wall_sigma : 2.0 * radius; }
 };
 
+// Thermostat of seed 000 §3.4: "layers" rescales velocities relative to the cell means per layer
+// of cells across the channel (eq 3.53-3.54) to fluid.kT after every collision.
+enum class ThermostatKind { layers };
+
+struct Thermostat {
+  ThermostatKind kind = ThermostatKind::layers;
+};
+
 struct Output {
   std::string dir = "out";
   std::int64_t every = 100; // observables cadence in steps
@@ -126,6 +134,7 @@ struct Scene {
   std::optional<BodyForce> body_force;
   std::optional<Walls> walls;
   std::optional<Colloids> colloids;
+  std::optional<Thermostat> thermostat;
   Output output;
   std::optional<Kmc> kmc; // engine kmc only
 };
