@@ -289,13 +289,23 @@ void MpcdSimulation::build_pipeline() {
                        }});
 
   // Thermostat: per-layer rescaling relative to the cell means (seed 000 eq 3.53-3.54).
-  if (scene_.thermostat)
+  if (scene_.thermostat && scene_.thermostat->kind == scene::ThermostatKind::layers)
     stages_.push_back({"thermostat: rescale velocities relative to the cell means per layer of "
                        "cells to kT " +
                            format_number(kT) + " (seed 000 eq 3.53-3.54)",
                        [this, kT](std::uint64_t) {
                          mpcd::rescale_layers(fluid_, grid_, kT, layer_sums_, comm_);
                        }});
+  if (scene_.thermostat && scene_.thermostat->kind == scene::ThermostatKind::monte_carlo) {
+    const double gamma = scene_.thermostat->gamma;
+    stages_.push_back({"thermostat: Monte Carlo scaling of each cell's relative velocities "
+                       "toward kT " +
+                           format_number(kT) + ", gamma " + format_number(gamma) +
+                           " (seed 000 eq 3.55-3.57)",
+                       [this, kT, gamma, seed](std::uint64_t step) {
+                         mpcd::monte_carlo_cells(fluid_, grid_, kT, gamma, seed, step, layer_sums_);
+                       }});
+  }
 
   // 5. Locality: counting sort by cell on a schedule.
   if (f.sort_every > 0) {

@@ -735,6 +735,11 @@ void check_restart_scene(const scene::Scene &given, const CheckpointInfo &info,
   }
   differ("[thermostat]", std::string(g.thermostat ? "present" : "absent"),
          std::string(s.thermostat ? "present" : "absent"));
+  if (g.thermostat && s.thermostat) {
+    differ("thermostat.kind", static_cast<int>(g.thermostat->kind),
+           static_cast<int>(s.thermostat->kind));
+    differ("thermostat.gamma", g.thermostat->gamma, s.thermostat->gamma);
+  }
   differ("[colloids]", std::string(g.colloids ? "present" : "absent"),
          std::string(s.colloids ? "present" : "absent"));
   if (g.colloids && s.colloids) {

@@ -2,10 +2,28 @@
 #include "narrows/mpcd/thermostat.hpp"
 
 #include "narrows/core/fixed_point.hpp"
+#include "narrows/core/rng.hpp"
 
 #include <cmath>
 
 namespace narrows::mpcd {
+
+namespace {
+
+// Cell momenta and counts of the particles as they are now (fixed point: order-independent).
+void sum_cells(const Fluid &f, std::size_t cells, LayerSums &s) {
+  const int d = f.dim;
+  s.cell_p.assign(cells * d, 0);
+  s.cell_n.assign(cells, 0);
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    const std::size_t c = f.cell[i];
+    for (int k = 0; k < d; ++k)
+      s.cell_p[c * d + k] += fixed::from_double(f.v[k][i]);
+    ++s.cell_n[c];
+  }
+}
+
+} // namespace
 
 void rescale_layers(Fluid &f, const CellGrid &grid, double kT, LayerSums &s, MPI_Comm comm) {
   const int d = f.dim;
@@ -13,16 +31,8 @@ void rescale_layers(Fluid &f, const CellGrid &grid, double kT, LayerSums &s, MPI
   const std::size_t ny = static_cast<std::size_t>(grid.cells[1]);
   const std::size_t n = f.size();
   auto layer_of = [&](std::size_t c) { return (c / nx) % ny; };
-  // Cell mean velocities of the particles as they are now (fixed point: order-independent).
   const std::size_t nc = grid.size();
-  s.cell_p.assign(nc * d, 0);
-  s.cell_n.assign(nc, 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t c = f.cell[i];
-    for (int k = 0; k < d; ++k)
-      s.cell_p[c * d + k] += fixed::from_double(f.v[k][i]);
-    ++s.cell_n[c];
-  }
+  sum_cells(f, nc, s);
   auto mean = [&](std::size_t c, int k) {
     return fixed::to_double(s.cell_p[c * d + k]) / static_cast<double>(s.cell_n[c]);
   };
@@ -60,6 +70,51 @@ void rescale_layers(Fluid &f, const CellGrid &grid, double kT, LayerSums &s, MPI
     for (int k = 0; k < d; ++k) {
       const double u = mean(c, k);
       f.v[k][i] = u + (f.v[k][i] - u) * a;
+    }
+  }
+}
+
+void monte_carlo_cells(Fluid &f, const CellGrid &grid, double kT, double gamma, std::uint64_t seed,
+                       std::uint64_t step, LayerSums &s) {
+  const int d = f.dim;
+  const std::size_t n = f.size(), nc = grid.size();
+  sum_cells(f, nc, s);
+  auto mean = [&](std::size_t c, int k) {
+    return fixed::to_double(s.cell_p[c * d + k]) / static_cast<double>(s.cell_n[c]);
+  };
+  // Relative kinetic energy per cell, in fixed point (s.local reused as per-cell storage).
+  s.local.assign(nc, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t c = f.cell[i];
+    double e = 0.0;
+    for (int k = 0; k < d; ++k) {
+      const double r = f.v[k][i] - mean(c, k);
+      e += r * r;
+    }
+    s.local[c] += fixed::from_double(0.5 * e);
+  }
+  // The factor of each cell (1 = rejected or fewer than 2 particles).
+  std::vector<double> &zeta = s.zeta;
+  zeta.assign(nc, 1.0);
+  for (std::size_t c = 0; c < nc; ++c) {
+    if (s.cell_n[c] < 2)
+      continue;
+    const auto r = rng::draw(seed, rng::Purpose::mc_thermostat, step, grid.global_id(c));
+    const double eps = gamma * rng::open01(r[0]);
+    const double z = (r[1] & 1u) ? 1.0 + eps : 1.0 / (1.0 + eps);
+    const double dof = static_cast<double>(d) * (s.cell_n[c] - 1.0);
+    const double e = fixed::to_double(s.local[c]);
+    const double log_accept = dof * std::log(z) - (z * z - 1.0) * e / kT;
+    if (log_accept >= 0.0 || rng::open01(r[2]) < std::exp(log_accept))
+      zeta[c] = z;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t c = f.cell[i];
+    if (zeta[c] == 1.0)
+      continue;
+    for (int k = 0; k < d; ++k) {
+      const double u = mean(c, k);
+      f.v[k][i] = u + (f.v[k][i] - u) * zeta[c];
     }
   }
 }

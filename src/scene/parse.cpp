@@ -48,7 +48,7 @@ const std::vector<Section> &schema() {
       {"fluid", {"collision", "density", "dt", "angle", "kT", "sort_every"}},
       {"body_force", {"kind", "value", "amplitude"}},
       {"walls", {"slip", "virtual_particles", "virtual_flow"}},
-      {"thermostat", {"kind"}},
+      {"thermostat", {"kind", "gamma"}},
       {"colloids",
        {"radius", "mass", "count", "placement", "positions", "gravity", "md_substeps", "epsilon",
         "wall_sigma", "wall_q"}},
@@ -861,8 +861,18 @@ std::optional<Thermostat> parse_thermostat(const Ctx &c, const value *sec, Colli
   Thermostat out;
   const value *kind = find(sec, "kind");
   if (kind == nullptr)
-    c.missing("thermostat.kind", "\"layers\" (seed 000 eq 3.53-3.54)");
-  as_choice(c, *kind, "thermostat.kind", "a known thermostat", {"layers"});
+    c.missing("thermostat.kind", "\"layers\" (seed 000 eq 3.53-3.54) or \"monte-carlo\" (eq "
+                                 "3.55-3.57)");
+  out.kind = static_cast<ThermostatKind>(
+      as_choice(c, *kind, "thermostat.kind", "a known thermostat", {"layers", "monte-carlo"}));
+  if (const value *g = find(sec, "gamma")) {
+    if (out.kind != ThermostatKind::monte_carlo)
+      c.fail("thermostat.gamma", "thermostat.gamma = " + repr(*g) +
+                                     " is the step of the Monte Carlo thermostat; allowed only "
+                                     "with kind = \"monte-carlo\"");
+    out.gamma = as_number(c, *g, "thermostat.gamma", "a number in (0, 1]",
+                          [](double x) { return x > 0.0 && x <= 1.0; });
+  }
   if (rule != Collision::srd && rule != Collision::random_permute)
     c.fail("thermostat", std::string("[thermostat] with fluid.collision = \"") + to_string(rule) +
                              "\"; allowed with srd or random-permute (MPC-AT thermostats "

@@ -32,7 +32,7 @@ struct Case {
   bool walls = false;      // no-slip walls at y = 0 and y = L_y with virtual particles
   bool mirror = false;     // ... whose mean velocity continues the flow (walls.virtual_flow)
   bool colloids = false;   // MD-coupled colloids with gravity (walls: also the wall potential)
-  bool thermostat = false; // per-layer rescaling thermostat
+  bool thermostat = false; // 2D: per-layer rescaling thermostat, 3D: Monte Carlo
 };
 
 class Bitwise : public ::testing::TestWithParam<Case> {};
@@ -55,8 +55,9 @@ TEST_P(Bitwise, TwoRanksEqualOneRank) {
   if (c.walls)
     s.walls =
         scene::Walls{false, true, c.mirror ? scene::VirtualFlow::mirror : scene::VirtualFlow::rest};
-  if (c.thermostat)
-    s.thermostat = scene::Thermostat{};
+  if (c.thermostat) // 2D: per-layer rescaling; 3D: Monte Carlo cells
+    s.thermostat = scene::Thermostat{
+        c.dim == 2 ? scene::ThermostatKind::layers : scene::ThermostatKind::monte_carlo, 0.2};
   if (c.colloids) {
     scene::Colloids col;
     col.radius = c.dim == 2 ? 2.0 : 1.0;

@@ -462,4 +462,12 @@ TEST(Scene, Thermostat) {
   bad(with("thermostat", "", channel_scene), {"thermostat.kind", "missing"});
   bad(with("thermostat", "kind = \"layers\"\nevery = 2", channel_scene), {"thermostat.every"});
   bad(with("thermostat", "kind = \"layers\""), {"[thermostat]", "at+a", "srd"});
+  const Scene m = parse_scene(
+      with("thermostat", "kind = \"monte-carlo\"\ngamma = 0.3", channel_scene), "t.toml");
+  EXPECT_EQ(m.thermostat->kind, ThermostatKind::monte_carlo);
+  EXPECT_DOUBLE_EQ(m.thermostat->gamma, 0.3);
+  bad(with("thermostat", "kind = \"layers\"\ngamma = 0.3", channel_scene),
+      {"thermostat.gamma", "monte-carlo"});
+  bad(with("thermostat", "kind = \"monte-carlo\"\ngamma = 2", channel_scene),
+      {"thermostat.gamma = 2", "(0, 1]"});
 }

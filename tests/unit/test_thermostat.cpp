@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <vector>
 
@@ -74,4 +75,68 @@ TEST(LayerThermostat, KeepsCellMomentaAndSetsEachLayerToKT) {
     }
     EXPECT_GE(layers, 6);
   }
+}
+
+TEST(MonteCarloThermostat, DrivesCellTemperaturesToKTAndKeepsCellMomenta) {
+  // A hot 2D fluid (kT = 3) in 64 x 64 cells, n = 10; only the thermostat acts, 400 times. Its
+  // stationary law for a cell's relative energy E is the Boltzmann one of d(n - 1) degrees of
+  // freedom, mean (d/2)(n - 1) kT with kT = 1. Mean over ~4000 cells of E / ((d/2)(n - 1)):
+  // relative spread sqrt(2 / (d (n - 1))) ~ 0.33 per cell, so ~0.006 for the mean; 0.03 is 5
+  // sigma. (From kT = 3 the walk needs ~60 accepted steps of ~0.05 in ln zeta: 400 is ample.)
+  const int dim = 2;
+  mpcd::Box box = mpcd::make_periodic_box(dim, {64, 64, 1});
+  mpcd::Fluid f;
+  f.dim = dim;
+  std::mt19937_64 gen(5);
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  std::normal_distribution<double> normal(0.0, std::sqrt(3.0));
+  const std::size_t n = 64 * 64 * 10;
+  f.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    f.id[i] = i;
+    for (int k = 0; k < dim; ++k) {
+      f.x[k][i] = u01(gen) * box.length[k];
+      f.v[k][i] = normal(gen) + (k == 0 ? 0.5 * std::sin(f.x[1][i]) : 0.0);
+    }
+  }
+  mpcd::CellGrid grid(box);
+  grid.set_shift({0.0, 0.0, 0.0});
+  mpcd::bin_particles(f, grid);
+  const std::size_t nc = grid.size();
+  auto cell_stats = [&](std::vector<double> &p, std::vector<double> &e, std::vector<double> &cn) {
+    p.assign(nc * dim, 0.0), e.assign(nc, 0.0), cn.assign(nc, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      cn[f.cell[i]] += 1.0;
+      for (int k = 0; k < dim; ++k)
+        p[f.cell[i] * dim + k] += f.v[k][i];
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      for (int k = 0; k < dim; ++k) {
+        const double r = f.v[k][i] - p[f.cell[i] * dim + k] / cn[f.cell[i]];
+        e[f.cell[i]] += 0.5 * r * r;
+      }
+  };
+  std::vector<double> p0, e0, cn, p1, e1;
+  cell_stats(p0, e0, cn);
+  mpcd::LayerSums scratch;
+  for (std::uint64_t step = 0; step < 400; ++step)
+    mpcd::monte_carlo_cells(f, grid, 1.0, 0.1, 77, step, scratch);
+  cell_stats(p1, e1, cn);
+  double ratio = 0.0, before = 0.0;
+  int cells = 0;
+  for (std::size_t c = 0; c < nc; ++c) {
+    for (int k = 0; k < dim; ++k)
+      EXPECT_NEAR(p1[c * dim + k], p0[c * dim + k], 1e-9);
+    if (cn[c] < 2)
+      continue;
+    ratio += e1[c] / (0.5 * dim * (cn[c] - 1.0));
+    before += e0[c] / (0.5 * dim * (cn[c] - 1.0));
+    ++cells;
+  }
+  ratio /= cells;
+  before /= cells;
+  std::printf("mean cell kT: %.4f before, %.4f after 400 Monte Carlo steps (target 1)\n", before,
+              ratio);
+  EXPECT_NEAR(before, 3.0, 0.15); // the start was hot
+  EXPECT_NEAR(ratio, 1.0, 0.03);
 }

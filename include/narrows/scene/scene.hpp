@@ -72,12 +72,15 @@ struct Colloids {
   double effective_wall_sigma() const { return wall_sigma > 0.0 ? wall_sigma : 2.0 * radius; }
 };
 
-// Thermostat of seed 000 §3.4: "layers" rescales velocities relative to the cell means per layer
+// Thermostats of seed 000 §3.4: "layers" rescales velocities relative to the cell means per layer
 // of cells across the channel (eq 3.53-3.54) to fluid.kT after every collision.
-enum class ThermostatKind { layers };
+// "monte-carlo" scales each cell's relative velocities by a random factor accepted with the
+// Boltzmann weight (eq 3.55-3.57), step size `gamma`.
+enum class ThermostatKind { layers, monte_carlo };
 
 struct Thermostat {
   ThermostatKind kind = ThermostatKind::layers;
+  double gamma = 0.1; // monte-carlo: eps uniform in [0, gamma]
 };
 
 struct Output {
