@@ -23,6 +23,29 @@ void sum_cells(const Fluid &f, std::size_t cells, LayerSums &s) {
   }
 }
 
+// Mean velocity component k of cell c (after sum_cells).
+inline double cell_mean(const LayerSums &s, int d, std::size_t c, int k) {
+  return fixed::to_double(s.cell_p[c * d + k]) / static_cast<double>(s.cell_n[c]);
+}
+
+// |v_i - u|^2 of particle i relative to its cell's mean.
+inline double relative_v2(const Fluid &f, const LayerSums &s, std::size_t i) {
+  double e = 0.0;
+  for (int k = 0; k < f.dim; ++k) {
+    const double r = f.v[k][i] - cell_mean(s, f.dim, f.cell[i], k);
+    e += r * r;
+  }
+  return e;
+}
+
+// v_i = u + a (v_i - u) for particle i.
+inline void scale_relative(Fluid &f, const LayerSums &s, std::size_t i, double a) {
+  for (int k = 0; k < f.dim; ++k) {
+    const double u = cell_mean(s, f.dim, f.cell[i], k);
+    f.v[k][i] = u + (f.v[k][i] - u) * a;
+  }
+}
+
 } // namespace
 
 void rescale_layers(Fluid &f, const CellGrid &grid, double kT, LayerSums &s, MPI_Comm comm) {
@@ -33,19 +56,11 @@ void rescale_layers(Fluid &f, const CellGrid &grid, double kT, LayerSums &s, MPI
   auto layer_of = [&](std::size_t c) { return (c / nx) % ny; };
   const std::size_t nc = grid.size();
   sum_cells(f, nc, s);
-  auto mean = [&](std::size_t c, int k) {
-    return fixed::to_double(s.cell_p[c * d + k]) / static_cast<double>(s.cell_n[c]);
-  };
   s.local.assign(3 * ny, 0);
   for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t c = f.cell[i];
-    double e = 0.0;
-    for (int k = 0; k < d; ++k) {
-      const double r = f.v[k][i] - mean(c, k);
-      e += r * r;
-    }
-    s.local[3 * layer_of(c)] += fixed::from_double(e);
-    s.local[3 * layer_of(c) + 1] += 1;
+    const std::size_t l = layer_of(f.cell[i]);
+    s.local[3 * l] += fixed::from_double(relative_v2(f, s, i));
+    s.local[3 * l + 1] += 1;
   }
   for (std::size_t c = 0; c < nc; ++c)
     s.local[3 * layer_of(c) + 2] += s.cell_n[c] > 0 ? 1 : 0;
@@ -64,14 +79,8 @@ void rescale_layers(Fluid &f, const CellGrid &grid, double kT, LayerSums &s, MPI
     if (dof > 0.0 && e > 0.0)
       scale[l] = std::sqrt(kT * dof / e); // kT' = e / dof (mass 1)
   }
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t c = f.cell[i];
-    const double a = scale[layer_of(c)];
-    for (int k = 0; k < d; ++k) {
-      const double u = mean(c, k);
-      f.v[k][i] = u + (f.v[k][i] - u) * a;
-    }
-  }
+  for (std::size_t i = 0; i < n; ++i)
+    scale_relative(f, s, i, scale[layer_of(f.cell[i])]);
 }
 
 void monte_carlo_cells(Fluid &f, const CellGrid &grid, double kT, double gamma, std::uint64_t seed,
@@ -79,20 +88,10 @@ void monte_carlo_cells(Fluid &f, const CellGrid &grid, double kT, double gamma, 
   const int d = f.dim;
   const std::size_t n = f.size(), nc = grid.size();
   sum_cells(f, nc, s);
-  auto mean = [&](std::size_t c, int k) {
-    return fixed::to_double(s.cell_p[c * d + k]) / static_cast<double>(s.cell_n[c]);
-  };
   // Relative kinetic energy per cell, in fixed point (s.local reused as per-cell storage).
   s.local.assign(nc, 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t c = f.cell[i];
-    double e = 0.0;
-    for (int k = 0; k < d; ++k) {
-      const double r = f.v[k][i] - mean(c, k);
-      e += r * r;
-    }
-    s.local[c] += fixed::from_double(0.5 * e);
-  }
+  for (std::size_t i = 0; i < n; ++i)
+    s.local[f.cell[i]] += fixed::from_double(0.5 * relative_v2(f, s, i));
   // The factor of each cell (1 = rejected or fewer than 2 particles).
   std::vector<double> &zeta = s.zeta;
   zeta.assign(nc, 1.0);
@@ -108,15 +107,9 @@ void monte_carlo_cells(Fluid &f, const CellGrid &grid, double kT, double gamma, 
     if (log_accept >= 0.0 || rng::open01(r[2]) < std::exp(log_accept))
       zeta[c] = z;
   }
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t c = f.cell[i];
-    if (zeta[c] == 1.0)
-      continue;
-    for (int k = 0; k < d; ++k) {
-      const double u = mean(c, k);
-      f.v[k][i] = u + (f.v[k][i] - u) * zeta[c];
-    }
-  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (zeta[f.cell[i]] != 1.0)
+      scale_relative(f, s, i, zeta[f.cell[i]]);
 }
 
 } // namespace narrows::mpcd
