@@ -1,7 +1,10 @@
 // Building and stepping the MPCD pipeline.
 #include "narrows/engine/mpcd_simulation.hpp"
 
+#include "narrows/colloids/placement.hpp"
+#include "narrows/colloids/potentials.hpp"
 #include "narrows/mpcd/streaming.hpp"
+#include "narrows/mpcd/thermostat.hpp"
 #include "narrows/walls/bounce_back.hpp"
 #include "narrows/walls/virtual_particles.hpp"
 
@@ -21,6 +24,9 @@ mpcd::Box make_box(const scene::Scene &scene) {
 }
 
 std::uint64_t particle_count(const scene::Scene &scene) {
+  if (scene.colloids)
+    return colloids::fluid_count_with_colloids(*scene.colloids, make_box(scene),
+                                               scene.fluid.density);
   return mpcd::fluid_particle_count(make_box(scene), scene.fluid.density);
 }
 
@@ -47,6 +53,8 @@ std::size_t bytes_per_particle(const scene::Scene &s) {
     b += d * 8;
   if (s.fluid.sort_every > 0)
     b += 8 + 8 + 4 + 4;
+  if (s.colloids) // MD: fixed-point force, flags, cell-list link (near copies not counted)
+    b += d * 8 + 1 + 1 + 4;
   return b;
 }
 
@@ -83,8 +91,16 @@ MpcdSimulation::MpcdSimulation(const scene::Scene &scene, MPI_Comm comm, bool al
     const auto r = static_cast<std::uint64_t>(slabs_.rank());
     const auto p = static_cast<std::uint64_t>(slabs_.ranks());
     const std::uint64_t first = total * r / p, last = total * (r + 1) / p;
-    mpcd::init_fluid(fluid_, box_, scene.fluid.kT, scene.run.seed, first, last - first, total,
-                     comm);
+    mpcd::Excluded excluded;
+    if (scene.colloids) {
+      colloids_ =
+          colloids::place_colloids(*scene.colloids, box_, scene.fluid.density, scene.run.seed);
+      excluded = [this](const std::array<double, 3> &p) {
+        return colloids::inside_any(colloids_, box_, p);
+      };
+    }
+    mpcd::init_fluid(fluid_, box_, scene.fluid.kT, scene.run.seed, first, last - first, total, comm,
+                     excluded);
   }
   build_pipeline();
 }
@@ -127,37 +143,71 @@ void MpcdSimulation::build_pipeline() {
   const int dim = box_.dim;
   const auto rule = f.collision;
 
-  // 1. Stream, exactly for the body force the scene has (and the walls).
+  // 1. Stream, exactly for the body force the scene has (and the walls); with colloids the
+  // same drift runs between the velocity-Verlet kicks of every MD sub-step.
+  std::string name;
+  colloids::FluidDrift drift;
+  const mpcd::Box box = box_;
   if (scene_.walls) {
     const bool slip = scene_.walls->slip;
     const std::array<double, 3> g =
         scene_.body_force ? scene_.body_force->value : std::array<double, 3>{0.0, 0.0, 0.0};
-    std::string name = std::string("stream with ") +
-                       (slip ? "slip (specular)" : "no-slip bounce-back") +
-                       " walls at y = 0 and y = " + format_number(box_.length[1]);
+    name = std::string("stream with ") + (slip ? "slip (specular)" : "no-slip bounce-back") +
+           " walls at y = 0 and y = " + format_number(box_.length[1]);
     if (scene_.body_force) {
       name += ", constant force [";
       for (int k = 0; k < dim; ++k)
         name += format_number(g[k]) + (k + 1 < dim ? ", " : "], exact hit times");
     }
-    stages_.push_back({name, [this, dt, g, slip](std::uint64_t) {
-                         walls::stream_channel(fluid_, box_, dt, g, slip);
-                       }});
+    drift = [box, g, slip](mpcd::Fluid &fl, double t) {
+      walls::stream_channel(fl, box, t, g, slip);
+    };
   } else if (!scene_.body_force) {
-    stages_.push_back({"stream (free flight)",
-                       [this, dt](std::uint64_t) { mpcd::stream_free(fluid_, box_, dt); }});
+    name = "stream (free flight)";
+    drift = [box](mpcd::Fluid &fl, double t) { mpcd::stream_free(fl, box, t); };
   } else if (scene_.body_force->kind == scene::ForceKind::constant) {
     const auto g = scene_.body_force->value;
-    std::string name = "stream (constant force [";
+    name = "stream (constant force [";
     for (int k = 0; k < dim; ++k)
       name += format_number(g[k]) + (k + 1 < dim ? ", " : "])");
-    stages_.push_back(
-        {name, [this, dt, g](std::uint64_t) { mpcd::stream_constant_force(fluid_, box_, dt, g); }});
+    drift = [box, g](mpcd::Fluid &fl, double t) { mpcd::stream_constant_force(fl, box, t, g); };
   } else {
     const double A = scene_.body_force->amplitude;
-    stages_.push_back(
-        {"stream (sine force a_x = " + format_number(A) + " sin(2 pi y/L_y), exact)",
-         [this, dt, A](std::uint64_t) { mpcd::stream_sine_force(fluid_, box_, dt, A); }});
+    name = "stream (sine force a_x = " + format_number(A) + " sin(2 pi y/L_y), exact)";
+    drift = [box, A](mpcd::Fluid &fl, double t) { mpcd::stream_sine_force(fl, box, t, A); };
+  }
+  if (scene_.colloids) {
+    const auto &c = *scene_.colloids;
+    colloids::MdParams p;
+    p.substeps = c.md_substeps;
+    p.tau = dt / c.md_substeps;
+    p.sigma_cf = c.radius;
+    p.sigma_cc = 2.0 * c.radius;
+    p.epsilon = c.epsilon;
+    p.sigma_wall = c.effective_wall_sigma();
+    p.wall_q = c.wall_q;
+    p.gravity = c.gravity;
+    if (scene_.body_force) {
+      const auto &b = *scene_.body_force;
+      p.fluid_accel = b.kind == scene::ForceKind::sine
+                          ? std::abs(b.amplitude)
+                          : std::sqrt(b.value[0] * b.value[0] + b.value[1] * b.value[1] +
+                                      b.value[2] * b.value[2]);
+    }
+    md_.emplace(p, box_, drift);
+    std::string md = "MD: " + std::to_string(c.count) + " colloids (r " + format_number(c.radius) +
+                     ", M " + format_number(c.effective_mass(dim, f.density)) + "), " +
+                     std::to_string(c.md_substeps) + " velocity-Verlet sub-steps of " +
+                     format_number(p.tau) + ": WCA colloid-fluid, 48-24 colloid-colloid";
+    if (scene_.walls)
+      md += ", LJ wall (sigma_w " + format_number(p.sigma_wall) + ", cut-off " +
+            format_number(colloids::wall_cutoff(p.sigma_wall)) + ")";
+    if (c.gravity != std::array<double, 3>{0.0, 0.0, 0.0})
+      md += ", gravity";
+    stages_.push_back({md + "; fluid between kicks: " + name,
+                       [this](std::uint64_t) { md_->advance(fluid_, colloids_, comm_); }});
+  } else {
+    stages_.push_back({name, [this, dt, drift](std::uint64_t) { drift(fluid_, dt); }});
   }
 
   // 2. Shifted grid: the same on every rank without a message.
@@ -237,6 +287,25 @@ void MpcdSimulation::build_pipeline() {
                        [this, seed](std::uint64_t step) {
                          mpcd::permute_velocities(fluid_, collision_scratch_, seed, step);
                        }});
+
+  // Thermostat: per-layer rescaling relative to the cell means (seed 000 eq 3.53-3.54).
+  if (scene_.thermostat && scene_.thermostat->kind == scene::ThermostatKind::layers)
+    stages_.push_back({"thermostat: rescale velocities relative to the cell means per layer of "
+                       "cells to kT " +
+                           format_number(kT) + " (seed 000 eq 3.53-3.54)",
+                       [this, kT](std::uint64_t) {
+                         mpcd::rescale_layers(fluid_, grid_, kT, layer_sums_, comm_);
+                       }});
+  if (scene_.thermostat && scene_.thermostat->kind == scene::ThermostatKind::monte_carlo) {
+    const double gamma = scene_.thermostat->gamma;
+    stages_.push_back({"thermostat: Monte Carlo scaling of each cell's relative velocities "
+                       "toward kT " +
+                           format_number(kT) + ", gamma " + format_number(gamma) +
+                           " (seed 000 eq 3.55-3.57)",
+                       [this, kT, gamma, seed](std::uint64_t step) {
+                         mpcd::monte_carlo_cells(fluid_, grid_, kT, gamma, seed, step, layer_sums_);
+                       }});
+  }
 
   // 5. Locality: counting sort by cell on a schedule.
   if (f.sort_every > 0) {

@@ -9,7 +9,9 @@
 #include "narrows/engine/invariants.hpp"
 #include "narrows/engine/log.hpp"
 #include "narrows/engine/mpcd_simulation.hpp"
+#include "narrows/engine/totals.hpp"
 #include "narrows/io/checkpoint.hpp"
+#include "narrows/io/colloid_checkpoint.hpp"
 #include "narrows/io/observables_writer.hpp"
 #include "narrows/io/trajectory_writer.hpp"
 #include "narrows/parallel/slabs.hpp"
@@ -32,7 +34,7 @@ bool wants(const scene::Scene &s, const std::string &name) {
 // Everything written every `output.every` steps.
 class Observer {
 public:
-  Observer(const MpcdSimulation &sim, std::unique_ptr<io::ObservablesWriter> writer)
+  Observer(MpcdSimulation &sim, std::unique_ptr<io::ObservablesWriter> writer)
       : sim_(sim), writer_(std::move(writer)), profiles_(sim.box()) {
     const auto &s = sim.scene();
     temperature_ = wants(s, "temperature");
@@ -40,10 +42,15 @@ public:
     velocity_ = wants(s, "velocity_profile");
     density_ = wants(s, "density_profile");
     viscosity_ = wants(s, "viscosity");
+    energy_ = wants(s, "energy");
+    settling_ = wants(s, "settling_velocity");
+    positions_ = wants(s, "colloid_positions");
   }
   void every_step() {
     if (velocity_ || density_ || viscosity_)
       profiles_.add(sim_.fluid());
+    if (settling_)
+      settling_sum_.add(sim_);
   }
   void sample() {
     const auto step = sim_.step();
@@ -54,8 +61,30 @@ public:
       if (writer_)
         writer_->append_scalar("temperature", step, t, kT);
     }
+    if (energy_) {
+      const double e = total_energy(sim_);
+      if (writer_)
+        writer_->append_scalar("energy", step, t, e);
+    }
+    if (settling_) {
+      const auto v = settling_sum_.mean();
+      if (writer_)
+        writer_->append_vector("settling_velocity", step, t, std::span(v.data(), sim_.box().dim));
+      settling_sum_ = SettlingSum{};
+    }
+    if (positions_ && writer_) {
+      const auto &c = sim_.colloids();
+      const int d = c.dim;
+      std::vector<double> ids(c.size()), x(c.size() * d);
+      for (std::size_t a = 0; a < c.size(); ++a) {
+        ids[a] = static_cast<double>(c.id[a]);
+        for (int k = 0; k < d; ++k)
+          x[a * d + k] = c.x[k][a];
+      }
+      writer_->append_profile("colloid_positions", step, t, ids, x, d);
+    }
     if (momentum_) {
-      const auto p = analysis::total_momentum(sim_.fluid(), comm).value();
+      const auto p = total_momentum(sim_);
       if (writer_)
         writer_->append_vector("momentum", step, t, std::span(p.data(), sim_.box().dim));
     }
@@ -81,11 +110,12 @@ public:
   }
 
 private:
-  const MpcdSimulation &sim_;
+  MpcdSimulation &sim_;
   std::unique_ptr<io::ObservablesWriter> writer_;
   analysis::ProfileAccumulator profiles_;
+  SettlingSum settling_sum_;
   bool temperature_ = false, momentum_ = false, velocity_ = false, density_ = false,
-       viscosity_ = false;
+       viscosity_ = false, energy_ = false, settling_ = false, positions_ = false;
 };
 
 } // namespace
@@ -124,6 +154,9 @@ void run_scene(const scene::Scene &scene, const RunOptions &options, MPI_Comm co
   MpcdSimulation sim(scene, comm, !restarting);
   if (restarting) {
     sim.restore(io::read_fluid(restart_file, restart_info, comm), restart_info.step);
+    if (scene.colloids)
+      sim.restore_colloids(io::read_colloids(restart_file, *scene.colloids, scene.run.dimensions,
+                                             scene.fluid.density, comm));
     log.line("restarted from " + restart_file + " at step " + std::to_string(sim.step()));
   }
   std::unique_ptr<io::ObservablesWriter> writer;
@@ -154,7 +187,11 @@ void run_scene(const scene::Scene &scene, const RunOptions &options, MPI_Comm co
                             sim.box().dim, sim.box().length, false};
     info.walls_y = sim.box().walls_y;
     const std::string path = io::checkpoint_path(dir, sim.step());
-    const double bytes = io::write_checkpoint(path, info, {io::fluid_fields(sim.fluid())}, comm);
+    std::vector<io::SpeciesFields> species{io::fluid_fields(sim.fluid())};
+    colloids::Colloids none;
+    if (scene.colloids)
+      species.push_back(io::colloid_fields(sim.colloids(), none, comm));
+    const double bytes = io::write_checkpoint(path, info, species, comm);
     if (rank == 0)
       io::prune_checkpoints(dir, scene.output.checkpoint_keep);
     const double s = watch.seconds();

@@ -750,11 +750,37 @@ void check_restart_scene(const scene::Scene &given, const CheckpointInfo &info,
              s.body_force->value[k]);
     differ("body_force.amplitude", g.body_force->amplitude, s.body_force->amplitude);
   }
+  differ("[thermostat]", std::string(g.thermostat ? "present" : "absent"),
+         std::string(s.thermostat ? "present" : "absent"));
+  if (g.thermostat && s.thermostat) {
+    differ("thermostat.kind", static_cast<int>(g.thermostat->kind),
+           static_cast<int>(s.thermostat->kind));
+    differ("thermostat.gamma", g.thermostat->gamma, s.thermostat->gamma);
+  }
+  differ("[colloids]", std::string(g.colloids ? "present" : "absent"),
+         std::string(s.colloids ? "present" : "absent"));
+  if (g.colloids && s.colloids) {
+    const auto &a = *g.colloids, &b = *s.colloids;
+    differ("colloids.radius", a.radius, b.radius);
+    differ("colloids.mass", a.mass, b.mass);
+    differ("colloids.count", a.count, b.count);
+    differ("colloids.md_substeps", a.md_substeps, b.md_substeps);
+    differ("colloids.epsilon", a.epsilon, b.epsilon);
+    differ("colloids.wall_sigma", a.wall_sigma, b.wall_sigma);
+    differ("colloids.wall_q", a.wall_q, b.wall_q);
+    for (int k = 0; k < g.run.dimensions; ++k)
+      differ("colloids.gravity[" + std::to_string(k) + "]", a.gravity[k], b.gravity[k]);
+  }
   diff.refuse(head, checkpoint);
   const auto scene_box = [&] {
     double n = 1;
     for (int k = 0; k < g.run.dimensions; ++k)
       n *= g.domain.size[k];
+    if (g.colloids) // the space the colloids take holds no fluid (colloids/placement.hpp)
+      n -= static_cast<double>(g.colloids->count) *
+           (g.run.dimensions == 2
+                ? 3.14159265358979323846 * std::pow(g.colloids->radius, 2)
+                : 4.0 / 3.0 * 3.14159265358979323846 * std::pow(g.colloids->radius, 3));
     return static_cast<std::uint64_t>(std::llround(n * g.fluid.density));
   }();
   if (scene_box != info.fluid_particles)

@@ -35,7 +35,7 @@ std::uint64_t fluid_particle_count(const Box &box, double density) {
 }
 
 void init_fluid(Fluid &fluid, const Box &box, double kT, std::uint64_t seed, std::uint64_t first_id,
-                std::uint64_t count, std::uint64_t total, MPI_Comm comm) {
+                std::uint64_t count, std::uint64_t total, MPI_Comm comm, const Excluded &excluded) {
   fluid.dim = box.dim;
   fluid.resize(count);
   const double sigma = std::sqrt(kT);
@@ -43,13 +43,23 @@ void init_fluid(Fluid &fluid, const Box &box, double kT, std::uint64_t seed, std
   for (std::size_t i = 0; i < count; ++i) {
     const std::uint64_t id = first_id + i;
     fluid.id[i] = id;
-    const auto pos = rng::draw(seed, rng::Purpose::init_position, 0, id);
-    const auto pos2 = rng::draw(seed, rng::Purpose::init_position, 1, id);
+    std::array<double, 3> p{0.0, 0.0, 0.0};
+    // Attempt a uses the steps 2a and 2a + 1 of the position stream; without exclusions only
+    // the first attempt is made.
+    for (std::uint64_t attempt = 0;; ++attempt) {
+      const auto pos = rng::draw(seed, rng::Purpose::init_position, 2 * attempt, id);
+      const auto pos2 = rng::draw(seed, rng::Purpose::init_position, 2 * attempt + 1, id);
+      for (int k = 0; k < box.dim; ++k) {
+        const double u =
+            k < 2 ? rng::uniform53(pos[2 * k], pos[2 * k + 1]) : rng::uniform53(pos2[0], pos2[1]);
+        p[k] = u * box.length[k];
+      }
+      if (!excluded || !excluded(p))
+        break;
+    }
     const auto g = rng::gaussian4(rng::draw(seed, rng::Purpose::init_velocity, 0, id));
     for (int k = 0; k < box.dim; ++k) {
-      const double u =
-          k < 2 ? rng::uniform53(pos[2 * k], pos[2 * k + 1]) : rng::uniform53(pos2[0], pos2[1]);
-      fluid.x[k][i] = u * box.length[k];
+      fluid.x[k][i] = p[k];
       fluid.v[k][i] = sigma * g[k];
       local[k] += fixed::from_double(fluid.v[k][i]);
     }

@@ -53,6 +53,10 @@ const std::vector<Section> &schema() {
       {"fluid", {"collision", "density", "dt", "angle", "kT", "sort_every"}},
       {"body_force", {"kind", "value", "amplitude"}},
       {"walls", {"slip", "virtual_particles", "virtual_flow"}},
+      {"thermostat", {"kind", "gamma"}},
+      {"colloids",
+       {"radius", "mass", "count", "placement", "positions", "gravity", "md_substeps", "epsilon",
+        "wall_sigma", "wall_q"}},
       {"kmc",
        {"length", "boundary", "rates", "left", "right", "initial", "time", "warmup", "replicas",
         "charge", "samples", "preset", "parameters", "fugacity", "boundary_rates",
@@ -78,8 +82,9 @@ const Section *find_section(const std::string &name) {
 constexpr std::int64_t max_cells_per_axis = std::int64_t{1} << 20;
 constexpr double max_particles = 1099511627776.0; // 2^40
 
-const char *const all_observables[] = {"temperature", "momentum", "velocity_profile",
-                                       "density_profile", "viscosity"};
+const char *const all_observables[] = {"temperature",       "momentum",         "velocity_profile",
+                                       "density_profile",   "viscosity",        "energy",
+                                       "settling_velocity", "colloid_positions"};
 
 // ---- small text helpers -----------------------------------------------------------------------
 
@@ -599,6 +604,156 @@ std::optional<BodyForce> parse_body_force(const Ctx &c, const value *bf, int dim
   return out;
 }
 
+// A vector of `dims` finite numbers at `key`.
+std::array<double, 3> as_vector(const Ctx &c, const value &v, const std::string &key, int dims,
+                                const std::string &what) {
+  const std::string allowed =
+      "an array of " + std::to_string(dims) + " finite numbers (" + what + ")";
+  if (!v.is_array())
+    c.wrong_type(key, v, allowed);
+  const auto &a = v.as_array();
+  if (static_cast<int>(a.size()) != dims)
+    c.fail(key, key + " = " + repr(v) + " has " + std::to_string(a.size()) +
+                    (a.size() == 1 ? " entry" : " entries") + "; allowed: " + std::to_string(dims) +
+                    " entries (run.dimensions = " + std::to_string(dims) + ")");
+  std::array<double, 3> out{0.0, 0.0, 0.0};
+  for (int d = 0; d < dims; ++d)
+    out[d] = as_number(c, a[d], key + "[" + std::to_string(d) + "]", "a finite number",
+                       [](double) { return true; });
+  return out;
+}
+
+std::optional<Colloids> parse_colloids(const Ctx &c, const value *sec, const Domain &domain,
+                                       int dims, bool walls) {
+  if (sec == nullptr)
+    return std::nullopt;
+  check_keys(c, sec, "colloids");
+  Colloids out;
+  const auto positive = [](double x) { return x > 0.0; };
+  if (const value *v = find(sec, "radius"))
+    out.radius = as_number(c, *v, "colloids.radius", "a number > 0 (cell units)", positive);
+  else
+    c.missing("colloids.radius", "a number > 0 (cell units; seed 000 uses 2)");
+  const double r = out.radius;
+  if (const value *v = find(sec, "mass"))
+    out.mass =
+        as_number(c, *v, "colloids.mass",
+                  "a number > 0 (default: fluid mass density times the colloid volume)", positive);
+  if (const value *v = find(sec, "epsilon"))
+    out.epsilon = as_number(c, *v, "colloids.epsilon", "a number > 0 (kT units)", positive);
+  if (const value *v = find(sec, "wall_q"))
+    out.wall_q = as_number(c, *v, "colloids.wall_q", "a number > 0", positive);
+  if (const value *v = find(sec, "md_substeps"))
+    out.md_substeps =
+        static_cast<int>(as_integer(c, *v, "colloids.md_substeps", "an integer from 1 to 10000",
+                                    [](std::int64_t n) { return n >= 1 && n <= 10000; }));
+  if (const value *v = find(sec, "gravity"))
+    out.gravity = as_vector(c, *v, "colloids.gravity", dims, "the force on each colloid");
+  const double half_width = domain.size[1] / 2.0;
+  if (const value *v = find(sec, "wall_sigma")) {
+    if (!walls)
+      c.fail("colloids.wall_sigma", "colloids.wall_sigma = " + repr(*v) +
+                                        " sets the colloid-wall potential; allowed only with "
+                                        "[walls]");
+    out.wall_sigma =
+        as_number(c, *v, "colloids.wall_sigma",
+                  "a number > 0 whose cut-off 1.0631 wall_sigma is below half the channel width (" +
+                      float_text(half_width) + ")",
+                  [&](double x) { return x > 0.0 && 1.0631 * x < half_width; });
+  } else if (walls && 1.0631 * out.effective_wall_sigma() >= half_width) {
+    c.fail("colloids.wall_sigma",
+           "colloids.wall_sigma defaults to 2 radius = " + float_text(2.0 * r) +
+               ", whose cut-off 1.0631 wall_sigma does not fit in half the channel width (" +
+               float_text(half_width) + "); allowed: a smaller radius or an explicit wall_sigma");
+  }
+  const value *count = find(sec, "count");
+  const value *placement = find(sec, "placement");
+  const value *positions = find(sec, "positions");
+  if (placement != nullptr) {
+    const std::size_t i = as_choice(c, *placement, "colloids.placement", "a known placement",
+                                    {"lattice", "list", "random"});
+    out.placement = static_cast<ColloidPlacement>(i);
+  }
+  if (out.placement == ColloidPlacement::list) {
+    if (count != nullptr)
+      c.fail("colloids.count", "colloids.count = " + repr(*count) +
+                                   " cannot be mixed with placement = \"list\"; allowed: the "
+                                   "number of colloids is the length of colloids.positions");
+    const std::string allowed =
+        "an array of [x, y" + std::string(dims == 3 ? ", z" : "") + "] positions inside the box";
+    if (positions == nullptr)
+      c.missing("colloids.positions", allowed);
+    if (!positions->is_array() || positions->as_array().empty())
+      c.wrong_type("colloids.positions", *positions, allowed);
+    const auto &a = positions->as_array();
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      const std::string key = "colloids.positions[" + std::to_string(i) + "]";
+      const auto p = as_vector(c, a[i], key, dims, "a position inside the box");
+      for (int d = 0; d < dims; ++d)
+        if (!(p[d] >= 0.0 && p[d] < domain.size[d]))
+          c.fail(key, key + " = " + repr(a[i]) +
+                          " lies outside the box; allowed: 0 <= x_k < "
+                          "domain.size[k]");
+      if (walls && !(p[1] > 0.0 && p[1] < domain.size[1]))
+        c.fail(key, key + " = " + repr(a[i]) + " lies on a wall; allowed: 0 < y < L_y");
+      out.positions.push_back(p);
+    }
+    out.count = static_cast<std::int64_t>(a.size());
+  } else {
+    if (positions != nullptr)
+      c.fail("colloids.positions", "colloids.positions needs placement = \"list\"; allowed with "
+                                   "placement = \"lattice\" or \"random\": count");
+    if (count == nullptr)
+      c.missing("colloids.count", "an integer >= 1");
+    out.count = as_integer(c, *count, "colloids.count", "an integer from 1 to 1000000",
+                           [](std::int64_t n) { return n >= 1 && n <= 1000000; });
+    const double sigma_cc = 2.0 * r;
+    if (out.placement == ColloidPlacement::lattice &&
+        static_cast<double>(out.count) * sigma_cc > domain.size[0])
+      c.fail("colloids.count",
+             "colloids.count = " + repr(*count) + " colloids of diameter " + float_text(sigma_cc) +
+                 " do not fit in a row along x of length " + float_text(domain.size[0]) +
+                 "; allowed: at most " +
+                 std::to_string(static_cast<std::int64_t>(domain.size[0] / sigma_cc)) +
+                 " (placement = \"lattice\")");
+  }
+  double box_volume = 1.0,
+         colloid_volume = dims == 2 ? 3.14159265358979 * r * r : 4.18879020478639 * r * r * r;
+  for (int d = 0; d < dims; ++d)
+    box_volume *= domain.size[d];
+  if (static_cast<double>(out.count) * colloid_volume > 0.9 * box_volume)
+    c.fail("colloids.count", "colloids.count = " + std::to_string(out.count) +
+                                 " colloids fill more than 90 % of the box; allowed: fewer or "
+                                 "smaller colloids");
+  return out;
+}
+
+std::optional<Thermostat> parse_thermostat(const Ctx &c, const value *sec, Collision rule) {
+  if (sec == nullptr)
+    return std::nullopt;
+  check_keys(c, sec, "thermostat");
+  Thermostat out;
+  const value *kind = find(sec, "kind");
+  if (kind == nullptr)
+    c.missing("thermostat.kind", "\"layers\" (seed 000 eq 3.53-3.54) or \"monte-carlo\" (eq "
+                                 "3.55-3.57)");
+  out.kind = static_cast<ThermostatKind>(
+      as_choice(c, *kind, "thermostat.kind", "a known thermostat", {"layers", "monte-carlo"}));
+  if (const value *g = find(sec, "gamma")) {
+    if (out.kind != ThermostatKind::monte_carlo)
+      c.fail("thermostat.gamma", "thermostat.gamma = " + repr(*g) +
+                                     " is the step of the Monte Carlo thermostat; allowed only "
+                                     "with kind = \"monte-carlo\"");
+    out.gamma = as_number(c, *g, "thermostat.gamma", "a number in (0, 1]",
+                          [](double x) { return x > 0.0 && x <= 1.0; });
+  }
+  if (rule != Collision::srd && rule != Collision::random_permute)
+    c.fail("thermostat", std::string("[thermostat] with fluid.collision = \"") + to_string(rule) +
+                             "\"; allowed with srd or random-permute (MPC-AT thermostats "
+                             "itself, random-maxwell draws at kT)");
+  return out;
+}
+
 std::optional<Walls> parse_walls(const Ctx &c, const value *w,
                                  const std::optional<BodyForce> &force) {
   if (w == nullptr)
@@ -818,7 +973,8 @@ Scene parse_scene(const std::string &text, const std::string &file,
 
   parse_run(c, run, s.run);
   if (s.run.engine == Engine::kmc) {
-    for (const char *name : {"domain", "fluid", "body_force", "walls", "lattice", "tagged"})
+    for (const char *name :
+         {"domain", "fluid", "body_force", "walls", "colloids", "thermostat", "lattice", "tagged"})
       if (section(c, root, name) != nullptr)
         c.fail(name, std::string("section [") + name + "] is for engine " + engine_of(name) +
                          "; allowed with run.engine = \"kmc\": [run], [kmc], [output]");
@@ -830,7 +986,8 @@ Scene parse_scene(const std::string &text, const std::string &file,
     if (s.kmc->samples > 0)
       s.output.observables.insert(s.output.observables.end(), {"shock_position", "charge_profile"});
   } else if (s.run.engine == Engine::lgca) {
-    for (const char *name : {"domain", "fluid", "body_force", "walls", "kmc"})
+    for (const char *name :
+         {"domain", "fluid", "body_force", "walls", "colloids", "thermostat", "kmc"})
       if (section(c, root, name) != nullptr)
         c.fail(name, std::string("section [") + name + "] is for engine " + engine_of(name) +
                          "; allowed with run.engine = \"lgca\": [run], [lattice], [tagged], "
@@ -852,16 +1009,24 @@ Scene parse_scene(const std::string &text, const std::string &file,
       if (section(c, root, name) != nullptr)
         c.fail(name, std::string("section [") + name + "] needs run.engine = \"" + engine_of(name) +
                          "\"; allowed with run.engine = \"" + std::string(to_string(s.run.engine)) +
-                         "\": [run], [domain], [fluid], [body_force], [walls], [output]");
+                         "\": [run], [domain], [fluid], [body_force], [walls], [colloids], "
+                         "[thermostat], [output]");
     parse_domain(c, section(c, root, "domain"), s.run.dimensions, s.domain);
     parse_fluid(c, section(c, root, "fluid"), s.domain, s.run.dimensions, s.fluid);
     s.body_force = parse_body_force(c, section(c, root, "body_force"), s.run.dimensions);
     s.walls = parse_walls(c, section(c, root, "walls"), s.body_force);
+    s.colloids = parse_colloids(c, section(c, root, "colloids"), s.domain, s.run.dimensions,
+                                s.walls.has_value());
+    s.thermostat = parse_thermostat(c, section(c, root, "thermostat"), s.fluid.collision);
   }
   parse_output(c, section(c, root, "output"), s.run.engine, s.output);
   const auto &obs = s.output.observables;
   const bool poiseuille = s.walls && s.body_force && s.body_force->kind == ForceKind::constant &&
                           s.body_force->value[0] != 0.0;
+  for (const char *name : {"settling_velocity", "colloid_positions"})
+    if (std::find(obs.begin(), obs.end(), name) != obs.end() && !s.colloids)
+      c.fail("output.observables", std::string("output.observables lists \"") + name +
+                                       "\", which follows colloids; allowed only with [colloids]");
   if (std::find(obs.begin(), obs.end(), "viscosity") != obs.end() && !poiseuille)
     c.fail("output.observables",
            "output.observables lists \"viscosity\", which fits the Poiseuille profile; allowed "

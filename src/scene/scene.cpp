@@ -1,6 +1,8 @@
 // Names of the scene enums, as written in scene files and shown in messages.
 #include "narrows/scene/scene.hpp"
 
+#include <numbers>
+
 namespace narrows::scene {
 
 const char *to_string(Engine e) {
@@ -47,6 +49,14 @@ const char *to_string(LgcaModel m) {
     return "dhumieres-1d";
   }
   return "unknown";
+}
+
+double Colloids::effective_mass(int dim, double density) const {
+  if (mass > 0.0)
+    return mass;
+  // Mass density of the colloid equal to the fluid's (seed 000 table 3.1: M = pi r^2 n).
+  const double pi = std::numbers::pi;
+  return density * (dim == 2 ? pi * radius * radius : 4.0 / 3.0 * pi * radius * radius * radius);
 }
 
 } // namespace narrows::scene

@@ -78,6 +78,17 @@ add syntax_error "$(replace_line dt 'dt = = 0.1')"
 add unknown_engine "$(replace_line engine 'engine = "continuum"')"
 add walls_slip_not_boolean "$(good_scene; echo; echo '[walls]'; echo 'slip = 1')"
 add steps_float "$(replace_line steps 'steps = 2.5')"
+# [colloids] in the 8 x 8 box (with walls where the wall potential is involved)
+colloids() { good_scene; echo; echo '[colloids]'; printf '%s\n' "$@"; }
+add colloids_missing_radius "$(colloids 'count = 1')"
+add colloids_unknown_key "$(colloids 'radius = 1' 'count = 1' 'substeps = 5')"
+add colloids_count_too_many "$(colloids 'radius = 1' 'count = 5')"
+add colloids_bad_placement "$(colloids 'radius = 1' 'count = 1' 'placement = "hexagonal"')"
+add colloids_gravity_length "$(colloids 'radius = 1' 'count = 1' 'gravity = [0.1, 0.0, 0.0]')"
+add colloids_wall_sigma_no_walls "$(colloids 'radius = 1' 'count = 1' 'wall_sigma = 1.0')"
+add colloids_too_wide_for_channel "$(good_scene; echo; echo '[walls]'; echo; echo '[colloids]'; echo 'radius = 2'; echo 'count = 1')"
+add thermostat_unknown_kind "$(good_scene; echo; echo '[thermostat]'; echo 'kind = "andersen"')"
+add colloids_position_outside "$(colloids 'radius = 1' 'placement = "list"' 'positions = [[9.0, 4.0]]')"
 
 # check_bad NAME CMD...: runs CMD, expects exit 2 and one stderr line naming NAME.toml
 check_bad() {
@@ -133,14 +144,21 @@ check_bad "good" "run --set unknown key" "$NARROWS" run "$TMP/good.toml" --set f
   --out "$TMP/out_set2"
 if [[ -e $TMP/out_set2 ]]; then fail "run --set fluid.desnity=3: created the output directory"; else pass; fi
 
-# The good scene passes `check`.
-"$NARROWS" check "$TMP/good.toml" >"$TMP/stdout" 2>"$TMP/stderr"
-rc=$?
-if [[ $rc -eq 0 ]]; then
-  pass
-else
-  fail "check good.toml: exit code $rc, expected 0: $(head -c 300 "$TMP/stderr")"
-fi
+# check_good NAME: `check` of $TMP/NAME.toml exits 0.
+check_good() {
+  "$NARROWS" check "$TMP/$1.toml" >"$TMP/stdout" 2>"$TMP/stderr"
+  local rc=$?
+  if [[ $rc -eq 0 ]]; then
+    pass
+  else
+    fail "check $1.toml: exit code $rc, expected 0: $(head -c 300 "$TMP/stderr")"
+  fi
+}
+
+# The good scene passes `check`, and so does one with colloids in a channel.
+check_good good
+{ good_scene; echo; echo '[walls]'; echo; echo '[colloids]'; echo 'radius = 1'; echo 'count = 2'; } >"$TMP/good_colloids.toml"
+check_good good_colloids
 
 echo "$passed passed, $failed failed"
 [[ $failed -eq 0 ]]

@@ -11,6 +11,7 @@ for scene in "$src"/run/*.toml; do
   "$narrows" check "$scene" > "$tmp/$name.check" 2>&1
   check "$name: check exits 0" '[ $? -eq 0 ]'
   grep -q '^\[walls\]' "$scene" || continue
+  grep -q '^\[colloids\]' "$scene" && continue # run by colloid_scenes.sh
   short=(--set domain.size=$(grep -q 'dimensions = 3' "$scene" && echo '[8,6,4]' || echo '[8,6]')
          --set run.steps=200 --set output.every=50 --set output.progress=false)
   "$narrows" run "$scene" "${short[@]}" --out "$tmp/$name" > /dev/null 2>&1

@@ -28,9 +28,11 @@ struct Case {
   const char *name;
   int dim;
   scene::Collision rule;
-  bool sine;           // sine force, else constant force
-  bool walls = false;  // no-slip walls at y = 0 and y = L_y with virtual particles
-  bool mirror = false; // ... whose mean velocity continues the flow (walls.virtual_flow)
+  bool sine;               // sine force, else constant force
+  bool walls = false;      // no-slip walls at y = 0 and y = L_y with virtual particles
+  bool mirror = false;     // ... whose mean velocity continues the flow (walls.virtual_flow)
+  bool colloids = false;   // MD-coupled colloids with gravity (walls: also the wall potential)
+  bool thermostat = false; // 2D: per-layer rescaling thermostat, 3D: Monte Carlo
 };
 
 class Bitwise : public ::testing::TestWithParam<Case> {};
@@ -53,9 +55,22 @@ TEST_P(Bitwise, TwoRanksEqualOneRank) {
   if (c.walls)
     s.walls =
         scene::Walls{false, true, c.mirror ? scene::VirtualFlow::mirror : scene::VirtualFlow::rest};
+  if (c.thermostat) // 2D: per-layer rescaling; 3D: Monte Carlo cells
+    s.thermostat = scene::Thermostat{
+        c.dim == 2 ? scene::ThermostatKind::layers : scene::ThermostatKind::monte_carlo, 0.2};
+  if (c.colloids) {
+    scene::Colloids col;
+    col.radius = c.dim == 2 ? 2.0 : 1.0;
+    col.count = c.dim == 2 ? 4 : 3;
+    col.placement = scene::ColloidPlacement::random;
+    col.gravity = {0.8, 0.1, 0.05}; // large: colloids cross the slab edges within the test
+    col.md_substeps = 50; // tau_MD = 0.01 (at 0.1 a fast fluid particle runs deep into a colloid)
+    s.colloids = col;
+  }
   // 2000 steps in CI (~4 s); longer by hand: NARROWS_BITWISE_STEPS=20000 mpirun -n 2 mpi_tests
   const char *env = std::getenv("NARROWS_BITWISE_STEPS");
-  const int steps = env ? std::atoi(env) : 2000;
+  // (colloid cases: 1000 steps of 50 MD sub-steps, 2-6 s each)
+  const int steps = env ? std::atoi(env) : (c.colloids ? 1000 : 2000);
   engine::MpcdSimulation par(s, MPI_COMM_WORLD);
   for (int i = 0; i < steps; ++i)
     par.advance();
@@ -67,6 +82,15 @@ TEST_P(Bitwise, TwoRanksEqualOneRank) {
   for (int i = 0; i < steps; ++i)
     ser.advance();
   const auto one = state_by_id(ser.fluid(), total, MPI_COMM_SELF);
+  // Colloids: every rank holds all of them; compare rank 0's copy with the serial run's.
+  const auto &ca = par.colloids(), &cb = ser.colloids();
+  ASSERT_EQ(ca.size(), cb.size());
+  std::size_t colloid_differ = 0;
+  for (int k = 0; k < c.dim; ++k)
+    for (std::size_t a = 0; a < ca.size(); ++a)
+      colloid_differ += std::memcmp(&ca.x[k][a], &cb.x[k][a], sizeof(double)) != 0 ||
+                        std::memcmp(&ca.v[k][a], &cb.v[k][a], sizeof(double)) != 0;
+  EXPECT_EQ(colloid_differ, 0u);
   std::size_t differ = 0;
   for (std::size_t j = 0; j < one.size(); ++j)
     differ += std::memcmp(&one[j], &two[j], sizeof(double)) != 0;
@@ -76,15 +100,22 @@ TEST_P(Bitwise, TwoRanksEqualOneRank) {
 
 INSTANTIATE_TEST_SUITE_P(
     Rules, Bitwise,
-    ::testing::Values(Case{"srd2d_constant", 2, scene::Collision::srd, false},
-                      Case{"srd3d_sine", 3, scene::Collision::srd, true},
-                      Case{"srd2d_sine", 2, scene::Collision::srd, true},
-                      Case{"at_a2d_constant", 2, scene::Collision::at_a, false},
-                      Case{"at_a3d_sine", 3, scene::Collision::at_a, true},
-                      Case{"at3d_constant", 3, scene::Collision::at, false},
-                      Case{"maxwell2d_constant", 2, scene::Collision::random_maxwell, false},
-                      Case{"srd2d_walls", 2, scene::Collision::srd, false, true},
-                      Case{"srd3d_walls_mirror", 3, scene::Collision::srd, false, true, true},
-                      Case{"at_a2d_walls", 2, scene::Collision::at_a, false, true},
-                      Case{"at3d_walls", 3, scene::Collision::at, false, true}),
+    ::testing::Values(
+        Case{"srd2d_constant", 2, scene::Collision::srd, false},
+        Case{"srd3d_sine", 3, scene::Collision::srd, true},
+        Case{"srd2d_sine", 2, scene::Collision::srd, true},
+        Case{"at_a2d_constant", 2, scene::Collision::at_a, false},
+        Case{"at_a3d_sine", 3, scene::Collision::at_a, true},
+        Case{"at3d_constant", 3, scene::Collision::at, false},
+        Case{"maxwell2d_constant", 2, scene::Collision::random_maxwell, false},
+        Case{"srd2d_walls", 2, scene::Collision::srd, false, true},
+        Case{"srd3d_walls_mirror", 3, scene::Collision::srd, false, true, true},
+        Case{"at_a2d_walls", 2, scene::Collision::at_a, false, true},
+        Case{"at3d_walls", 3, scene::Collision::at, false, true},
+        Case{"srd2d_colloids", 2, scene::Collision::srd, false, false, false, true},
+        Case{"srd2d_walls_colloids", 2, scene::Collision::srd, false, true, false, true},
+        Case{"srd3d_walls_colloids", 3, scene::Collision::srd, false, true, false, true},
+        Case{"srd2d_walls_colloids_thermostat", 2, scene::Collision::srd, false, true, false, true,
+             true},
+        Case{"srd3d_sine_thermostat", 3, scene::Collision::srd, true, false, false, false, true}),
     [](const auto &info) { return std::string(info.param.name); });

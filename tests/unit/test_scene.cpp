@@ -390,3 +390,85 @@ TEST(SceneErrors, SectionThatIsNotATable) {
 }
 
 } // namespace
+
+// ---- [colloids] ---------------------------------------------------------------------------------
+
+const std::string channel_scene = R"(
+[run]
+dimensions = 2
+steps = 10
+
+[domain]
+size = [40, 10]
+
+[fluid]
+collision = "srd"
+dt = 0.1
+
+[walls]
+)";
+
+TEST(Scene, ColloidsDefaultsAndValues) {
+  const Scene s = parse_scene(
+      with("colloids", "radius = 2\ncount = 3\ngravity = [0.1, 0.0]", channel_scene), "c.toml");
+  ASSERT_TRUE(s.colloids.has_value());
+  const auto &c = *s.colloids;
+  EXPECT_DOUBLE_EQ(c.radius, 2.0);
+  EXPECT_EQ(c.count, 3);
+  EXPECT_EQ(c.placement, ColloidPlacement::lattice);
+  EXPECT_EQ(c.md_substeps, 15);
+  EXPECT_DOUBLE_EQ(c.gravity[0], 0.1);
+  EXPECT_DOUBLE_EQ(c.effective_wall_sigma(), 4.0);
+  // seed 000 table 3.1: M = pi r^2 n = 125.664 for r = 2, n = 10
+  EXPECT_NEAR(c.effective_mass(2, 10.0), 125.664, 1e-3);
+  EXPECT_NEAR(c.effective_mass(3, 1.0), 4.0 / 3.0 * 3.14159265358979 * 8.0, 1e-12);
+  const Scene l = parse_scene(
+      with("colloids", "radius = 1\nplacement = \"list\"\npositions = [[5, 5], [20.5, 3]]",
+           channel_scene),
+      "c.toml");
+  EXPECT_EQ(l.colloids->count, 2);
+  EXPECT_DOUBLE_EQ(l.colloids->positions[1][0], 20.5);
+  EXPECT_FALSE(parse_scene(minimal_scene, "m.toml").colloids.has_value());
+}
+
+TEST(SceneErrors, ColloidsKeys) {
+  const auto col = [](const std::string &lines) { return with("colloids", lines, channel_scene); };
+  bad(col("count = 3"), {"colloids.radius", "missing"});
+  bad(col("radius = -1\ncount = 3"), {"colloids.radius = -1", "> 0"});
+  bad(col("radius = 2"), {"colloids.count", "missing"});
+  bad(col("radius = 2\ncount = 11"), {"colloids.count = 11", "at most 10"});
+  bad(col("radius = 2\ncount = 1\nmd_substeps = 0"), {"colloids.md_substeps = 0", "1 to 10000"});
+  bad(col("radius = 2\ncount = 1\ngravity = [0.1]"), {"colloids.gravity", "2 entries"});
+  bad(col("radius = 2\ncount = 1\nplacement = \"grid\""), {"colloids.placement", "lattice"});
+  bad(col("radius = 2\ncount = 1\nradious = 2"), {"colloids.radious", "radius"});
+  bad(col("radius = 2\ncount = 1\nwall_sigma = 5"), {"colloids.wall_sigma = 5", "half"});
+  bad(col("radius = 3\ncount = 1"), {"colloids.wall_sigma", "2 radius = 6.0"});
+  bad(col("radius = 1\nplacement = \"list\"\npositions = [[50, 5]]"),
+      {"colloids.positions[0]", "outside the box"});
+  bad(col("radius = 1\nplacement = \"list\"\ncount = 1\npositions = [[5, 5]]"),
+      {"colloids.count", "cannot be mixed"});
+  bad(col("radius = 1\ncount = 1\npositions = [[5, 5]]"), {"colloids.positions", "list"});
+  bad(with("colloids", "radius = 1\ncount = 1\nwall_sigma = 1"),
+      {"colloids.wall_sigma", "[walls]"});
+  bad(col("radius = 1\ncount = 1\nmass = 0"), {"colloids.mass = 0"});
+  bad(with("output", "observables = [\"settling_velocity\"]"),
+      {"settling_velocity", "only with [colloids]"});
+}
+
+TEST(Scene, Thermostat) {
+  const Scene s = parse_scene(with("thermostat", "kind = \"layers\"", channel_scene), "t.toml");
+  ASSERT_TRUE(s.thermostat.has_value());
+  EXPECT_EQ(s.thermostat->kind, ThermostatKind::layers);
+  bad(with("thermostat", "kind = \"layer\"", channel_scene), {"thermostat.kind", "layers"});
+  bad(with("thermostat", "", channel_scene), {"thermostat.kind", "missing"});
+  bad(with("thermostat", "kind = \"layers\"\nevery = 2", channel_scene), {"thermostat.every"});
+  bad(with("thermostat", "kind = \"layers\""), {"[thermostat]", "at+a", "srd"});
+  const Scene m = parse_scene(
+      with("thermostat", "kind = \"monte-carlo\"\ngamma = 0.3", channel_scene), "t.toml");
+  EXPECT_EQ(m.thermostat->kind, ThermostatKind::monte_carlo);
+  EXPECT_DOUBLE_EQ(m.thermostat->gamma, 0.3);
+  bad(with("thermostat", "kind = \"layers\"\ngamma = 0.3", channel_scene),
+      {"thermostat.gamma", "monte-carlo"});
+  bad(with("thermostat", "kind = \"monte-carlo\"\ngamma = 2", channel_scene),
+      {"thermostat.gamma = 2", "(0, 1]"});
+}

@@ -23,6 +23,8 @@ enum class Purpose : std::uint32_t {
   wall_virtual_momentum = 10, // id = global cell index: summed velocity of virtual particles
   wall_virtual_noise = 11,    // id = global cell index: summed MPC-AT noise of virtual particles
   srd_rotation_retry = 12,    // id = global cell index ^ (attempt << 56): further axis tries
+  colloid_placement = 13,     // step = attempt, id = colloid index: random placement
+  mc_thermostat = 14,         // id = global cell index: Monte Carlo cell thermostat
   test = 15,
   lgca_chirality = 16,      // step = lattice step, id = row * blocks + x / 128: 128 chirality bits
   lgca_init = 17,           // step = link / 4, id = global site index: initial occupations

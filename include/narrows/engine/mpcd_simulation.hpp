@@ -2,10 +2,13 @@
 // effects the scene asks for become stages; each stage calls a kernel chosen for its case.
 #pragma once
 
+#include "narrows/colloids/colloids.hpp"
+#include "narrows/colloids/md_coupling.hpp"
 #include "narrows/mpcd/cell_grid.hpp"
 #include "narrows/mpcd/cell_sort.hpp"
 #include "narrows/mpcd/collision.hpp"
 #include "narrows/mpcd/fluid.hpp"
+#include "narrows/mpcd/thermostat.hpp"
 #include "narrows/parallel/exchange.hpp"
 #include "narrows/parallel/slabs.hpp"
 #include "narrows/scene/scene.hpp"
@@ -14,6 +17,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -45,6 +49,8 @@ public:
     fluid_ = std::move(fluid);
     step_ = step;
   }
+  // With [colloids], a restart also restores them (all of them, on every rank, in id order).
+  void restore_colloids(colloids::Colloids &&c) { colloids_ = std::move(c); }
 
   std::int64_t step() const { return step_; }
   double time() const { return static_cast<double>(step_) * scene_.fluid.dt; }
@@ -53,6 +59,11 @@ public:
   const mpcd::Box &box() const { return box_; }
   mpcd::Fluid &fluid() { return fluid_; }
   const mpcd::Fluid &fluid() const { return fluid_; }
+  // All colloids (every rank holds all of them); empty without [colloids].
+  colloids::Colloids &colloids() { return colloids_; }
+  const colloids::Colloids &colloids() const { return colloids_; }
+  // The MD coupling with [colloids] (nullptr without).
+  colloids::MdCoupling *md() { return md_ ? &*md_ : nullptr; }
   const mpcd::CellGrid &grid() const { return grid_; }
   MPI_Comm comm() const { return comm_; }
   const parallel::Slabs &slabs() const { return slabs_; }
@@ -70,9 +81,12 @@ private:
   mpcd::Strays strays_;
   std::vector<int> stray_dest_;
   mpcd::Fluid fluid_;
+  colloids::Colloids colloids_;
+  std::optional<colloids::MdCoupling> md_;
   mpcd::CellGrid grid_;
   mpcd::CollisionScratch collision_scratch_;
   mpcd::SortScratch sort_scratch_;
+  mpcd::LayerSums layer_sums_;
   std::vector<Stage> stages_;
   std::int64_t step_ = 0;
 };
@@ -82,7 +96,7 @@ mpcd::Box make_box(const scene::Scene &scene);
 // Memory the run will need, without building it: bytes per particle times N plus cell arrays.
 std::size_t estimate_memory(const scene::Scene &scene);
 
-// Number of fluid particles the scene creates.
+// Number of fluid particles the scene creates (with [colloids]: the space they take excluded).
 std::uint64_t particle_count(const scene::Scene &scene);
 
 // The arrays of the fluid that travel with a particle, including its cell index (so a row

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace narrows::mpcd {
@@ -45,7 +46,10 @@ std::uint64_t fluid_particle_count(const Box &box, double density);
 // positions uniform, velocities Maxwell-Boltzmann at kT (mass 1), then the mean velocity of
 // all `total` particles (summed exactly over the ranks of comm) removed, so the total momentum
 // is zero. Each particle's state depends only on (seed, id), not on the rank that makes it.
+// Positions for which `excluded` (if given) is true are drawn again (the space colloids take).
+using Excluded = std::function<bool(const std::array<double, 3> &)>;
 void init_fluid(Fluid &fluid, const Box &box, double kT, std::uint64_t seed, std::uint64_t first_id,
-                std::uint64_t count, std::uint64_t total, MPI_Comm comm);
+                std::uint64_t count, std::uint64_t total, MPI_Comm comm,
+                const Excluded &excluded = nullptr);
 
 } // namespace narrows::mpcd

@@ -51,6 +51,38 @@ struct Walls {
   VirtualFlow virtual_flow = VirtualFlow::rest;
 };
 
+// MD-coupled colloids of seed 000 §3.4 (species "colloids"). Potentials: colloid-fluid WCA
+// (sigma_cf = radius), colloid-colloid 48-24 (sigma_cc = 2 radius), integrated LJ wall (with
+// [walls]); gravity is a constant force on every colloid.
+enum class ColloidPlacement { lattice, list, random };
+
+struct Colloids {
+  double radius = 2.0;
+  double mass = 0.0; // 0: pi r^2 n (2D) or (4/3) pi r^3 n (3D), n = fluid.density
+  std::int64_t count = 0;
+  ColloidPlacement placement = ColloidPlacement::lattice; // lattice: a row along x, centred
+  std::vector<std::array<double, 3>> positions;           // placement "list"
+  std::array<double, 3> gravity{0.0, 0.0, 0.0};           // force on each colloid
+  int md_substeps = 15;                                   // tau_MD = fluid.dt / md_substeps
+  double epsilon = 1.0;                                   // eps_cf = eps_cc = eps_w (kT units)
+  double wall_sigma = 0.0; // sigma_w of the wall potential, 0: 2 radius (seed 000 table 3.1)
+  double wall_q = 1.0;     // q of eq 3.35
+
+  double effective_mass(int dim, double density) const;
+  double effective_wall_sigma() const { return wall_sigma > 0.0 ? wall_sigma : 2.0 * radius; }
+};
+
+// Thermostats of seed 000 §3.4: "layers" rescales velocities relative to the cell means per layer
+// of cells across the channel (eq 3.53-3.54) to fluid.kT after every collision.
+// "monte-carlo" scales each cell's relative velocities by a random factor accepted with the
+// Boltzmann weight (eq 3.55-3.57), step size `gamma`.
+enum class ThermostatKind { layers, monte_carlo };
+
+struct Thermostat {
+  ThermostatKind kind = ThermostatKind::layers;
+  double gamma = 0.1; // monte-carlo: eps uniform in [0, gamma]
+};
+
 struct Output {
   std::string dir = "out";
   std::int64_t every = 100; // observables cadence in steps
@@ -131,6 +163,8 @@ struct Scene {
   Fluid fluid;
   std::optional<BodyForce> body_force;
   std::optional<Walls> walls;
+  std::optional<Colloids> colloids;
+  std::optional<Thermostat> thermostat;
   Output output;
   std::optional<Kmc> kmc;       // engine kmc only
   std::optional<Lgca> lgca;     // engine lgca only

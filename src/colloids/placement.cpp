@@ -1,0 +1,117 @@
+// Placing colloids at the start of a run, and the fluid's exclusion test.
+#include "narrows/colloids/placement.hpp"
+
+#include "narrows/colloids/potentials.hpp"
+#include "narrows/core/error.hpp"
+#include "narrows/core/rng.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+namespace narrows::colloids {
+
+double colloid_volume(int dim, double r) {
+  return dim == 2 ? std::numbers::pi * r * r : 4.0 / 3.0 * std::numbers::pi * r * r * r;
+}
+
+namespace {
+
+// Minimum-image squared distance between a and b.
+double distance2(const mpcd::Box &box, const std::array<double, 3> &a,
+                 const std::array<double, 3> &b) {
+  double r2 = 0.0;
+  for (int k = 0; k < box.dim; ++k) {
+    double d = a[k] - b[k];
+    if (!(k == 1 && box.walls_y)) {
+      const double L = box.length[k];
+      if (d > 0.5 * L)
+        d -= L;
+      else if (d < -0.5 * L)
+        d += L;
+    }
+    r2 += d * d;
+  }
+  return r2;
+}
+
+std::array<double, 3> position(const Colloids &c, std::size_t i) {
+  return {c.x[0][i], c.x[1][i], c.dim == 3 ? c.x[2][i] : 0.0};
+}
+
+} // namespace
+
+bool inside_any(const Colloids &c, const mpcd::Box &box, const std::array<double, 3> &p) {
+  for (std::size_t i = 0; i < c.size(); ++i)
+    if (distance2(box, p, position(c, i)) < c.radius[i] * c.radius[i])
+      return true;
+  return false;
+}
+
+std::uint64_t fluid_count_with_colloids(const scene::Colloids &spec, const mpcd::Box &box,
+                                        double density) {
+  double volume = 1.0;
+  for (int k = 0; k < box.dim; ++k)
+    volume *= box.length[k];
+  volume -= static_cast<double>(spec.count) * colloid_volume(box.dim, spec.radius);
+  return static_cast<std::uint64_t>(std::llround(density * volume));
+}
+
+Colloids place_colloids(const scene::Colloids &spec, const mpcd::Box &box, double density,
+                        std::uint64_t seed) {
+  Colloids c;
+  c.dim = box.dim;
+  const auto n = static_cast<std::size_t>(spec.count);
+  c.resize(n);
+  const double mass = spec.effective_mass(box.dim, density);
+  for (std::size_t i = 0; i < n; ++i) {
+    c.id[i] = i;
+    c.radius[i] = spec.radius;
+    c.mass[i] = mass;
+  }
+  switch (spec.placement) {
+  case scene::ColloidPlacement::list:
+    for (std::size_t i = 0; i < n; ++i)
+      for (int k = 0; k < box.dim; ++k)
+        c.x[k][i] = spec.positions[i][k];
+    break;
+  case scene::ColloidPlacement::lattice:
+    for (std::size_t i = 0; i < n; ++i) {
+      c.x[0][i] = (static_cast<double>(i) + 0.5) * box.length[0] / static_cast<double>(n);
+      for (int k = 1; k < box.dim; ++k)
+        c.x[k][i] = 0.5 * box.length[k];
+    }
+    break;
+  case scene::ColloidPlacement::random: {
+    const double min2 = std::pow(repulsive_cutoff(24, 2.0 * spec.radius), 2);
+    const double margin = box.walls_y ? wall_cutoff(spec.effective_wall_sigma()) : 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      bool placed = false;
+      for (std::uint64_t attempt = 0; attempt < 100000 && !placed; ++attempt) {
+        const auto r = rng::draw(seed, rng::Purpose::colloid_placement, attempt, i);
+        const auto r2 = rng::draw(seed, rng::Purpose::colloid_placement, attempt + (1ull << 40), i);
+        std::array<double, 3> p{rng::uniform53(r[0], r[1]), rng::uniform53(r[2], r[3]),
+                                rng::uniform53(r2[0], r2[1])};
+        for (int k = 0; k < box.dim; ++k)
+          p[k] = k == 1 && box.walls_y ? margin + p[k] * (box.length[1] - 2.0 * margin)
+                                       : p[k] * box.length[k];
+        placed = true;
+        for (std::size_t j = 0; j < i && placed; ++j)
+          placed = distance2(box, p, position(c, j)) >= min2;
+        if (placed)
+          for (int k = 0; k < box.dim; ++k)
+            c.x[k][i] = p[k];
+      }
+      if (!placed)
+        throw input_error("colloids.count = " + std::to_string(n) + ": colloid " +
+                          std::to_string(i) +
+                          " found no free place in 100000 random tries; allowed: fewer colloids "
+                          "or placement = \"lattice\"");
+    }
+    break;
+  }
+  }
+  return c;
+}
+
+} // namespace narrows::colloids

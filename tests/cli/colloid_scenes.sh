@@ -1,0 +1,79 @@
+#!/usr/bin/env bash
+# Scenes with [colloids]: every one in run/ runs briefly with finite observables; a colloid channel
+# run on 2 ranks ends bitwise equal to 1 rank (fluid and colloids, compared by id in the final
+# checkpoints); a restart (2 ranks to step 30, then 1 rank to 60) ends bitwise equal to the
+# uninterrupted run; a checkpoint with the wrong colloid count is refused.
+set -u
+source "$(dirname "$0")/common.bash"
+py=/usr/bin/python3
+
+for scene in "$src"/run/*.toml; do
+  grep -q '^\[colloids\]' "$scene" || continue
+  name=$(basename "$scene" .toml)
+  "$narrows" run "$scene" --set run.steps=100 --set output.every=50 --set output.progress=false \
+    --out "$tmp/$name" > /dev/null 2> "$tmp/$name.err"
+  code=$?
+  check "$name: run exits 0 (got $code): $(head -c 300 "$tmp/$name.err")" '[ "$code" -eq 0 ]'
+  check "$name: observables finite" '$py - "$tmp/$name/observables.h5" <<PY
+import sys, h5py, numpy as np
+f = h5py.File(sys.argv[1], "r")["observables"]
+for name in f:
+    v = f[name + "/value"][()]
+    assert v.shape[0] == 2 and np.all(np.isfinite(v)), (name, v)
+PY'
+done
+
+cat > "$tmp/c.toml" <<'TOML'
+[run]
+dimensions = 2
+seed = 12
+steps = 60
+[domain]
+size = [24.0, 10.0]
+[fluid]
+collision = "srd"
+density = 5
+dt = 0.1
+[walls]
+[colloids]
+radius = 1.5
+count = 3
+gravity = [0.5, 0.0]
+[output]
+every = 10
+checkpoint_every = 30
+progress = false
+observables = ["momentum", "energy"]
+TOML
+cat > "$tmp/compare.py" <<'PY'
+import sys, h5py, numpy as np
+def state(path, species):
+    with h5py.File(path, "r") as f:
+        p = f["/particles/" + species]
+        order = np.argsort(p["id/value"][:])
+        return p["id/value"][:][order], p["position/value"][:][order], p["velocity/value"][:][order]
+for species in ("fluid", "colloids"):
+    a, b = state(sys.argv[1], species), state(sys.argv[2], species)
+    if not all(np.array_equal(x.view(np.uint64), y.view(np.uint64)) for x, y in zip(a, b)):
+        sys.exit(1)
+PY
+"$narrows" run "$tmp/c.toml" --out "$tmp/one" > /dev/null 2>&1
+check "1 rank exits 0" '[ $? -eq 0 ]'
+"${mpi[@]}" -n 2 "$narrows" run "$tmp/c.toml" --out "$tmp/two" > /dev/null 2>&1
+check "2 ranks exit 0" '[ $? -eq 0 ]'
+check "colloids stored in the checkpoint" '$py -c "import h5py,sys; f=h5py.File(sys.argv[1]); assert f[\"/particles/colloids/position/value\"].shape == (3, 2)" "$tmp/one/checkpoint-0000000060.h5"'
+check "2 ranks bitwise equal to 1 rank (fluid and colloids)" \
+  '$py "$tmp/compare.py" "$tmp/one/checkpoint-0000000060.h5" "$tmp/two/checkpoint-0000000060.h5"'
+"${mpi[@]}" -n 2 "$narrows" run "$tmp/c.toml" --set run.steps=30 --out "$tmp/part" > /dev/null 2>&1
+check "first part exits 0" '[ $? -eq 0 ]'
+"$narrows" run "$tmp/c.toml" --restart "$tmp/part" --out "$tmp/part" > /dev/null 2> "$tmp/err"
+check "restart exits 0: $(head -c 300 "$tmp/err")" '[ $? -eq 0 ]'
+check "restart (2 ranks to 30, 1 rank to 60) bitwise equal to the uninterrupted run" \
+  '$py "$tmp/compare.py" "$tmp/one/checkpoint-0000000060.h5" "$tmp/part/checkpoint-0000000060.h5"'
+sed 's/count = 3/count = 2/' "$tmp/c.toml" > "$tmp/c2.toml"
+"$narrows" run "$tmp/c2.toml" --restart "$tmp/part/checkpoint-0000000030.h5" --out "$tmp/bad2" \
+  > /dev/null 2> "$tmp/err2"
+code=$?
+check "a scene with another colloid count is refused (exit 2, got $code)" \
+  '[ "$code" -eq 2 ] && grep -q "colloids.count" "$tmp/err2"'
+finish "colloid scenes"

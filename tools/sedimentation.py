@@ -1,0 +1,110 @@
+#!/usr/bin/python3
+"""Sedimentation observables of seed 000 ch.4 from one or more run directories.
+
+Usage: sedimentation.py RUN_DIR [RUN_DIR ...] [--skip 0.25] [--blocks 10] [--chain PNG]
+
+For every run: the colloids' mean settling velocity along the gravity (x) axis in the frame
+co-moving with the centre of mass (eq 4.8-4.10, the run's "settling_velocity" series, averaged
+over the samples after the first --skip fraction, error from --blocks block means), and the
+Reynolds number Re = v_s L_y / nu (eq 4.11) with nu from SRD kinetic theory. With several runs
+at different colloids.gravity, a linear fit v_s = mu g with its R^2 (seed 000 fig 4.10).
+With --chain, the chain distances D_i(t) of §4.5 from "colloid_positions": colloids labelled
+by their initial x, groups of 5 consecutive ones, D_i = mean distance to the next colloid within
+group i; plotted against time for the first run.
+"""
+
+import argparse
+import os
+import sys
+import tomllib
+
+import h5py
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plot_profile import theory_viscosity  # noqa: E402
+
+
+def read(run):
+    path = os.path.join(run, "observables.h5")
+    with h5py.File(path, "r") as f:
+        scene = tomllib.loads(f["parameters/scene"][()].decode())
+        obs = f["observables"]
+        if "settling_velocity" not in obs:
+            sys.exit(f"{path}: no /observables/settling_velocity (add it to output.observables)")
+        v = obs["settling_velocity/value"][()][:, 0]
+        t = obs["settling_velocity/time"][()]
+        pos = obs["colloid_positions/value"][()] if "colloid_positions" in obs else None
+        pos_t = obs["colloid_positions/time"][()] if "colloid_positions" in obs else None
+    return scene, t, v, pos_t, pos
+
+
+def block_mean(v, blocks):
+    n = len(v) // blocks
+    if n == 0:
+        return float(np.mean(v)), float("nan")
+    m = v[: n * blocks].reshape(blocks, n).mean(axis=1)
+    return float(m.mean()), float(m.std(ddof=1) / np.sqrt(blocks))
+
+
+def unwrap(x, L):
+    d = np.diff(x, axis=0)
+    d -= L * np.round(d / L)
+    return np.concatenate([x[:1], x[:1] + np.cumsum(d, axis=0)])
+
+
+def chain_distances(pos, L, group=5):
+    x = unwrap(pos[:, :, 0], L)
+    order = np.argsort(x[0])
+    x = x[:, order]
+    gaps = np.diff(x, axis=1)  # d between consecutive colloids
+    groups = gaps.shape[1] // group
+    return np.stack([gaps[:, i * group:(i + 1) * group].mean(axis=1) for i in range(groups)], 1)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("runs", nargs="+")
+    ap.add_argument("--skip", type=float, default=0.25)
+    ap.add_argument("--blocks", type=int, default=10)
+    ap.add_argument("--chain", help="PNG of the chain distances D_i(t) of the first run")
+    a = ap.parse_args()
+    gs, vs, es = [], [], []
+    print("| run | g | v_s | error | Re |")
+    print("|---|---|---|---|---|")
+    for run in a.runs:
+        scene, t, v, pos_t, pos = read(run)
+        fl = scene["fluid"]
+        nu, _ = theory_viscosity(fl.get("collision", "srd"), scene["run"].get("dimensions", 2),
+                                 float(fl.get("density", 10)), float(fl["dt"]),
+                                 float(fl.get("angle", 90.0)), float(fl.get("kT", 1.0)))
+        g = float(scene["colloids"].get("gravity", [0.0])[0])
+        keep = v[int(a.skip * len(v)):]
+        m, e = block_mean(keep, a.blocks)
+        Ly = float(scene["domain"]["size"][1])
+        re = abs(m) * Ly / nu if nu else float("nan")
+        print(f"| {run} | {g:g} | {m:.5f} | {e:.5f} | {re:.4f} |")
+        gs.append(g), vs.append(m), es.append(e)
+        if a.chain and run == a.runs[0] and pos is not None:
+            import matplotlib
+            matplotlib.use("Agg")
+            import matplotlib.pyplot as plt
+            D = chain_distances(pos, float(scene["domain"]["size"][0]))
+            for i in range(D.shape[1]):
+                plt.plot(pos_t, D[:, i], label=f"D_{i + 1}")
+            plt.xlabel("t")
+            plt.ylabel("D_i")
+            plt.legend()
+            plt.savefig(a.chain, dpi=120)
+            print(f"chain distances: {a.chain}; final D_i = {np.round(D[-1], 3)}")
+    if len(set(gs)) >= 2:
+        g, v = np.array(gs), np.array(vs)
+        mu = float(np.sum(g * v) / np.sum(g * g))  # v_s = mu g through the origin
+        slope, icpt = np.polyfit(g, v, 1)
+        r2 = 1.0 - np.sum((v - (slope * g + icpt)) ** 2) / np.sum((v - v.mean()) ** 2)
+        print(f"\nlinear fit v_s = {slope:.4f} g + {icpt:.5f}, R^2 = {r2:.4f}; "
+              f"through the origin mu = {mu:.4f}")
+
+
+if __name__ == "__main__":
+    main()
