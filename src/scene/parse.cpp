@@ -60,7 +60,7 @@ const std::vector<Section> &schema() {
       {"lattice",
        {"model", "size", "density", "initial", "amplitude", "walls", "body_force", "obstacles",
         "block"}},
-      {"tagged", {"max_lag"}},
+      {"tagged", {"max_lag", "replicas"}},
       {"output",
        {"dir", "every", "observables", "checkpoint_every", "checkpoint_keep", "progress",
         "trajectory_every", "trajectory_subsample"}},

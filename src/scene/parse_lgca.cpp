@@ -91,7 +91,8 @@ Lgca parse_lgca(const toml::value *sec, const SectionFail &fail) {
            "missing required key 'lattice.density'; allowed: " + density_allowed);
 
   if (const toml::value *v = find(sec, "initial")) {
-    const std::string allowed = "\"equilibrium\" or \"shear-wave\"";
+    const std::string allowed =
+        one_d ? "\"equilibrium\" or \"zero-momentum\"" : "\"equilibrium\" or \"shear-wave\"";
     if (!v->is_string())
       c.wrong_type("lattice.initial", *v, allowed);
     const std::string s = v->as_string().str;
@@ -99,10 +100,11 @@ Lgca parse_lgca(const toml::value *sec, const SectionFail &fail) {
       out.initial = LgcaInitial::equilibrium;
     else if (s == "shear-wave" && !one_d)
       out.initial = LgcaInitial::shear_wave;
+    else if (s == "zero-momentum" && one_d)
+      out.initial = LgcaInitial::zero_momentum;
     else
       c.fail("lattice.initial", "lattice.initial = " + repr(*v) + " is not known" +
-                                    (one_d ? " for the 1D model" : "") + "; allowed: " +
-                                    (one_d ? std::string("\"equilibrium\"") : allowed));
+                                    (one_d ? " for the 1D model" : "") + "; allowed: " + allowed);
   }
   if (const toml::value *v = find(sec, "amplitude")) {
     // Occupations d + (rho/3) c_i.u must stay in [0, 1]: |u| <= min(d, 1 - d) 3 / rho.
@@ -160,7 +162,6 @@ Lgca parse_lgca(const toml::value *sec, const SectionFail &fail) {
 
 Tagged parse_tagged(const toml::value &sec, const Lgca &lattice, const SectionFail &fail) {
   const Checker c(fail);
-  (void)lattice;
   Tagged out;
   const std::string allowed = "an integer from 1 to 1000000 (VACF lags 0..max_lag)";
   if (const toml::value *v = find(&sec, "max_lag"))
@@ -168,6 +169,13 @@ Tagged parse_tagged(const toml::value &sec, const Lgca &lattice, const SectionFa
                             [](std::int64_t n) { return n >= 1 && n <= 1000000; });
   else
     c.fail("tagged.max_lag", "missing required key 'tagged.max_lag'; allowed: " + allowed);
+  if (const toml::value *v = find(&sec, "replicas")) {
+    const bool one_d = lattice.model == LgcaModel::dhumieres_1d;
+    const std::string r_allowed = one_d ? "an integer from 1 to 10000 (independent runs)"
+                                        : "only with lattice.model = \"dhumieres-1d\"";
+    out.replicas = c.integer(*v, "tagged.replicas", r_allowed,
+                             [one_d](std::int64_t n) { return one_d && n >= 1 && n <= 10000; });
+  }
   return out;
 }
 

@@ -99,7 +99,9 @@ struct Kmc {
 // Engine "lgca": FHP lattice gases on the triangular lattice and the 1D d'Humieres model (seed
 // 002; DESIGN.md, "Scene keys of the lattice engines"). Lattice units: spacing 1, step 1.
 enum class LgcaModel { fhp_i, fhp_ii, fhp_iii, fhp_saturated, dhumieres_1d };
-enum class LgcaInitial { equilibrium, shear_wave };
+// zero_momentum (1D model): exactly N = round(L b d) particles and total momentum 0, the
+// {N, P = 0} ensemble of seed 002 §3.4.
+enum class LgcaInitial { equilibrium, shear_wave, zero_momentum };
 
 // A solid disc of sites (bounce-back) at (x, y) in lattice coordinates (row y at y sqrt(3)/2).
 struct LgcaObstacle {
@@ -121,6 +123,7 @@ struct Lgca {
 // Tagged-particle VACF by moment propagation (optional section [tagged]).
 struct Tagged {
   std::int64_t max_lag = 100;
+  std::int64_t replicas = 1; // 1D model: independent runs (spread over the ranks)
 };
 
 struct Scene {
