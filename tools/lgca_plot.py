@@ -10,10 +10,14 @@
 - tagged VACF (/observables/vacf): FHP models on log-log axes, Z(t) + (1 - d)/N (eq 22) with its
   error, the power-law fit Z ~ t^-a over [--tail-first, --tail-last] (weighted by the error;
   prints a and its error) and eq 19 at t = 1; the 1D model on linear axes with the plateau
-  -(1 - d)/N of eq 22 (seed 002 fig 1).
+  -(1 - d)/N of eq 22 (seed 002 fig 1);
+- held colloid (/observables/colloid_vacf, colloid_diffusion; seed 002 fig 3): the VACF on
+  log-log axes with the power-law fit over [--colloid-first, --colloid-last], and D(t) against
+  ln t with the straight-line fit over the same window and its R^2. Several files (e.g. the
+  segments of a restarted run, observables-<step>.h5) are averaged with equal weights.
 
 Usage: tools/lgca_plot.py OUT/observables.h5 [MORE.h5 ...] [--png FILE] [--first T0] [--last T1]
-                          [--tail-first T0] [--tail-last T1]
+                          [--tail-first T0] [--tail-last T1] [--colloid-first T0] [--colloid-last T1]
 """
 import argparse
 import math
@@ -103,6 +107,48 @@ def vacf_panel(ax, g, lat, args):
     ax.legend(fontsize=8)
 
 
+def colloid_panel(ax, name, groups, args):
+    lags = groups[0]["lags"][()].astype(float)
+    vals = np.array([g["value"][()] for g in groups])
+    errs = np.array([g["error"][()] for g in groups])
+    v = vals.mean(axis=0)
+    e = np.sqrt((errs**2).sum(axis=0)) / len(groups)
+    last = args.colloid_last if args.colloid_last is not None else lags[-1]
+    sel = (lags >= args.colloid_first) & (lags <= last)
+    if name == "colloid_vacf":
+        ok = sel & (v > 0)
+        ax.errorbar(lags[1:], np.abs(v[1:]), yerr=e[1:], fmt=".", ms=2, lw=0.3,
+                    label="|Z(t)| of the held colloid")
+        if ok.sum() >= 3:
+            a, c = np.polyfit(np.log(lags[ok]), np.log(v[ok]), 1)
+            print(f"colloid VACF: Z ~ t^{a:.3f} over lags {args.colloid_first:g}..{last:g} "
+                  f"({ok.sum()} positive of {sel.sum()} lags); Z({int(last)}) = "
+                  f"{v[lags == last][0]:.4g} +- {e[lags == last][0]:.2g}")
+            tt = np.array([args.colloid_first, last])
+            ax.loglog(tt, np.exp(c) * tt**a, "-", color="C3", label=f"fit t^{a:.2f}")
+            ax.loglog(tt, np.exp(c) * tt[0] ** (a + 1) / tt, "--", color="k", label="slope -1")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("t")
+        ax.set_ylabel("Z(t) = <U(0).U(t)> / <U^2>")
+        ax.set_title("held colloid: velocity autocorrelation")
+    else:
+        ok = sel & (lags > 0)
+        ax.errorbar(np.log(lags[lags > 0]), v[lags > 0], yerr=e[lags > 0], fmt=".", ms=3,
+                    label="D(t) = <|X(t) - X(0)|^2> / 4t")
+        if ok.sum() >= 3:
+            x, y = np.log(lags[ok]), v[ok]
+            (k, c) = np.polyfit(x, y, 1)
+            r2 = 1 - ((y - (k * x + c)) ** 2).sum() / ((y - y.mean()) ** 2).sum()
+            print(f"colloid D(t) = {k:.4g} ln t + {c:.4g} over lags {args.colloid_first:g}.."
+                  f"{last:g}: R^2 = {r2:.4f}")
+            ax.plot(x, k * x + c, "-", color="C3", label=f"fit {k:.3g} ln t + {c:.3g}, R^2 = {r2:.3f}")
+        ax.set_xlabel("ln t")
+        ax.set_ylabel("D(t)")
+        ax.set_title("held colloid: virtual diffusion coefficient")
+    ax.legend(fontsize=8)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("files", nargs="+")
@@ -113,6 +159,10 @@ def main():
     ap.add_argument("--tail-first", type=float, default=20.0, help="first lag of the VACF tail fit")
     ap.add_argument("--tail-last", type=float, default=None,
                     help="last lag of the VACF tail fit (default: the last lag)")
+    ap.add_argument("--colloid-first", type=float, default=100.0,
+                    help="first lag of the colloid VACF and D(t) fits")
+    ap.add_argument("--colloid-last", type=float, default=None,
+                    help="last lag of the colloid fits (default: the last lag)")
     args = ap.parse_args()
 
     import matplotlib
@@ -130,6 +180,8 @@ def main():
         panels.append("fields")
     if "vacf" in obs:
         panels.append("vacf")
+    if "colloid_vacf" in obs:
+        panels += ["colloid_vacf", "colloid_diffusion"]
     fig, axes = plt.subplots(1, len(panels), figsize=(6 * len(panels), 4.5), squeeze=False)
     for ax, panel in zip(axes[0], panels):
         if panel == "shear":
@@ -161,6 +213,8 @@ def main():
             ax.legend(fontsize=8)
         elif panel == "vacf":
             vacf_panel(ax, obs["vacf"], lat, args)
+        elif panel.startswith("colloid"):
+            colloid_panel(ax, panel, [f["observables/" + panel] for f in files], args)
         else:
             if "velocity" in obs:
                 u = obs["velocity/value"][-1]

@@ -7,13 +7,17 @@
 #include "narrows/engine/log.hpp"
 #include "narrows/io/checkpoint.hpp"
 #include "narrows/io/observables_writer.hpp"
+#include "narrows/lattice/colloid_correlations.hpp"
 #include "narrows/lattice/dhumieres_vacf.hpp"
 #include "narrows/lattice/fhp_checkpoint.hpp"
+#include "narrows/lattice/fhp_colloid.hpp"
 #include "narrows/lattice/fhp_observables.hpp"
 #include "narrows/lattice/fhp_tagged.hpp"
 #include "narrows/lattice/fhp_update.hpp"
 #include "narrows/lattice/vacf_theory.hpp"
 #include "narrows/scene/parse.hpp"
+
+#include <hdf5.h>
 
 #include <algorithm>
 #include <chrono>
@@ -82,6 +86,14 @@ void check_restart_lattice(const scene::Scene &given, const io::CheckpointInfo &
       differ(k + "[1]", g.obstacles[i].y, s.obstacles[i].y);
       differ(k + "[2]", g.obstacles[i].radius, s.obstacles[i].radius);
     }
+  }
+  differ("colloid (present)", given.colloid.has_value(), stored.colloid.has_value());
+  if (given.colloid && stored.colloid) {
+    const auto &g = *given.colloid, &s = *stored.colloid;
+    differ("colloid.position[0]", g.x, s.x);
+    differ("colloid.position[1]", g.y, s.y);
+    differ("colloid.radius", g.radius, s.radius);
+    differ("colloid.mass", g.mass, s.mass);
   }
   diff.refuse(given.file + ": ", checkpoint);
 }
@@ -186,6 +198,77 @@ void finish_vacf(const scene::Scene &scene, const FhpLattice &lattice, const Fhp
   writer->flush();
 }
 
+ColloidParams colloid_params(const scene::Scene &scene) {
+  const scene::LgcaColloid &c = *scene.colloid;
+  ColloidParams p;
+  p.x = c.x;
+  p.y = c.y;
+  p.radius = c.radius;
+  p.mass = c.mass;
+  p.vx = c.vx;
+  p.vy = c.vy;
+  p.held = c.held;
+  p.seed_for_rules = scene.run.seed;
+  return p;
+}
+
+// The colloid state in the checkpoint file beside the lattice: /colloid/{momentum, omega}.
+void write_colloid_state(const std::string &path, const FhpColloid &c) {
+  const io::h5::File f = io::h5::open_file(path, H5F_ACC_RDWR);
+  const io::h5::Group g = io::h5::create_group(f.get(), "colloid", path);
+  const MomentumUnits p = c.momentum();
+  io::h5::write_dataset<std::int64_t>(g.get(), "momentum", std::span<const std::int64_t>(p), path);
+  io::h5::write_scalar<double>(g.get(), "omega", c.omega(), path);
+}
+
+void read_colloid_state(const std::string &path, FhpColloid &c) {
+  const io::h5::File f = io::h5::open_file(path);
+  MomentumUnits p{};
+  double omega = 0.0;
+  const hid_t dp = H5Dopen2(f.get(), "/colloid/momentum", H5P_DEFAULT);
+  const hid_t dw = dp < 0 ? -1 : H5Dopen2(f.get(), "/colloid/omega", H5P_DEFAULT);
+  const bool ok = dp >= 0 && dw >= 0 &&
+                  H5Dread(dp, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, p.data()) >= 0 &&
+                  H5Dread(dw, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &omega) >= 0;
+  if (dp >= 0)
+    H5Dclose(dp);
+  if (dw >= 0)
+    H5Dclose(dw);
+  if (!ok)
+    throw input_error(path + ": no readable /colloid/{momentum, omega}; allowed: a checkpoint "
+                             "of a run with [colloid]");
+  c.set_state(p, omega);
+}
+
+// The held colloid's VACF and virtual D(t): log lines and /observables/colloid_* (rank 0).
+void finish_colloid(const FhpColloid &colloid, const ColloidCorrelations &stats,
+                    const FhpLattice &lattice, bool closed, engine::Log &log,
+                    io::ObservablesWriter *writer) {
+  const auto z = stats.vacf(), d = stats.diffusion();
+  char line[400];
+  const auto u = colloid.velocity();
+  std::snprintf(line, sizeof line,
+                "colloid: <U^2> = %.4g; "
+                "final U = (%.4g, %.4g), omega %.4g; %s; Z(%d) = %.4g +- %.2g; D(%d) = %.4g "
+                "+- %.2g",
+                stats.mean_square_velocity(), u[0], u[1], colloid.omega(),
+                closed ? "fluid + colloid momentum conserved exactly (checked at every sample)"
+                       : "momentum not closed (walls, obstacles or force)",
+                static_cast<int>(z.lags.back()), z.value.back(), z.error.back(),
+                static_cast<int>(d.lags.back()), d.value.back(), d.error.back());
+  log.line(line);
+  if (writer == nullptr)
+    return;
+  const double t = static_cast<double>(lattice.time());
+  writer->write_result("colloid_vacf", lattice.time(), t, z.value,
+                       {{"lags", z.lags},
+                        {"error", z.error},
+                        {"mean_square_velocity", {stats.mean_square_velocity()}}});
+  writer->write_result("colloid_diffusion", lattice.time(), t, d.value,
+                       {{"lags", d.lags}, {"error", d.error}});
+  writer->flush();
+}
+
 } // namespace
 
 FhpModel fhp_model(scene::LgcaModel m) {
@@ -276,6 +359,16 @@ std::vector<std::string> describe(const scene::Scene &scene, MPI_Comm comm) {
                   ", eq 21 mean free time t0 = " + fmt("%.6g", th.t0) +
                   ", eq 22 correction (1 - d)/N = " + fmt("%.4g", th.correction) +
                   " (N = " + fmt("%.0f", th.particles) + " expected)");
+  }
+  if (scene.colloid) {
+    const scene::LgcaColloid &c = *scene.colloid;
+    out.push_back("colloid (held in place, Ladd-Frenkel moving-boundary rules eq 23-27, 1 rank): "
+                  "disc of radius " +
+                  fmt("%.4g", c.radius) + " at (" + fmt("%.6g", c.x) + ", " + fmt("%.6g", c.y) +
+                  "), mass " + fmt("%.6g", c.mass) + "; velocity VACF lags 0.." +
+                  std::to_string(c.max_lag) + ", virtual displacement D(t) every " +
+                  std::to_string(c.displacement_every) + " up to " +
+                  std::to_string(c.displacement_lag));
   }
   if (g.body_force > 0.0)
     out.push_back("body force: a particle moves from link 3 (-x) to link 0 (+x) with "
@@ -413,6 +506,9 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, const std:
   MPI_Comm_size(comm, &ranks);
   // The lattice first: a decomposition the lattice cannot take is refused before any output.
   FhpLattice lattice(fhp_params(scene), comm);
+  std::unique_ptr<FhpColloid> colloid;
+  if (scene.colloid)
+    colloid = std::make_unique<FhpColloid>(colloid_params(scene), lattice);
   std::string restart_file;
   io::CheckpointInfo restart_info;
   if (!restart.empty()) {
@@ -434,6 +530,8 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, const std:
 
   if (restarting) {
     read_lattice_checkpoint(restart_file, restart_info, lattice);
+    if (colloid)
+      read_colloid_state(restart_file, *colloid);
     log.line("restarted from " + restart_file + " at step " + std::to_string(lattice.time()));
   } else {
     lattice.initialise(scene.lgca->density, scene.lgca->amplitude);
@@ -454,11 +552,28 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, const std:
   }
 
   const std::int64_t mass = total_mass(lattice);
+  // Fluid + colloid momentum is conserved exactly without walls, obstacles and body force.
+  const bool closed = colloid && !scene.lgca->walls && scene.lgca->obstacles.empty() &&
+                      scene.lgca->body_force == 0.0;
+  const auto total_momentum = [&] {
+    MomentumUnits p = fluid_momentum(lattice);
+    p[0] += colloid->momentum()[0];
+    p[1] += colloid->momentum()[1];
+    return p;
+  };
+  const MomentumUnits momentum0 = closed ? total_momentum() : MomentumUnits{};
+  std::unique_ptr<ColloidCorrelations> colloid_stats;
+  if (colloid)
+    colloid_stats = std::make_unique<ColloidCorrelations>(
+        static_cast<int>(scene.colloid->max_lag), static_cast<int>(scene.colloid->displacement_lag),
+        static_cast<int>(scene.colloid->displacement_every), scene.run.steps - lattice.time());
   const std::int64_t sites = static_cast<std::int64_t>(lattice.size_x()) * lattice.size_y();
   auto save_checkpoint = [&] {
     Stopwatch watch;
     const std::string path = io::checkpoint_path(dir, lattice.time());
     const double bytes = write_lattice_checkpoint(path, lattice, scene.text);
+    if (colloid && rank == 0)
+      write_colloid_state(path, *colloid);
     if (rank == 0)
       io::prune_checkpoints(dir, scene.output.checkpoint_keep);
     char line[300];
@@ -473,7 +588,11 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, const std:
   Stopwatch clock, since_progress;
   const std::int64_t first = lattice.time();
   while (lattice.time() < scene.run.steps) {
+    if (colloid)
+      colloid->apply(lattice);
     lattice.step();
+    if (colloid_stats)
+      colloid_stats->add(colloid->velocity());
     observer.every_step(lattice);
     if (tagged)
       tagged->feed(lattice);
@@ -482,6 +601,9 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, const std:
       if (now != mass)
         throw invariant_error("lattice mass changed from " + std::to_string(mass) + " to " +
                               std::to_string(now) + " at step " + std::to_string(lattice.time()));
+      if (closed && total_momentum() != momentum0)
+        throw invariant_error("fluid + colloid momentum changed at step " +
+                              std::to_string(lattice.time()));
       observer.sample(lattice);
     }
     if ((stop = signals.requested(comm)) != 0)
@@ -499,6 +621,8 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, const std:
   const std::int64_t steps = lattice.time() - first;
   if (tagged)
     finish_vacf(scene, lattice, *tagged, log, raw_writer);
+  if (colloid_stats)
+    finish_colloid(*colloid, *colloid_stats, lattice, closed, log, raw_writer);
   const std::string last = save_checkpoint();
   if (stop != 0)
     log.line(std::string("received ") + io::signal_name(stop) + ": stopped after step " +

@@ -15,6 +15,8 @@ for scene in "$src"/run/lgca*.toml; do
   fi
   one_d=0
   grep -q 'dhumieres-1d' "$scene" && one_d=1
+  colloid=0
+  grep -q '^\[colloid\]' "$scene" && colloid=1
   "$narrows" check "$scene" > "$tmp/$name.check" 2>&1
   check "$name: check exits 0" '[ $? -eq 0 ]'
   "$narrows" run "$scene" "${small[@]}" --out "$tmp/$name" > "$tmp/$name.out" 2>&1
@@ -24,6 +26,16 @@ for scene in "$src"/run/lgca*.toml; do
     'grep -q "^Loop time of .* on 1 ranks for 40 steps with .* sites (.* site-updates/s)$" "$tmp/$name/log.txt"'
   if [ "$one_d" -eq 0 ]; then
     check "$name: final checkpoint" '[ -f "$tmp/$name/checkpoint-0000000040.h5" ]'
+  fi
+  if [ "$colloid" -eq 1 ]; then
+    # the colloid runs on one rank: 2 ranks are refused with one line, before any output
+    "${mpi[@]}" -n 2 "$narrows" run "$scene" "${small[@]}" --out "$tmp/$name-2" > /dev/null \
+      2> "$tmp/$name-2.err"
+    code=$?
+    check "$name: 2 ranks refused, exit 2 (got $code)" '[ "$code" -eq 2 ]'
+    check "$name: 2 ranks refusal names the rank count" 'grep -q "1 rank only" "$tmp/$name-2.err"'
+    check "$name: colloid momentum line" 'grep -q "momentum conserved exactly" "$tmp/$name/log.txt"'
+    continue
   fi
   "${mpi[@]}" -n 2 "$narrows" run "$scene" "${small[@]}" --out "$tmp/$name-2" > /dev/null 2>&1
   check "$name: 2 ranks exit 0" '[ $? -eq 0 ]'
@@ -54,7 +66,7 @@ PY'
 done
 
 # The plot tool draws both kinds of output.
-for name in lgca_shear_wave lgca_channel lgca_vacf_tail lgca_dhumieres_fig1; do
+for name in lgca_shear_wave lgca_channel lgca_vacf_tail lgca_dhumieres_fig1 lgca_colloid_held; do
   /usr/bin/python3 "$src/tools/lgca_plot.py" "$tmp/$name/observables.h5" --first 5 \
     --png "$tmp/$name.png" > "$tmp/$name.plot" 2>&1
   check "$name: tools/lgca_plot.py writes a PNG" '[ $? -eq 0 ] && [ -s "$tmp/$name.png" ]'
@@ -90,6 +102,24 @@ code=$?
 check "restart with another scene exits 2 with one line (got $code)" \
   '[ "$code" -eq 2 ] && [ "$(grep -c . "$tmp/mismatch2.err")" -eq 1 ]'
 
+# Restart of the held colloid: its momentum and angular velocity come back from the checkpoint.
+cscene=$src/run/lgca_colloid_held.toml
+"$narrows" run "$cscene" --set run.steps=300 --out "$tmp/crs" > /dev/null 2>&1
+"$narrows" run "$cscene" --set run.steps=600 --restart "$tmp/crs" --out "$tmp/crs" > /dev/null 2>&1
+check "colloid restart: continuation exits 0" '[ $? -eq 0 ]'
+"$narrows" run "$cscene" --set run.steps=600 --out "$tmp/cstraight" > /dev/null 2>&1
+check "colloid restart: bitwise the uninterrupted lattice and colloid" '/usr/bin/python3 - "$tmp" <<PY
+import sys, h5py, numpy as np
+t = sys.argv[1]
+a = h5py.File(t + "/crs/checkpoint-0000000600.h5", "r")
+b = h5py.File(t + "/cstraight/checkpoint-0000000600.h5", "r")
+k = "particles/lattice/state/value"
+assert np.array_equal(a[k][()], b[k][()])
+assert np.array_equal(a["colloid/momentum"][()], b["colloid/momentum"][()])
+assert a["colloid/omega"][()] == b["colloid/omega"][()]
+assert np.any(a["colloid/momentum"][()] != 0)
+PY'
+
 # Bad input: exit 2, one line naming the key.
 bad() {
   local label=$1 want=$2
@@ -110,6 +140,8 @@ bad "max_lag 0" "tagged.max_lag" --set tagged.max_lag=0
 bad "dhumieres-1d without [tagged]" "[tagged]" --set lattice.model=dhumieres-1d \
   --set 'lattice.size=[64]' --set lattice.initial=equilibrium --set lattice.amplitude=0
 bad "zero-momentum on FHP" "lattice.initial" --set lattice.initial=zero-momentum
+bad "moving colloid" "colloid.held" --set 'colloid.position=[10.0,10.0]' --set colloid.held=false
+bad "colloid without position" "colloid.position" --set colloid.radius=2.5
 bad "amplitude too large" "lattice.amplitude" --set lattice.amplitude=0.9
 bad "[fluid] in an lgca scene" "[fluid]" --set fluid.dt=0.1
 finish lgca_scenes

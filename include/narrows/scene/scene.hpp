@@ -126,6 +126,17 @@ struct Tagged {
   std::int64_t replicas = 1; // 1D model: independent runs (spread over the ranks)
 };
 
+// A held colloidal disc with the Ladd-Frenkel rules (optional section [colloid], FHP models).
+struct LgcaColloid {
+  double x = 0.0, y = 0.0; // centre in lattice coordinates (row y at y sqrt(3)/2)
+  double radius = 2.5, mass = 680.0;
+  double vx = 0.0, vy = 0.0;
+  bool held = true;
+  std::int64_t max_lag = 1000;           // VACF of the colloid velocity, lags 0..max_lag
+  std::int64_t displacement_lag = 5000;  // virtual displacement D(t) up to this lag
+  std::int64_t displacement_every = 100; // ... at lags that are multiples of this
+};
+
 struct Scene {
   std::string file; // where it came from, for messages
   std::string text; // the scene as read (stored in output files)
@@ -135,9 +146,10 @@ struct Scene {
   std::optional<BodyForce> body_force;
   std::optional<Walls> walls;
   Output output;
-  std::optional<Kmc> kmc;       // engine kmc only
-  std::optional<Lgca> lgca;     // engine lgca only
-  std::optional<Tagged> tagged; // engine lgca, [tagged] given
+  std::optional<Kmc> kmc;             // engine kmc only
+  std::optional<Lgca> lgca;           // engine lgca only
+  std::optional<Tagged> tagged;       // engine lgca, [tagged] given
+  std::optional<LgcaColloid> colloid; // engine lgca, [colloid] given
 };
 
 // Names used in messages and files.
