@@ -248,7 +248,7 @@ void finish_colloid(const FhpColloid &colloid, const ColloidCorrelations &stats,
   char line[400];
   const auto u = colloid.velocity();
   std::snprintf(line, sizeof line,
-                "colloid: <U^2> = %.4g; "
+                "colloid (velocity of disc + gas inside): <U^2> = %.4g; "
                 "final U = (%.4g, %.4g), omega %.4g; %s; Z(%d) = %.4g +- %.2g; D(%d) = %.4g "
                 "+- %.2g",
                 stats.mean_square_velocity(), u[0], u[1], colloid.omega(),
@@ -592,7 +592,7 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, const std:
       colloid->apply(lattice);
     lattice.step();
     if (colloid_stats)
-      colloid_stats->add(colloid->velocity());
+      colloid_stats->add(colloid->composite_velocity(lattice));
     observer.every_step(lattice);
     if (tagged)
       tagged->feed(lattice);

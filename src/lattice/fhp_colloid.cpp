@@ -4,6 +4,7 @@
 #include "narrows/core/error.hpp"
 #include "narrows/core/rng.hpp"
 
+#include <bit>
 #include <cmath>
 #include <string>
 
@@ -45,6 +46,8 @@ FhpColloid::FhpColloid(const ColloidParams &params, const FhpLattice &lattice) :
     for (int x = 0; x < X; ++x) {
       const bool in = inside(x, y);
       inside_sites_ += in;
+      if (in)
+        inside_.push_back({x, y});
       const int o = y % 2;
       const int nx[3] = {x + 1, x + o, x - 1 + o};
       const int ny[3] = {y, y + 1, y + 1};
@@ -67,6 +70,21 @@ FhpColloid::FhpColloid(const ColloidParams &params, const FhpLattice &lattice) :
 std::array<double, 2> FhpColloid::velocity() const {
   return {0.5 * static_cast<double>(momentum_[0]) / params_.mass,
           sqrt3_2 * static_cast<double>(momentum_[1]) / params_.mass};
+}
+
+std::array<double, 2> FhpColloid::composite_velocity(const FhpLattice &lattice) const {
+  std::int64_t pa = momentum_[0], pb = momentum_[1], n = 0;
+  for (const auto &s : inside_) {
+    const unsigned state = lattice.row(s[1])[s[0]];
+    for (int k = 0; k < 6; ++k)
+      if ((state >> k) & 1u) {
+        pa += a_units[k];
+        pb += b_units[k];
+      }
+    n += std::popcount(state);
+  }
+  const double m = params_.mass + static_cast<double>(n);
+  return {0.5 * static_cast<double>(pa) / m, sqrt3_2 * static_cast<double>(pb) / m};
 }
 
 void FhpColloid::apply(FhpLattice &lattice) {

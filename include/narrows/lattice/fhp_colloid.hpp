@@ -52,6 +52,10 @@ public:
   MomentumUnits momentum() const { return momentum_; }
   std::array<double, 2> velocity() const;
   double omega() const { return omega_; }
+  // The velocity of the disc together with the lattice gas inside it, (P + P_in) / (M + N_in):
+  // reflections on the inner side of the boundary links only move momentum between the two,
+  // so this is the velocity the outside fluid exchanges momentum with (the one measured).
+  std::array<double, 2> composite_velocity(const FhpLattice &lattice) const;
   int boundary_links() const { return static_cast<int>(links_.size()); }
   int inside_sites() const { return inside_sites_; }
   // Restoring a checkpoint.
@@ -67,6 +71,7 @@ private:
   };
   ColloidParams params_;
   std::vector<Link> links_;
+  std::vector<std::array<int, 2>> inside_; // sites of the disc
   MomentumUnits momentum_{};
   double omega_ = 0.0, inertia_ = 0.0;
   int inside_sites_ = 0;
