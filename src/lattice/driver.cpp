@@ -170,13 +170,19 @@ void finish_vacf(const scene::Scene &scene, const FhpLattice &lattice, const Fhp
     return; // not rank 0
   th.particles = tagged.particles();
   th.correction = theory::finite_size_correction(d, th.particles);
-  char line[400];
+  // N is conserved: eq 19 at the lattice's own density N / (b sites) is the one to compare
+  // with (the initial draw misses d by ~ sqrt(d (1 - d) / (b sites))).
+  const double d_lattice = th.particles / (links(lattice.params().model) * sites);
+  const double z1_lattice =
+      theory::one_step_vacf(triangular_links(links(lattice.params().model) == 7), d_lattice);
+  char line[500];
   std::snprintf(line, sizeof line,
-                "tagged VACF: %d curves (time origins) of %d lags, N = %.0f particles; Z(1) = "
-                "%.6f +- %.2g (standard error over origins), eq 19: %.6f; Boltzmann D0 = %.6g "
-                "(eq 20), t0 = %.6g (eq 21); eq 22 correction (1 - d)/N = %.4g",
-                tagged.curves(), tagged.max_lag(), th.particles, z[1], e[1], th.z1, th.d0, th.t0,
-                th.correction);
+                "tagged VACF: %d curves (time origins) of %d lags, N = %.0f particles (d = "
+                "%.6f); Z(1) = %.6f +- %.2g (standard error over origins), eq 19: %.6f at that "
+                "d (%.6f at the scene's d); Boltzmann D0 = %.6g (eq 20), t0 = %.6g (eq 21); "
+                "eq 22 correction (1 - d)/N = %.4g",
+                tagged.curves(), tagged.max_lag(), th.particles, d_lattice, z[1], e[1], z1_lattice,
+                th.z1, th.d0, th.t0, th.correction);
   log.line(line);
   if (writer == nullptr)
     return;
