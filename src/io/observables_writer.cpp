@@ -103,6 +103,19 @@ void ObservablesWriter::append_field(const std::string &name, std::int64_t step,
   append(series(name, Kind::field, shape, {}), name, step, time, values.data());
 }
 
+void ObservablesWriter::write_result(
+    const std::string &name, std::int64_t step, double time, std::span<const double> value,
+    const std::vector<std::pair<std::string, std::vector<double>>> &beside) {
+  if (name.empty() || name.find('/') != std::string::npos || series_.count(name) != 0)
+    throw Error(ExitCode::other, path_ + ": invalid or repeated observable name '" + name + "'");
+  const h5::Group group = h5::create_group(observables_.get(), name, path_);
+  h5::write_scalar<std::int64_t>(group.get(), "step", step, path_);
+  h5::write_scalar<double>(group.get(), "time", time, path_);
+  h5::write_dataset<double>(group.get(), "value", value, path_);
+  for (const auto &[key, data] : beside)
+    h5::write_dataset<double>(group.get(), key, std::span<const double>(data), path_);
+}
+
 void ObservablesWriter::flush() { h5::flush(file_, path_); }
 
 } // namespace narrows::io

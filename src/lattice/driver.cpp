@@ -7,10 +7,17 @@
 #include "narrows/engine/log.hpp"
 #include "narrows/io/checkpoint.hpp"
 #include "narrows/io/observables_writer.hpp"
+#include "narrows/lattice/colloid_correlations.hpp"
+#include "narrows/lattice/dhumieres_vacf.hpp"
 #include "narrows/lattice/fhp_checkpoint.hpp"
+#include "narrows/lattice/fhp_colloid.hpp"
 #include "narrows/lattice/fhp_observables.hpp"
+#include "narrows/lattice/fhp_tagged.hpp"
 #include "narrows/lattice/fhp_update.hpp"
+#include "narrows/lattice/vacf_theory.hpp"
 #include "narrows/scene/parse.hpp"
+
+#include <hdf5.h>
 
 #include <algorithm>
 #include <chrono>
@@ -39,16 +46,16 @@ bool wants(const scene::Scene &s, const char *name) {
   return std::find(o.begin(), o.end(), name) != o.end();
 }
 
-// Parts of the engine that are not in this version: one line, exit code 2.
+// Scenes the engine cannot run: one line, exit code 2.
 void refuse_unavailable(const scene::Scene &scene) {
-  if (scene.lgca->model == scene::LgcaModel::dhumieres_1d)
+  if (scene.lgca->model == scene::LgcaModel::dhumieres_1d && !scene.tagged)
     throw input_error(scene.file +
-                      ": lattice.model = \"dhumieres-1d\" is not available yet in this version; "
-                      "allowed: \"fhp-i\", \"fhp-ii\", \"fhp-iii\", \"fhp-saturated\"");
-  if (scene.tagged || wants(scene, "vacf"))
+                      ": lattice.model = \"dhumieres-1d\" measures the tagged VACF and needs a "
+                      "[tagged] section; allowed: [tagged] max_lag = ..., replicas = ...");
+  if (!scene.tagged && wants(scene, "vacf"))
     throw input_error(scene.file +
-                      ": [tagged] (moment-propagation VACF) is not available yet in this "
-                      "version; allowed: lgca scenes without [tagged] and without \"vacf\"");
+                      ": output.observables lists \"vacf\" without a [tagged] section; allowed: "
+                      "add [tagged] max_lag = ... or drop \"vacf\"");
 }
 
 // The scene given with --restart must be the checkpoint's (only run.steps and output.* may
@@ -79,6 +86,14 @@ void check_restart_lattice(const scene::Scene &given, const io::CheckpointInfo &
       differ(k + "[1]", g.obstacles[i].y, s.obstacles[i].y);
       differ(k + "[2]", g.obstacles[i].radius, s.obstacles[i].radius);
     }
+  }
+  differ("colloid (present)", given.colloid.has_value(), stored.colloid.has_value());
+  if (given.colloid && stored.colloid) {
+    const auto &g = *given.colloid, &s = *stored.colloid;
+    differ("colloid.position[0]", g.x, s.x);
+    differ("colloid.position[1]", g.y, s.y);
+    differ("colloid.radius", g.radius, s.radius);
+    differ("colloid.mass", g.mass, s.mass);
   }
   diff.refuse(given.file + ": ", checkpoint);
 }
@@ -124,6 +139,142 @@ private:
   bool shear_ = false, density_ = false, velocity_ = false;
 };
 
+// Kinetic theory beside the measured VACF (seed 002 eq 19-22), for N expected particles.
+struct TaggedTheory {
+  double z1, d0, t0, correction, particles;
+};
+TaggedTheory tagged_theory(FhpModel m, double d, double sites) {
+  const Links l = triangular_links(links(m) == 7);
+  TaggedTheory th{};
+  th.z1 = theory::one_step_vacf(l, d);
+  th.d0 = theory::boltzmann_diffusion(theory::mean_square_velocity_x(l), th.z1);
+  th.t0 = theory::mean_free_time(th.z1);
+  th.particles = sites * links(m) * d;
+  th.correction = theory::finite_size_correction(d, th.particles);
+  return th;
+}
+
+// The VACF of the run: log lines and /observables/vacf (rank 0 writes).
+void finish_vacf(const scene::Scene &scene, const FhpLattice &lattice, const FhpTagged &tagged,
+                 engine::Log &log, io::ObservablesWriter *writer) {
+  if (tagged.curves() == 0) {
+    log.line("tagged VACF: no curve of " + std::to_string(tagged.max_lag()) +
+             " lags completed; nothing written");
+    return;
+  }
+  const double d = scene.lgca->density;
+  const double sites = static_cast<double>(lattice.size_x()) * lattice.size_y();
+  TaggedTheory th = tagged_theory(lattice.params().model, d, sites);
+  const std::vector<double> z = tagged.mean(), e = tagged.error();
+  if (z.empty())
+    return; // not rank 0
+  th.particles = tagged.particles();
+  th.correction = theory::finite_size_correction(d, th.particles);
+  // N is conserved: eq 19 at the lattice's own density N / (b sites) is the one to compare
+  // with (the initial draw misses d by ~ sqrt(d (1 - d) / (b sites))).
+  const double d_lattice = th.particles / (links(lattice.params().model) * sites);
+  const double z1_lattice =
+      theory::one_step_vacf(triangular_links(links(lattice.params().model) == 7), d_lattice);
+  char line[500];
+  std::snprintf(line, sizeof line,
+                "tagged VACF: %d curves (time origins) of %d lags, N = %.0f particles (d = "
+                "%.6f); Z(1) = %.6f +- %.2g (standard error over origins), eq 19: %.6f at that "
+                "d (%.6f at the scene's d); Boltzmann D0 = %.6g (eq 20), t0 = %.6g (eq 21); "
+                "eq 22 correction (1 - d)/N = %.4g",
+                tagged.curves(), tagged.max_lag(), th.particles, d_lattice, z[1], e[1], z1_lattice,
+                th.z1, th.d0, th.t0, th.correction);
+  log.line(line);
+  if (writer == nullptr)
+    return;
+  std::vector<double> lags, corrected;
+  for (std::size_t t = 0; t < z.size(); ++t) {
+    lags.push_back(static_cast<double>(t));
+    corrected.push_back(z[t] + th.correction);
+  }
+  writer->write_result("vacf", lattice.time(), static_cast<double>(lattice.time()), z,
+                       {{"lags", lags},
+                        {"error", e},
+                        {"corrected", corrected},
+                        {"curves", {static_cast<double>(tagged.curves())}},
+                        {"particles", {th.particles}},
+                        {"one_step_theory", {th.z1}},
+                        {"boltzmann_diffusion", {th.d0}},
+                        {"mean_free_time", {th.t0}},
+                        {"finite_size_correction", {th.correction}}});
+  writer->flush();
+}
+
+ColloidParams colloid_params(const scene::Scene &scene) {
+  const scene::LgcaColloid &c = *scene.colloid;
+  ColloidParams p;
+  p.x = c.x;
+  p.y = c.y;
+  p.radius = c.radius;
+  p.mass = c.mass;
+  p.vx = c.vx;
+  p.vy = c.vy;
+  p.held = c.held;
+  p.seed_for_rules = scene.run.seed;
+  return p;
+}
+
+// The colloid state in the checkpoint file beside the lattice: /colloid/{momentum, omega}.
+void write_colloid_state(const std::string &path, const FhpColloid &c) {
+  const io::h5::File f = io::h5::open_file(path, H5F_ACC_RDWR);
+  const io::h5::Group g = io::h5::create_group(f.get(), "colloid", path);
+  const MomentumUnits p = c.momentum();
+  io::h5::write_dataset<std::int64_t>(g.get(), "momentum", std::span<const std::int64_t>(p), path);
+  io::h5::write_scalar<double>(g.get(), "omega", c.omega(), path);
+}
+
+void read_colloid_state(const std::string &path, FhpColloid &c) {
+  const io::h5::File f = io::h5::open_file(path);
+  MomentumUnits p{};
+  double omega = 0.0;
+  const hid_t dp = H5Dopen2(f.get(), "/colloid/momentum", H5P_DEFAULT);
+  const hid_t dw = dp < 0 ? -1 : H5Dopen2(f.get(), "/colloid/omega", H5P_DEFAULT);
+  const bool ok = dp >= 0 && dw >= 0 &&
+                  H5Dread(dp, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, p.data()) >= 0 &&
+                  H5Dread(dw, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &omega) >= 0;
+  if (dp >= 0)
+    H5Dclose(dp);
+  if (dw >= 0)
+    H5Dclose(dw);
+  if (!ok)
+    throw input_error(path + ": no readable /colloid/{momentum, omega}; allowed: a checkpoint "
+                             "of a run with [colloid]");
+  c.set_state(p, omega);
+}
+
+// The held colloid's VACF and virtual D(t): log lines and /observables/colloid_* (rank 0).
+void finish_colloid(const FhpColloid &colloid, const ColloidCorrelations &stats,
+                    const FhpLattice &lattice, bool closed, engine::Log &log,
+                    io::ObservablesWriter *writer) {
+  const auto z = stats.vacf(), d = stats.diffusion();
+  char line[400];
+  const auto u = colloid.velocity();
+  std::snprintf(line, sizeof line,
+                "colloid (velocity of disc + gas inside): <U^2> = %.4g; "
+                "final U = (%.4g, %.4g), omega %.4g; %s; Z(%d) = %.4g +- %.2g; D(%d) = %.4g "
+                "+- %.2g",
+                stats.mean_square_velocity(), u[0], u[1], colloid.omega(),
+                closed ? "fluid + colloid momentum conserved exactly (checked at every sample)"
+                       : "momentum not closed (walls, obstacles or force)",
+                static_cast<int>(z.lags.back()), z.value.back(), z.error.back(),
+                static_cast<int>(d.lags.back()), d.value.back(), d.error.back());
+  log.line(line);
+  if (writer == nullptr)
+    return;
+  const double t = static_cast<double>(lattice.time());
+  writer->write_result("colloid_vacf", lattice.time(), t, z.value,
+                       {{"lags", z.lags},
+                        {"error", z.error},
+                        {"mean_square_velocity", {stats.mean_square_velocity()}}});
+  writer->write_result("colloid_diffusion", lattice.time(), t, d.value,
+                       {{"lags", d.lags}, {"error", d.error}});
+  writer->flush();
+}
+
 } // namespace
 
 FhpModel fhp_model(scene::LgcaModel m) {
@@ -160,7 +311,23 @@ std::vector<std::string> describe(const scene::Scene &scene, MPI_Comm comm) {
   const scene::Lgca &g = *scene.lgca;
   std::vector<std::string> out;
   if (g.model == scene::LgcaModel::dhumieres_1d) {
-    out.push_back("engine lgca: d'Humieres 1D model, " + std::to_string(g.size.at(0)) + " sites");
+    const double n = static_cast<double>(g.size.at(0)) * dhumieres::links * g.density;
+    out.push_back("engine lgca: d'Humieres 1D model (velocities 0, +-1, +-2; collisions swap "
+                  "the two states of a (mass, momentum) class) on a ring of " +
+                  std::to_string(g.size.at(0)) + " sites, d = " + fmt("%.6g", g.density) +
+                  " per link, N = " + fmt("%.0f", n) + " particles");
+    if (scene.tagged) {
+      const int curves = static_cast<int>(scene.run.steps / scene.tagged->max_lag);
+      const bool p0 = g.initial == scene::LgcaInitial::zero_momentum;
+      out.push_back(std::string("initial: ") +
+                    (p0 ? "zero-momentum (exactly N particles and P = 0, the {N, P} ensemble)"
+                        : "equilibrium (independent occupations d)") +
+                    "; tagged VACF lags 0.." + std::to_string(scene.tagged->max_lag) + ", " +
+                    std::to_string(curves) + " curves per replica, " +
+                    std::to_string(scene.tagged->replicas) +
+                    " replica(s) spread over the ranks; plateau (eq 22) " +
+                    fmt("%.4g", p0 ? -theory::finite_size_correction(g.density, n) : 0.0));
+    }
     return out;
   }
   int ranks = 1;
@@ -188,6 +355,27 @@ std::vector<std::string> describe(const scene::Scene &scene, MPI_Comm comm) {
   } else {
     out.push_back("initial: equilibrium (every link occupied with probability d)");
   }
+  if (scene.tagged) {
+    const TaggedTheory th = tagged_theory(m, g.density, static_cast<double>(X * Y));
+    out.push_back("tagged VACF (moment propagation, weight split equally over the outgoing "
+                  "particles): lags 0.." +
+                  std::to_string(scene.tagged->max_lag) +
+                  ", successive time origins; eq 19 Z(1) = " + fmt("%.6g", th.z1) +
+                  ", eq 20 Boltzmann D0 = " + fmt("%.6g", th.d0) +
+                  ", eq 21 mean free time t0 = " + fmt("%.6g", th.t0) +
+                  ", eq 22 correction (1 - d)/N = " + fmt("%.4g", th.correction) +
+                  " (N = " + fmt("%.0f", th.particles) + " expected)");
+  }
+  if (scene.colloid) {
+    const scene::LgcaColloid &c = *scene.colloid;
+    out.push_back("colloid (held in place, Ladd-Frenkel moving-boundary rules eq 23-27, 1 rank): "
+                  "disc of radius " +
+                  fmt("%.4g", c.radius) + " at (" + fmt("%.6g", c.x) + ", " + fmt("%.6g", c.y) +
+                  "), mass " + fmt("%.6g", c.mass) + "; velocity VACF lags 0.." +
+                  std::to_string(c.max_lag) + ", virtual displacement D(t) every " +
+                  std::to_string(c.displacement_every) + " up to " +
+                  std::to_string(c.displacement_lag));
+  }
   if (g.body_force > 0.0)
     out.push_back("body force: a particle moves from link 3 (-x) to link 0 (+x) with "
                   "probability " +
@@ -208,13 +396,125 @@ std::vector<std::string> describe(const scene::Scene &scene, MPI_Comm comm) {
   return out;
 }
 
+// The 1D model: independent replicas (own initial state and collision seed) spread over the
+// ranks, each `steps / max_lag` successive VACF curves; rank 0 averages the normalised curves
+// in replica order (bitwise the same on any number of ranks), the error is the spread of the
+// replicas.
+void run_dhumieres(const scene::Scene &scene, const std::string &out_dir,
+                   const std::string &restart, MPI_Comm comm) {
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  const scene::Lgca &g = *scene.lgca;
+  if (!restart.empty())
+    throw input_error(scene.file + ": --restart is not available for lattice.model = "
+                                   "\"dhumieres-1d\" (no checkpoints); allowed: a fresh run");
+  const std::int64_t L = g.size.at(0);
+  const int max_lag = static_cast<int>(scene.tagged->max_lag);
+  const int replicas = static_cast<int>(scene.tagged->replicas);
+  const int curves = static_cast<int>(scene.run.steps / max_lag);
+  if (curves < 1)
+    throw input_error(scene.file + ": run.steps = " + std::to_string(scene.run.steps) +
+                      " is shorter than tagged.max_lag = " + std::to_string(max_lag) +
+                      "; allowed: run.steps >= tagged.max_lag");
+  const std::string dir = out_dir.empty() ? scene.output.dir : out_dir;
+  engine::make_output_dir(dir, comm);
+  engine::Log log(rank == 0, dir + "/log.txt");
+  log.line("narrows " NARROWS_VERSION " run " + scene.file + " on " + std::to_string(ranks) +
+           " rank(s), output in " + dir);
+  for (const auto &line : describe(scene, comm))
+    log.line(line);
+  const auto ensemble = g.initial == scene::LgcaInitial::zero_momentum
+                            ? dhumieres::Ensemble::zero_momentum
+                            : dhumieres::Ensemble::independent;
+  // Row k of `all`: Z(0..max_lag) of replica k, then N and P.
+  const std::size_t row = static_cast<std::size_t>(max_lag) + 3;
+  std::vector<double> mine(row * replicas, 0.0), all(row * replicas, 0.0);
+  Stopwatch clock;
+  for (int k = rank; k < replicas; k += ranks) {
+    const auto r = dhumieres::measure_vacf(L, g.density, ensemble, dhumieres::Rule::swap,
+                                           scene.run.seed + 1000 * static_cast<std::uint64_t>(k),
+                                           max_lag, curves);
+    for (int t = 0; t <= max_lag; ++t)
+      mine[k * row + t] = r.vacf[t] / r.vacf[0];
+    mine[k * row + max_lag + 1] = static_cast<double>(r.particles);
+    mine[k * row + max_lag + 2] = static_cast<double>(r.momentum);
+  }
+  // Every entry has one non-zero contribution: the sum is exact.
+  MPI_Reduce(mine.data(), all.data(), static_cast<int>(all.size()), MPI_DOUBLE, MPI_SUM, 0, comm);
+  const double seconds = clock.seconds();
+  if (rank == 0) {
+    std::vector<double> z(max_lag + 1, 0.0), e(max_lag + 1, 0.0), lags;
+    double n = 0.0;
+    for (int k = 0; k < replicas; ++k)
+      n += all[k * row + max_lag + 1] / replicas;
+    for (int t = 0; t <= max_lag; ++t) {
+      for (int k = 0; k < replicas; ++k)
+        z[t] += all[k * row + t] / replicas;
+      double v = 0.0;
+      for (int k = 0; k < replicas; ++k)
+        v += (all[k * row + t] - z[t]) * (all[k * row + t] - z[t]);
+      e[t] = replicas > 1 ? std::sqrt(v / (replicas - 1) / replicas) : 0.0;
+      lags.push_back(t);
+    }
+    const bool p0 = ensemble == dhumieres::Ensemble::zero_momentum;
+    const double plateau = p0 ? -theory::finite_size_correction(g.density, n) : 0.0;
+    // the plateau window: after the tagged particle's own decay (t ~ 20), before the sound
+    // pulses come back around the ring (t < L / c_s, c_s = sqrt 2)
+    const int t1 = std::min(20, max_lag),
+              t2 = std::max(t1, std::min(max_lag, static_cast<int>(0.6 * L / std::sqrt(2.0))));
+    double w = 0.0, we = 0.0;
+    for (int t = t1; t <= t2; ++t) {
+      w += z[t] / (t2 - t1 + 1);
+      we += e[t] / (t2 - t1 + 1);
+    }
+    char line[400];
+    std::snprintf(line, sizeof line,
+                  "tagged VACF: %d replica(s) x %d curves of %d lags, N = %.0f; Z(1) = %.6f +- "
+                  "%.2g, eq 19 (b = 5): %.6f; plateau over lags %d..%d: %.4g (eq 22: %.4g), "
+                  "error of one lag about %.2g",
+                  replicas, curves, max_lag, n, z[1], e[1],
+                  theory::one_step_vacf(dhumieres::link_velocities(), g.density), t1, t2, w,
+                  plateau, we);
+    log.line(line);
+    io::ObservablesWriter writer(dir + "/observables.h5", scene.text);
+    const std::int64_t steps = static_cast<std::int64_t>(curves) * max_lag;
+    writer.write_result("vacf", steps, static_cast<double>(steps), z,
+                        {{"lags", lags},
+                         {"error", e},
+                         {"particles", {n}},
+                         {"density", {g.density}},
+                         {"L", {static_cast<double>(L)}},
+                         {"replicas", {static_cast<double>(replicas)}},
+                         {"plateau_theory", {plateau}},
+                         {"plateau", {w}},
+                         {"window", {static_cast<double>(t1), static_cast<double>(t2)}}});
+    writer.flush();
+    char buf[220];
+    const double updates = static_cast<double>(steps) * static_cast<double>(L) * replicas;
+    std::snprintf(buf, sizeof buf,
+                  "Loop time of %.4g s on %d ranks for %lld steps with %lld sites (%.4g "
+                  "site-updates/s)",
+                  seconds, ranks, static_cast<long long>(steps),
+                  static_cast<long long>(L * replicas), seconds > 0 ? updates / seconds : 0.0);
+    log.line(buf);
+  }
+}
+
 void run_scene(const scene::Scene &scene, const std::string &out_dir, const std::string &restart,
                MPI_Comm comm) {
+  if (scene.lgca->model == scene::LgcaModel::dhumieres_1d) {
+    run_dhumieres(scene, out_dir, restart, comm);
+    return;
+  }
   int rank = 0, ranks = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &ranks);
   // The lattice first: a decomposition the lattice cannot take is refused before any output.
   FhpLattice lattice(fhp_params(scene), comm);
+  std::unique_ptr<FhpColloid> colloid;
+  if (scene.colloid)
+    colloid = std::make_unique<FhpColloid>(colloid_params(scene), lattice);
   std::string restart_file;
   io::CheckpointInfo restart_info;
   if (!restart.empty()) {
@@ -236,6 +536,8 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, const std:
 
   if (restarting) {
     read_lattice_checkpoint(restart_file, restart_info, lattice);
+    if (colloid)
+      read_colloid_state(restart_file, *colloid);
     log.line("restarted from " + restart_file + " at step " + std::to_string(lattice.time()));
   } else {
     lattice.initialise(scene.lgca->density, scene.lgca->amplitude);
@@ -244,16 +546,40 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, const std:
   if (rank == 0)
     writer =
         std::make_unique<io::ObservablesWriter>(dir + "/observables" + from + ".h5", scene.text);
+  io::ObservablesWriter *raw_writer = writer.get();
   Observer observer(scene, lattice, std::move(writer));
   if (!restarting)
     observer.sample(lattice); // the initial shear wave belongs to the decay curve
+  // The tagged VACF starts afresh at the first step of this run (also after a restart).
+  std::unique_ptr<FhpTagged> tagged;
+  if (scene.tagged) {
+    tagged = std::make_unique<FhpTagged>(lattice, static_cast<int>(scene.tagged->max_lag));
+    tagged->feed(lattice);
+  }
 
   const std::int64_t mass = total_mass(lattice);
+  // Fluid + colloid momentum is conserved exactly without walls, obstacles and body force.
+  const bool closed = colloid && !scene.lgca->walls && scene.lgca->obstacles.empty() &&
+                      scene.lgca->body_force == 0.0;
+  const auto total_momentum = [&] {
+    MomentumUnits p = fluid_momentum(lattice);
+    p[0] += colloid->momentum()[0];
+    p[1] += colloid->momentum()[1];
+    return p;
+  };
+  const MomentumUnits momentum0 = closed ? total_momentum() : MomentumUnits{};
+  std::unique_ptr<ColloidCorrelations> colloid_stats;
+  if (colloid)
+    colloid_stats = std::make_unique<ColloidCorrelations>(
+        static_cast<int>(scene.colloid->max_lag), static_cast<int>(scene.colloid->displacement_lag),
+        static_cast<int>(scene.colloid->displacement_every), scene.run.steps - lattice.time());
   const std::int64_t sites = static_cast<std::int64_t>(lattice.size_x()) * lattice.size_y();
   auto save_checkpoint = [&] {
     Stopwatch watch;
     const std::string path = io::checkpoint_path(dir, lattice.time());
     const double bytes = write_lattice_checkpoint(path, lattice, scene.text);
+    if (colloid && rank == 0)
+      write_colloid_state(path, *colloid);
     if (rank == 0)
       io::prune_checkpoints(dir, scene.output.checkpoint_keep);
     char line[300];
@@ -268,13 +594,22 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, const std:
   Stopwatch clock, since_progress;
   const std::int64_t first = lattice.time();
   while (lattice.time() < scene.run.steps) {
+    if (colloid)
+      colloid->apply(lattice);
     lattice.step();
+    if (colloid_stats)
+      colloid_stats->add(colloid->composite_velocity(lattice));
     observer.every_step(lattice);
+    if (tagged)
+      tagged->feed(lattice);
     if (lattice.time() % every == 0 || lattice.time() == scene.run.steps) {
       const std::int64_t now = total_mass(lattice);
       if (now != mass)
         throw invariant_error("lattice mass changed from " + std::to_string(mass) + " to " +
                               std::to_string(now) + " at step " + std::to_string(lattice.time()));
+      if (closed && total_momentum() != momentum0)
+        throw invariant_error("fluid + colloid momentum changed at step " +
+                              std::to_string(lattice.time()));
       observer.sample(lattice);
     }
     if ((stop = signals.requested(comm)) != 0)
@@ -290,6 +625,10 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, const std:
   }
   const double seconds = clock.seconds();
   const std::int64_t steps = lattice.time() - first;
+  if (tagged)
+    finish_vacf(scene, lattice, *tagged, log, raw_writer);
+  if (colloid_stats)
+    finish_colloid(*colloid, *colloid_stats, lattice, closed, log, raw_writer);
   const std::string last = save_checkpoint();
   if (stop != 0)
     log.line(std::string("received ") + io::signal_name(stop) + ": stopped after step " +
@@ -312,7 +651,9 @@ int command(const scene::Scene &scene, bool check, bool info, const std::string 
   refuse_unavailable(scene);
   if (check || info) {
     // The decomposition is checked here too, so `check` refuses what `run` would.
-    const parallel::Slabs slabs(comm, static_cast<int>(scene.lgca->size.at(0)), 2);
+    if (scene.lgca->model != scene::LgcaModel::dhumieres_1d) {
+      const parallel::Slabs slabs(comm, static_cast<int>(scene.lgca->size.at(0)), 2);
+    }
     if (rank == 0) {
       if (check)
         std::cout << scene.file << ": scene is valid\n";

@@ -3,6 +3,7 @@
 
 #include "narrows/core/error.hpp"
 #include "narrows/core/rng.hpp"
+#include "narrows/lattice/column_halo.hpp"
 #include "narrows/lattice/fhp_update.hpp"
 
 #include <algorithm>
@@ -36,8 +37,6 @@ FhpLattice::FhpLattice(const FhpParams &params, MPI_Comm comm)
   const std::size_t bytes = stride_ * static_cast<std::size_t>(params.size_y);
   cur_.assign(bytes, 0);
   next_.assign(bytes, 0);
-  send_.resize(static_cast<std::size_t>(params.size_y));
-  recv_.resize(static_cast<std::size_t>(params.size_y));
 
   const bool any_solid = params.walls || !params.obstacles.empty();
   std::int64_t solid_count = 0;
@@ -99,29 +98,8 @@ void FhpLattice::initialise(double density, double amplitude) {
 }
 
 void FhpLattice::exchange_halos() {
-  const int Y = params_.size_y;
-  if (slabs_.ranks() == 1) {
-    for (int y = 0; y < Y; ++y) {
-      std::uint8_t *r = row(y);
-      r[-1] = r[nx_ - 1];
-      r[nx_] = r[0];
-    }
-    return;
-  }
-  const int left = (slabs_.rank() + slabs_.ranks() - 1) % slabs_.ranks();
-  const int right = (slabs_.rank() + 1) % slabs_.ranks();
-  // My first column goes to the left neighbour's right halo, my last to the right one's left.
-  for (int pass = 0; pass < 2; ++pass) {
-    const int src_col = pass == 0 ? 0 : nx_ - 1;
-    const int dst_col = pass == 0 ? nx_ : -1;
-    const int to = pass == 0 ? left : right, from = pass == 0 ? right : left;
-    for (int y = 0; y < Y; ++y)
-      send_[y] = row(y)[src_col];
-    MPI_Sendrecv(send_.data(), Y, MPI_BYTE, to, 40 + pass, recv_.data(), Y, MPI_BYTE, from,
-                 40 + pass, comm(), MPI_STATUS_IGNORE);
-    for (int y = 0; y < Y; ++y)
-      row(y)[dst_col] = recv_[y];
-  }
+  // Row y starts at index(-1, y) = y * stride_: the halo columns are -1 and nx_.
+  exchange_column_halos(slabs_, cur_.data(), stride_, params_.size_y, nx_, 40);
 }
 
 // Bit x of `bits` = chirality of local site x of row y at `step`: 128 bits per Philox block

@@ -64,7 +64,10 @@ const std::vector<Section> &schema() {
       {"lattice",
        {"model", "size", "density", "initial", "amplitude", "walls", "body_force", "obstacles",
         "block"}},
-      {"tagged", {"max_lag"}},
+      {"tagged", {"max_lag", "replicas"}},
+      {"colloid",
+       {"position", "radius", "mass", "velocity", "held", "max_lag", "displacement_lag",
+        "displacement_every"}},
       {"output",
        {"dir", "every", "observables", "checkpoint_every", "checkpoint_keep", "progress",
         "trajectory_every", "trajectory_subsample"}},
@@ -409,7 +412,7 @@ void check_keys(const Ctx &c, const value *sec, const char *name) {
 const char *engine_of(const std::string &section) {
   if (section == "kmc")
     return "kmc";
-  if (section == "lattice" || section == "tagged")
+  if (section == "lattice" || section == "tagged" || section == "colloid")
     return "lgca";
   return "mpcd";
 }
@@ -799,7 +802,8 @@ void parse_output(const Ctx &c, const value *o, Engine engine, Output &out) {
             ? std::vector<std::string>{"current", "density_profile", "pair_correlation",
                                        "shock_position", "charge_profile"}
         : engine == Engine::lgca
-            ? std::vector<std::string>{"shear_wave", "density", "velocity", "vacf"}
+            ? std::vector<std::string>{"shear_wave", "density",      "velocity",
+                                       "vacf",       "colloid_vacf", "colloid_diffusion"}
             : std::vector<std::string>(std::begin(all_observables), std::end(all_observables));
     const std::string allowed = "an array of strings from: " + join(names);
     if (!v->is_array())
@@ -973,8 +977,8 @@ Scene parse_scene(const std::string &text, const std::string &file,
 
   parse_run(c, run, s.run);
   if (s.run.engine == Engine::kmc) {
-    for (const char *name :
-         {"domain", "fluid", "body_force", "walls", "colloids", "thermostat", "lattice", "tagged"})
+    for (const char *name : {"domain", "fluid", "body_force", "walls", "colloids", "thermostat",
+                             "lattice", "tagged", "colloid"})
       if (section(c, root, name) != nullptr)
         c.fail(name, std::string("section [") + name + "] is for engine " + engine_of(name) +
                          "; allowed with run.engine = \"kmc\": [run], [kmc], [output]");
@@ -991,7 +995,7 @@ Scene parse_scene(const std::string &text, const std::string &file,
       if (section(c, root, name) != nullptr)
         c.fail(name, std::string("section [") + name + "] is for engine " + engine_of(name) +
                          "; allowed with run.engine = \"lgca\": [run], [lattice], [tagged], "
-                         "[output]");
+                         "[colloid], [output]");
     check_keys(c, section(c, root, "lattice"), "lattice");
     const auto fail = [&c](const std::string &key, const std::string &message) {
       c.fail(key, message);
@@ -1001,11 +1005,18 @@ Scene parse_scene(const std::string &text, const std::string &file,
       check_keys(c, t, "tagged");
       s.tagged = detail::parse_tagged(*t, *s.lgca, fail);
     }
+    if (const value *t = section(c, root, "colloid")) {
+      check_keys(c, t, "colloid");
+      s.colloid = detail::parse_colloid(*t, *s.lgca, fail);
+    }
     s.output.observables = {"shear_wave"};
     if (s.tagged)
       s.output.observables.push_back("vacf");
+    if (s.colloid)
+      s.output.observables.insert(s.output.observables.end(),
+                                  {"colloid_vacf", "colloid_diffusion"});
   } else {
-    for (const char *name : {"kmc", "lattice", "tagged"})
+    for (const char *name : {"kmc", "lattice", "tagged", "colloid"})
       if (section(c, root, name) != nullptr)
         c.fail(name, std::string("section [") + name + "] needs run.engine = \"" + engine_of(name) +
                          "\"; allowed with run.engine = \"" + std::string(to_string(s.run.engine)) +

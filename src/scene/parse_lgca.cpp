@@ -4,6 +4,7 @@
 #include "parse_lgca.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -91,7 +92,8 @@ Lgca parse_lgca(const toml::value *sec, const SectionFail &fail) {
            "missing required key 'lattice.density'; allowed: " + density_allowed);
 
   if (const toml::value *v = find(sec, "initial")) {
-    const std::string allowed = "\"equilibrium\" or \"shear-wave\"";
+    const std::string allowed =
+        one_d ? "\"equilibrium\" or \"zero-momentum\"" : "\"equilibrium\" or \"shear-wave\"";
     if (!v->is_string())
       c.wrong_type("lattice.initial", *v, allowed);
     const std::string s = v->as_string().str;
@@ -99,10 +101,11 @@ Lgca parse_lgca(const toml::value *sec, const SectionFail &fail) {
       out.initial = LgcaInitial::equilibrium;
     else if (s == "shear-wave" && !one_d)
       out.initial = LgcaInitial::shear_wave;
+    else if (s == "zero-momentum" && one_d)
+      out.initial = LgcaInitial::zero_momentum;
     else
       c.fail("lattice.initial", "lattice.initial = " + repr(*v) + " is not known" +
-                                    (one_d ? " for the 1D model" : "") + "; allowed: " +
-                                    (one_d ? std::string("\"equilibrium\"") : allowed));
+                                    (one_d ? " for the 1D model" : "") + "; allowed: " + allowed);
   }
   if (const toml::value *v = find(sec, "amplitude")) {
     // Occupations d + (rho/3) c_i.u must stay in [0, 1]: |u| <= min(d, 1 - d) 3 / rho.
@@ -160,7 +163,6 @@ Lgca parse_lgca(const toml::value *sec, const SectionFail &fail) {
 
 Tagged parse_tagged(const toml::value &sec, const Lgca &lattice, const SectionFail &fail) {
   const Checker c(fail);
-  (void)lattice;
   Tagged out;
   const std::string allowed = "an integer from 1 to 1000000 (VACF lags 0..max_lag)";
   if (const toml::value *v = find(&sec, "max_lag"))
@@ -168,6 +170,69 @@ Tagged parse_tagged(const toml::value &sec, const Lgca &lattice, const SectionFa
                             [](std::int64_t n) { return n >= 1 && n <= 1000000; });
   else
     c.fail("tagged.max_lag", "missing required key 'tagged.max_lag'; allowed: " + allowed);
+  if (const toml::value *v = find(&sec, "replicas")) {
+    const bool one_d = lattice.model == LgcaModel::dhumieres_1d;
+    const std::string r_allowed = one_d ? "an integer from 1 to 10000 (independent runs)"
+                                        : "only with lattice.model = \"dhumieres-1d\"";
+    out.replicas = c.integer(*v, "tagged.replicas", r_allowed,
+                             [one_d](std::int64_t n) { return one_d && n >= 1 && n <= 10000; });
+  }
+  return out;
+}
+
+LgcaColloid parse_colloid(const toml::value &sec, const Lgca &lattice, const SectionFail &fail) {
+  const Checker c(fail);
+  LgcaColloid out;
+  if (lattice.model == LgcaModel::dhumieres_1d)
+    c.fail("colloid", "section [colloid] is for the FHP models; allowed with model "
+                      "\"dhumieres-1d\": [lattice], [tagged]");
+  const auto pair = [&](const char *key, double &a, double &b, const std::string &allowed) {
+    const toml::value *v = find(&sec, key);
+    if (v == nullptr)
+      return false;
+    const std::string k = std::string("colloid.") + key;
+    if (!v->is_array() || v->as_array().size() != 2)
+      c.wrong_type(k, *v, allowed);
+    a = c.number(v->as_array()[0], k + "[0]", allowed, [](double) { return true; });
+    b = c.number(v->as_array()[1], k + "[1]", allowed, [](double) { return true; });
+    return true;
+  };
+  if (!pair("position", out.x, out.y,
+            "an array [x, y] in lattice coordinates (row y at y sqrt(3)/2)"))
+    c.fail("colloid.position",
+           "missing required key 'colloid.position'; allowed: an array [x, y] in lattice "
+           "coordinates");
+  pair("velocity", out.vx, out.vy, "an array [v_x, v_y] with |v| < 1");
+  if (std::abs(out.vx) >= 1.0 || std::abs(out.vy) >= 1.0)
+    c.fail("colloid.velocity", "colloid.velocity = [" + float_text(out.vx) + ", " +
+                                   float_text(out.vy) + "] is not allowed; allowed: |v| < 1");
+  const double most = 0.25 * static_cast<double>(std::min(lattice.size[0], lattice.size[1]));
+  if (const toml::value *v = find(&sec, "radius"))
+    out.radius = c.number(*v, "colloid.radius",
+                          "a number with 0.5 <= radius <= " + float_text(most) +
+                              " (a quarter of the smaller lattice size)",
+                          [most](double r) { return r >= 0.5 && r <= most; });
+  if (const toml::value *v = find(&sec, "mass"))
+    out.mass = c.number(*v, "colloid.mass", "a number > 0", [](double m) { return m > 0.0; });
+  if (const toml::value *v = find(&sec, "held")) {
+    if (!v->is_boolean() || !v->as_boolean())
+      c.fail("colloid.held", "colloid.held = " + repr(*v) +
+                                 " is not available in this version (a moving disc); allowed: "
+                                 "true (the held colloid of seed 002 §4.3)");
+  }
+  const auto lag = [&](const char *key, std::int64_t &slot) {
+    if (const toml::value *v = find(&sec, key))
+      slot = c.integer(*v, std::string("colloid.") + key, "an integer from 1 to 10000000",
+                       [](std::int64_t n) { return n >= 1 && n <= 10000000; });
+  };
+  lag("max_lag", out.max_lag);
+  lag("displacement_lag", out.displacement_lag);
+  lag("displacement_every", out.displacement_every);
+  if (out.displacement_lag % out.displacement_every != 0)
+    c.fail("colloid.displacement_lag",
+           "colloid.displacement_lag = " + std::to_string(out.displacement_lag) +
+               " is not a multiple of colloid.displacement_every = " +
+               std::to_string(out.displacement_every) + "; allowed: a multiple");
   return out;
 }
 

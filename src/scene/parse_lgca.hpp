@@ -14,5 +14,6 @@ Lgca parse_lgca(const toml::value *section, const SectionFail &fail);
 
 // `section` is the [tagged] table (not null).
 Tagged parse_tagged(const toml::value &section, const Lgca &lattice, const SectionFail &fail);
+LgcaColloid parse_colloid(const toml::value &section, const Lgca &lattice, const SectionFail &fail);
 
 } // namespace narrows::scene::detail

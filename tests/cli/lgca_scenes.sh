@@ -1,13 +1,22 @@
 #!/usr/bin/env bash
 # Every lgca scene in run/ passes `check` and runs briefly with its observables; 2 ranks write
 # the 1-rank numbers; a restart (on another rank count) ends in the same lattice as the
-# uninterrupted run; tools/lgca_plot.py draws the output; bad lattice keys, [tagged] and dhumieres-1d exit 2 with one line.
+# uninterrupted run; tools/lgca_plot.py draws the output (fields, shear wave, VACF); bad lattice
+# and tagged keys exit 2 with one line.
 set -u
 source "$(dirname "$0")/common.bash"
 
-small=(--set run.steps=40 --set output.every=10)
 for scene in "$src"/run/lgca*.toml; do
   name=$(basename "$scene" .toml)
+  small=(--set run.steps=40 --set output.every=10)
+  # scenes with a tagged VACF complete 4 curves of 10 lags (the 1D one per replica)
+  if grep -q '^\[tagged\]' "$scene"; then
+    small+=(--set tagged.max_lag=10)
+  fi
+  one_d=0
+  grep -q 'dhumieres-1d' "$scene" && one_d=1
+  colloid=0
+  grep -q '^\[colloid\]' "$scene" && colloid=1
   "$narrows" check "$scene" > "$tmp/$name.check" 2>&1
   check "$name: check exits 0" '[ $? -eq 0 ]'
   "$narrows" run "$scene" "${small[@]}" --out "$tmp/$name" > "$tmp/$name.out" 2>&1
@@ -15,7 +24,19 @@ for scene in "$src"/run/lgca*.toml; do
   check "$name: run exits 0 (got $code)" '[ "$code" -eq 0 ]'
   check "$name: Loop time line" \
     'grep -q "^Loop time of .* on 1 ranks for 40 steps with .* sites (.* site-updates/s)$" "$tmp/$name/log.txt"'
-  check "$name: final checkpoint" '[ -f "$tmp/$name/checkpoint-0000000040.h5" ]'
+  if [ "$one_d" -eq 0 ]; then
+    check "$name: final checkpoint" '[ -f "$tmp/$name/checkpoint-0000000040.h5" ]'
+  fi
+  if [ "$colloid" -eq 1 ]; then
+    # the colloid runs on one rank: 2 ranks are refused with one line, before any output
+    "${mpi[@]}" -n 2 "$narrows" run "$scene" "${small[@]}" --out "$tmp/$name-2" > /dev/null \
+      2> "$tmp/$name-2.err"
+    code=$?
+    check "$name: 2 ranks refused, exit 2 (got $code)" '[ "$code" -eq 2 ]'
+    check "$name: 2 ranks refusal names the rank count" 'grep -q "1 rank only" "$tmp/$name-2.err"'
+    check "$name: colloid momentum line" 'grep -q "momentum conserved exactly" "$tmp/$name/log.txt"'
+    continue
+  fi
   "${mpi[@]}" -n 2 "$narrows" run "$scene" "${small[@]}" --out "$tmp/$name-2" > /dev/null 2>&1
   check "$name: 2 ranks exit 0" '[ $? -eq 0 ]'
   check "$name: 2 ranks write the 1-rank observables and lattice" '/usr/bin/python3 - "$tmp/$name" "$tmp/$name-2" <<PY
@@ -28,18 +49,24 @@ for k in a:
     assert np.array_equal(a[k]["step"][()], b[k]["step"][()]), k
 if "shear_wave" in a:
     assert a["shear_wave/value"].shape == (5,), a["shear_wave/value"].shape
+if "vacf" in a:
+    z, e, lags = a["vacf/value"][()], a["vacf/error"][()], a["vacf/lags"][()]
+    assert z.shape == (11,) and lags.shape == (11,) and z[0] == 1.0, (z.shape, z[0])
+    assert np.all(np.isfinite(e)) and abs(z[1]) < 1, (z, e)
 if "velocity" in a:
     v = a["velocity/value"]
     assert v.ndim == 4 and v.shape[0] == 4 and v.shape[3] == 2, v.shape
     assert a["density/value"].shape == v.shape[:3]
-ca = h5py.File(sys.argv[1] + "/checkpoint-0000000040.h5", "r")
-cb = h5py.File(sys.argv[2] + "/checkpoint-0000000040.h5", "r")
-assert np.array_equal(ca["particles/lattice/state/value"][()], cb["particles/lattice/state/value"][()])
+import os
+if os.path.exists(sys.argv[1] + "/checkpoint-0000000040.h5"):
+    ca = h5py.File(sys.argv[1] + "/checkpoint-0000000040.h5", "r")
+    cb = h5py.File(sys.argv[2] + "/checkpoint-0000000040.h5", "r")
+    assert np.array_equal(ca["particles/lattice/state/value"][()], cb["particles/lattice/state/value"][()])
 PY'
 done
 
 # The plot tool draws both kinds of output.
-for name in lgca_shear_wave lgca_channel; do
+for name in lgca_shear_wave lgca_channel lgca_vacf_tail lgca_dhumieres_fig1 lgca_colloid_held; do
   /usr/bin/python3 "$src/tools/lgca_plot.py" "$tmp/$name/observables.h5" --first 5 \
     --png "$tmp/$name.png" > "$tmp/$name.plot" 2>&1
   check "$name: tools/lgca_plot.py writes a PNG" '[ $? -eq 0 ] && [ -s "$tmp/$name.png" ]'
@@ -75,6 +102,24 @@ code=$?
 check "restart with another scene exits 2 with one line (got $code)" \
   '[ "$code" -eq 2 ] && [ "$(grep -c . "$tmp/mismatch2.err")" -eq 1 ]'
 
+# Restart of the held colloid: its momentum and angular velocity come back from the checkpoint.
+cscene=$src/run/lgca_colloid_held.toml
+"$narrows" run "$cscene" --set run.steps=300 --out "$tmp/crs" > /dev/null 2>&1
+"$narrows" run "$cscene" --set run.steps=600 --restart "$tmp/crs" --out "$tmp/crs" > /dev/null 2>&1
+check "colloid restart: continuation exits 0" '[ $? -eq 0 ]'
+"$narrows" run "$cscene" --set run.steps=600 --out "$tmp/cstraight" > /dev/null 2>&1
+check "colloid restart: bitwise the uninterrupted lattice and colloid" '/usr/bin/python3 - "$tmp" <<PY
+import sys, h5py, numpy as np
+t = sys.argv[1]
+a = h5py.File(t + "/crs/checkpoint-0000000600.h5", "r")
+b = h5py.File(t + "/cstraight/checkpoint-0000000600.h5", "r")
+k = "particles/lattice/state/value"
+assert np.array_equal(a[k][()], b[k][()])
+assert np.array_equal(a["colloid/momentum"][()], b["colloid/momentum"][()])
+assert a["colloid/omega"][()] == b["colloid/omega"][()]
+assert np.any(a["colloid/momentum"][()] != 0)
+PY'
+
 # Bad input: exit 2, one line naming the key.
 bad() {
   local label=$1 want=$2
@@ -89,10 +134,14 @@ bad "density 1.5" "lattice.density" --set lattice.density=1.5
 bad "odd size_y" "lattice.size[1]" --set 'lattice.size=[64,63]'
 bad "unknown model" "lattice.model" --set lattice.model=fhp-iv
 bad "unknown key" "lattice.colour" --set lattice.colour=3
-bad "[tagged] not available" "not available yet" --set tagged.max_lag=10
+bad "vacf without [tagged]" "[tagged]" --set 'output.observables=["vacf"]'
+bad "replicas on an FHP model" "tagged.replicas" --set tagged.max_lag=10 --set tagged.replicas=2
 bad "max_lag 0" "tagged.max_lag" --set tagged.max_lag=0
-bad "dhumieres-1d not available" "not available yet" --set lattice.model=dhumieres-1d \
+bad "dhumieres-1d without [tagged]" "[tagged]" --set lattice.model=dhumieres-1d \
   --set 'lattice.size=[64]' --set lattice.initial=equilibrium --set lattice.amplitude=0
+bad "zero-momentum on FHP" "lattice.initial" --set lattice.initial=zero-momentum
+bad "moving colloid" "colloid.held" --set 'colloid.position=[10.0,10.0]' --set colloid.held=false
+bad "colloid without position" "colloid.position" --set colloid.radius=2.5
 bad "amplitude too large" "lattice.amplitude" --set lattice.amplitude=0.9
 bad "[fluid] in an lgca scene" "[fluid]" --set fluid.dt=0.1
 finish lgca_scenes

@@ -29,6 +29,7 @@ enum class Purpose : std::uint32_t {
   lgca_chirality = 16,      // step = lattice step, id = row * blocks + x / 128: 128 chirality bits
   lgca_init = 17,           // step = link / 4, id = global site index: initial occupations
   lgca_force = 18,          // step = lattice step, id = row * blocks + x / 8: 8 16-bit uniforms
+  lgca_colloid = 19,        // step = lattice step, id = boundary link: Ladd-Frenkel transmission
   dhumieres_collision = 40, // id = site: outcome of a 1D d'Humieres collision
   lgca_initial = 41,        // step = draw round (attempt), id = link or site: initial occupations
 };

@@ -8,6 +8,7 @@
 #include <map>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace narrows::io {
@@ -36,6 +37,13 @@ public:
   // One sample of a field of any shape (row-major `values`): value shape [T][shape...].
   void append_field(const std::string &name, std::int64_t step, double time,
                     const std::vector<hsize_t> &shape, std::span<const double> values);
+
+  // A result of the whole run rather than a sample (e.g. a correlation function over lags):
+  // /observables/<name>/{step, time} scalars, value of shape [n], and beside it the named
+  // 1-D datasets of `beside` (e.g. lags, error). Written once per name.
+  void write_result(const std::string &name, std::int64_t step, double time,
+                    std::span<const double> value,
+                    const std::vector<std::pair<std::string, std::vector<double>>> &beside);
 
   // H5Fflush: what was appended so far survives a crash of the run.
   void flush();

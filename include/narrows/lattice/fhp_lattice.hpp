@@ -87,7 +87,6 @@ private:
   int nx_ = 0;
   std::size_t stride_ = 0;
   std::vector<std::uint8_t> cur_, next_, solid_;
-  std::vector<std::uint8_t> send_, recv_;
   std::int64_t time_ = 0;
   std::int64_t fluid_sites_ = 0;
 };

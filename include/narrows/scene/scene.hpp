@@ -131,7 +131,9 @@ struct Kmc {
 // Engine "lgca": FHP lattice gases on the triangular lattice and the 1D d'Humieres model (seed
 // 002; DESIGN.md, "Scene keys of the lattice engines"). Lattice units: spacing 1, step 1.
 enum class LgcaModel { fhp_i, fhp_ii, fhp_iii, fhp_saturated, dhumieres_1d };
-enum class LgcaInitial { equilibrium, shear_wave };
+// zero_momentum (1D model): exactly N = round(L b d) particles and total momentum 0, the
+// {N, P = 0} ensemble of seed 002 §3.4.
+enum class LgcaInitial { equilibrium, shear_wave, zero_momentum };
 
 // A solid disc of sites (bounce-back) at (x, y) in lattice coordinates (row y at y sqrt(3)/2).
 struct LgcaObstacle {
@@ -153,6 +155,18 @@ struct Lgca {
 // Tagged-particle VACF by moment propagation (optional section [tagged]).
 struct Tagged {
   std::int64_t max_lag = 100;
+  std::int64_t replicas = 1; // 1D model: independent runs (spread over the ranks)
+};
+
+// A held colloidal disc with the Ladd-Frenkel rules (optional section [colloid], FHP models).
+struct LgcaColloid {
+  double x = 0.0, y = 0.0; // centre in lattice coordinates (row y at y sqrt(3)/2)
+  double radius = 2.5, mass = 680.0;
+  double vx = 0.0, vy = 0.0;
+  bool held = true;
+  std::int64_t max_lag = 1000;           // VACF of the colloid velocity, lags 0..max_lag
+  std::int64_t displacement_lag = 5000;  // virtual displacement D(t) up to this lag
+  std::int64_t displacement_every = 100; // ... at lags that are multiples of this
 };
 
 struct Scene {
@@ -166,9 +180,10 @@ struct Scene {
   std::optional<Colloids> colloids;
   std::optional<Thermostat> thermostat;
   Output output;
-  std::optional<Kmc> kmc;       // engine kmc only
-  std::optional<Lgca> lgca;     // engine lgca only
-  std::optional<Tagged> tagged; // engine lgca, [tagged] given
+  std::optional<Kmc> kmc;             // engine kmc only
+  std::optional<Lgca> lgca;           // engine lgca only
+  std::optional<Tagged> tagged;       // engine lgca, [tagged] given
+  std::optional<LgcaColloid> colloid; // engine lgca, [colloid] given
 };
 
 // Names used in messages and files.

@@ -1,0 +1,83 @@
+// A colloidal disc in the FHP lattice gas with the Ladd-Frenkel moving-boundary rules (seed 002
+// §4.2, eq 23-27), optionally held in place (§4.3).
+//
+// The disc is the set of sites within `radius` of its centre; the lattice gas fills inside
+// and outside. A boundary link joins an outside site A and an inside site B (or the reverse)
+// along link k; its two slots are the post-collision particle of A on link k (heading to B)
+// and that of B on link k + 3 (heading to A). Before the next propagation each boundary link
+// either exchanges its slots (both particles are reflected back to their own side: bounce-
+// back) or keeps them (the particle crosses). With the local wall velocity v = U + w x r at
+// the middle of the link and i the link of the pair with x_i = c_i.v > 0, eq 23: the particle
+// moving along -i (against the wall) is always reflected, the one moving along i is crossing
+// with probability p_i = (c^2/D) 4 x_i / (x_i + c^2/D)^2 (eq 27, c = 1, D = 2), reflected
+// otherwise; v = 0 gives plain bounce-back. Each reflection moves 2 c momentum from the fluid
+// to the colloid, so fluid + colloid momentum is conserved exactly: momenta are kept as
+// integers in units of (1/2, sqrt(3)/2) (c_k = (a_k / 2, b_k sqrt(3) / 2) with integer a, b).
+// The torque of the same momentum changes about the centre drives the angular velocity
+// (moment of inertia M R^2 / 2). Rule draws are a pure function of (seed, step, link).
+//
+// One rank only (the boundary links of a disc crossing a slab edge would need both slots'
+// owners): the driver refuses a colloid on more than one rank. Held (§4.3): the disc stays at
+// its position, its velocity evolves from the momentum exchange (the velocity whose VACF and
+// integral, the virtual displacement, the seed measures).
+#pragma once
+
+#include "narrows/lattice/fhp_lattice.hpp"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace narrows::lattice {
+
+struct ColloidParams {
+  double x = 0.0, y = 0.0; // centre, lattice coordinates (row y at y sqrt(3)/2)
+  double radius = 2.5, mass = 680.0;
+  double vx = 0.0, vy = 0.0; // initial velocity
+  bool held = true;
+  std::uint64_t seed_for_rules = 0; // the run's seed
+};
+
+// Momentum in units (1/2, sqrt(3)/2): P = (units[0] / 2, units[1] sqrt(3) / 2).
+using MomentumUnits = std::array<std::int64_t, 2>;
+
+class FhpColloid {
+public:
+  FhpColloid(const ColloidParams &params, const FhpLattice &lattice);
+
+  // The boundary rule on the post-collision state of lattice.time(), before the next step.
+  void apply(FhpLattice &lattice);
+
+  const ColloidParams &params() const { return params_; }
+  MomentumUnits momentum() const { return momentum_; }
+  std::array<double, 2> velocity() const;
+  double omega() const { return omega_; }
+  // The velocity of the disc together with the lattice gas inside it, (P + P_in) / (M + N_in):
+  // reflections on the inner side of the boundary links only move momentum between the two,
+  // so this is the velocity the outside fluid exchanges momentum with (the one measured).
+  std::array<double, 2> composite_velocity(const FhpLattice &lattice) const;
+  int boundary_links() const { return static_cast<int>(links_.size()); }
+  int inside_sites() const { return inside_sites_; }
+  // Restoring a checkpoint.
+  void set_state(const MomentumUnits &p, double omega) {
+    momentum_ = p;
+    omega_ = omega;
+  }
+
+private:
+  struct Link {
+    int xa, ya, xb, yb, k; // A outside or inside, B its neighbour along link k
+    double rx, ry;         // middle of the link relative to the centre
+  };
+  ColloidParams params_;
+  std::vector<Link> links_;
+  std::vector<std::array<int, 2>> inside_; // sites of the disc
+  MomentumUnits momentum_{};
+  double omega_ = 0.0, inertia_ = 0.0;
+  int inside_sites_ = 0;
+};
+
+// Total fluid momentum of the lattice in the same units (collective).
+MomentumUnits fluid_momentum(const FhpLattice &lattice);
+
+} // namespace narrows::lattice

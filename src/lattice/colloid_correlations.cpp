@@ -1,0 +1,100 @@
+// Time-origin averages of the colloid velocity (see lattice/colloid_correlations.hpp).
+#include "narrows/lattice/colloid_correlations.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace narrows::lattice {
+
+ColloidCorrelations::ColloidCorrelations(int max_lag, int displacement_lag, int every,
+                                         std::int64_t steps, int blocks)
+    : max_lag_(max_lag), dlag_(displacement_lag), every_(every), blocks_(blocks),
+      block_steps_(std::max<std::int64_t>(1, steps / blocks)) {
+  u_hist_.assign(static_cast<std::size_t>(max_lag_) + 1, {0.0, 0.0});
+  x_hist_.assign(static_cast<std::size_t>(dlag_) + 1, {0.0, 0.0});
+  const std::size_t nd = static_cast<std::size_t>(dlag_ / every_) + 1;
+  vacf_sum_.assign(blocks_, std::vector<double>(max_lag_ + 1, 0.0));
+  vacf_n_ = vacf_sum_;
+  msd_sum_.assign(blocks_, std::vector<double>(nd, 0.0));
+  msd_n_ = msd_sum_;
+}
+
+void ColloidCorrelations::add(const std::array<double, 2> &u) {
+  const int b = static_cast<int>(std::min<std::int64_t>(t_ / block_steps_, blocks_ - 1));
+  const std::size_t nu = u_hist_.size(), nx = x_hist_.size();
+  u_hist_[t_ % nu] = u;
+  x_[0] += u[0];
+  x_[1] += u[1];
+  x_hist_[t_ % nx] = x_;
+  // this step closes the lags that end here
+  const int lu = static_cast<int>(std::min<std::int64_t>(t_, max_lag_));
+  for (int lag = 0; lag <= lu; ++lag) {
+    const auto &v = u_hist_[(t_ - lag) % nu];
+    vacf_sum_[b][lag] += v[0] * u[0] + v[1] * u[1];
+    vacf_n_[b][lag] += 1.0;
+  }
+  const int lx = static_cast<int>(std::min<std::int64_t>(t_, dlag_));
+  for (int lag = every_; lag <= lx; lag += every_) {
+    const auto &x0 = x_hist_[(t_ - lag) % nx];
+    const double dx = x_[0] - x0[0], dy = x_[1] - x0[1];
+    msd_sum_[b][lag / every_] += dx * dx + dy * dy;
+    msd_n_[b][lag / every_] += 1.0;
+  }
+  ++t_;
+}
+
+ColloidCorrelations::Curve
+ColloidCorrelations::finish(const std::vector<std::vector<double>> &sums,
+                            const std::vector<std::vector<double>> &counts,
+                            const std::vector<double> &lags, double scale_by_lag) const {
+  Curve c;
+  c.lags = lags;
+  for (std::size_t k = 0; k < lags.size(); ++k) {
+    double s = 0.0, n = 0.0;
+    std::vector<double> means;
+    for (int b = 0; b < blocks_; ++b) {
+      s += sums[b][k];
+      n += counts[b][k];
+      if (counts[b][k] > 0)
+        means.push_back(sums[b][k] / counts[b][k]);
+    }
+    const double scale = scale_by_lag > 0.0 && lags[k] > 0 ? 1.0 / (scale_by_lag * lags[k]) : 1.0;
+    c.value.push_back(n > 0 ? s / n * scale : 0.0);
+    double v = 0.0, m = 0.0;
+    for (double x : means)
+      m += x / means.size();
+    for (double x : means)
+      v += (x - m) * (x - m);
+    c.error.push_back(means.size() > 1 ? std::sqrt(v / (means.size() - 1) / means.size()) * scale
+                                       : 0.0);
+  }
+  return c;
+}
+
+ColloidCorrelations::Curve ColloidCorrelations::vacf() const {
+  std::vector<double> lags;
+  for (int t = 0; t <= max_lag_; ++t)
+    lags.push_back(t);
+  Curve c = finish(vacf_sum_, vacf_n_, lags, 0.0);
+  const double u2 = c.value[0];
+  if (u2 > 0.0)
+    for (std::size_t k = 0; k < c.value.size(); ++k) {
+      c.value[k] /= u2;
+      c.error[k] /= u2;
+    }
+  return c;
+}
+
+double ColloidCorrelations::mean_square_velocity() const {
+  return finish(vacf_sum_, vacf_n_, {0.0}, 0.0).value[0];
+}
+
+ColloidCorrelations::Curve ColloidCorrelations::diffusion() const {
+  std::vector<double> lags;
+  for (int t = 0; t <= dlag_; t += every_)
+    lags.push_back(t);
+  Curve c = finish(msd_sum_, msd_n_, lags, 4.0);
+  return c;
+}
+
+} // namespace narrows::lattice

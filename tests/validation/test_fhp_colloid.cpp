@@ -1,0 +1,97 @@
+// The Ladd-Frenkel colloid in the FHP lattice gas (seed 002 §4.2-4.3, issue 6 point 4): total
+// momentum of fluid + colloid conserved exactly, and the moving-boundary rule handing the
+// colloid's momentum to the fluid.
+#include "narrows/lattice/fhp_colloid.hpp"
+#include "narrows/lattice/fhp_lattice.hpp"
+
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <cmath>
+#include <cstdio>
+
+using namespace narrows::lattice;
+
+namespace {
+
+FhpParams params() {
+  FhpParams p;
+  p.model = FhpModel::fhp_saturated;
+  p.size_x = 64;
+  p.size_y = 64;
+  p.seed = 21;
+  return p;
+}
+
+} // namespace
+
+// Momentum in integer units: every reflection moves exactly 2 c_k between fluid and colloid,
+// collisions conserve the fluid's own. Checked at every step of 3000, with a moving, rotating
+// disc (both crossing and reflection happen) and with a held one at rest.
+TEST(FhpColloid, TotalMomentumConservedExactly) {
+  for (const double v : {0.0, 0.08}) {
+    FhpLattice l(params(), MPI_COMM_SELF);
+    l.initialise(0.5, 0.0);
+    ColloidParams cp;
+    cp.x = 30.3;
+    cp.y = 27.1;
+    cp.radius = 2.5;
+    cp.mass = 40.0;
+    cp.vx = v;
+    cp.vy = -0.5 * v;
+    cp.seed_for_rules = 21;
+    FhpColloid c(cp, l);
+    // sites within R: about the disc area over the area of a site, pi R^2 / (sqrt(3) / 2) = 22.7
+    EXPECT_NEAR(c.inside_sites(), 22.7, 3.0);
+    EXPECT_GT(c.boundary_links(), 20);
+    const auto f0 = fluid_momentum(l);
+    const auto c0 = c.momentum();
+    std::int64_t changes = 0;
+    for (int i = 0; i < 3000; ++i) {
+      const auto before = c.momentum();
+      c.apply(l);
+      l.step();
+      changes += c.momentum() != before;
+      const auto f = fluid_momentum(l);
+      const auto m = c.momentum();
+      ASSERT_EQ(f[0] + m[0], f0[0] + c0[0]) << "step " << i;
+      ASSERT_EQ(f[1] + m[1], f0[1] + c0[1]) << "step " << i;
+    }
+    EXPECT_GT(changes, 2000); // the colloid is hit nearly every step: not a vacuous check
+    std::printf("v0 = %.2f: colloid momentum changed in %lld of 3000 steps, final (%lld, %lld) "
+                "units, omega %.3g\n",
+                v, static_cast<long long>(changes), static_cast<long long>(c.momentum()[0]),
+                static_cast<long long>(c.momentum()[1]), c.omega());
+  }
+}
+
+// A held disc given a velocity loses it to the fluid: with the moving-boundary rule the fluid
+// takes up the wall velocity, so the colloid's momentum relaxes towards zero (to thermal
+// fluctuations of size sqrt(<v^2>) ~ (kT / M)^(1/2)). Plain bounce-back would leave U without
+// any influence on the fluid and U would only random-walk. Averaged over 8 runs the mean U_x
+// over steps 1500..2000 must be below half of U_0 (the first run of this test: ~0.1 U_0).
+TEST(FhpColloid, HeldDiscHandsItsMomentumToTheFluid) {
+  double late = 0.0;
+  const double u0 = 0.1;
+  for (int run = 0; run < 8; ++run) {
+    auto p = params();
+    p.seed = 100 + run;
+    FhpLattice l(p, MPI_COMM_SELF);
+    l.initialise(0.5, 0.0);
+    ColloidParams cp;
+    cp.x = 32.0;
+    cp.y = 27.0;
+    cp.mass = 40.0;
+    cp.vx = u0;
+    cp.seed_for_rules = p.seed;
+    FhpColloid c(cp, l);
+    for (int i = 0; i < 2000; ++i) {
+      c.apply(l);
+      l.step();
+      if (i >= 1500)
+        late += c.velocity()[0] / (500.0 * 8);
+    }
+  }
+  std::printf("held disc, M = 40, U0 = %.2f: mean U_x over steps 1500..2000 = %.4f\n", u0, late);
+  EXPECT_LT(std::abs(late), 0.5 * u0);
+}
