@@ -36,6 +36,21 @@ void make_output_dir(const std::string &dir, MPI_Comm comm) {
                       (rank == 0 ? " (" + ec.message() + ")" : std::string()));
 }
 
+RunOutput open_run_output(const std::string &dir, std::int64_t continued_from,
+                          const std::string &scene_file, MPI_Comm comm) {
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  make_output_dir(dir, comm);
+  char suffix[24] = "";
+  if (continued_from >= 0)
+    std::snprintf(suffix, sizeof suffix, "-%010lld", static_cast<long long>(continued_from));
+  RunOutput out{suffix, Log(rank == 0, dir + "/log" + suffix + ".txt")};
+  out.log.line("narrows " NARROWS_VERSION " run " + scene_file + " on " + std::to_string(ranks) +
+               " rank(s), output in " + dir);
+  return out;
+}
+
 std::string format_duration(double seconds) {
   char buf[32];
   const long s = static_cast<long>(seconds + 0.5);

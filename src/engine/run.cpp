@@ -137,15 +137,9 @@ void run_scene(const scene::Scene &scene, const RunOptions &options, MPI_Comm co
   const bool restarting = !restart_file.empty();
 
   const std::string dir = options.out_dir.empty() ? scene.output.dir : options.out_dir;
-  make_output_dir(dir, comm);
-  // A continuation keeps what earlier runs wrote: its log and observables carry the step it
-  // starts from in their names (log-0000001000.txt, observables-0000001000.h5).
-  char from[16] = "";
-  if (restarting)
-    std::snprintf(from, sizeof from, "-%010lld", static_cast<long long>(restart_info.step));
-  Log log(rank == 0, dir + "/log" + from + ".txt");
-  log.line("narrows " NARROWS_VERSION " run " + scene.file + " on " + std::to_string(ranks) +
-           " rank(s), output in " + dir);
+  RunOutput output = open_run_output(dir, restarting ? restart_info.step : -1, scene.file, comm);
+  Log &log = output.log;
+  const std::string &from = output.suffix;
   for (const auto &line : describe_scene(scene, comm))
     log.line(line);
   for (const auto &w : regime_warnings(scene))

@@ -343,15 +343,11 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, const std:
   const bool restarting = !restart_file.empty();
 
   const std::string dir = out_dir.empty() ? scene.output.dir : out_dir;
-  engine::make_output_dir(dir, comm);
-  // A continuation keeps what earlier runs wrote: its log and observables carry the replicas
-  // done before it in their names (log-0000000008.txt, observables-0000000008.h5).
-  char from[16] = "";
-  if (restarting)
-    std::snprintf(from, sizeof from, "-%010lld", static_cast<long long>(start.done));
-  engine::Log log(rank == 0, dir + "/log" + from + ".txt");
-  log.line("narrows " NARROWS_VERSION " run " + scene.file + " on " + std::to_string(ranks) +
-           " rank(s), output in " + dir);
+  // A continuation's files carry the replicas done before it (log-0000000008.txt, ...).
+  engine::RunOutput output =
+      engine::open_run_output(dir, restarting ? start.done : -1, scene.file, comm);
+  engine::Log &log = output.log;
+  const std::string &from = output.suffix;
   for (const auto &line : describe(scene))
     log.line(line);
   for (const auto &w : analyse(k).warnings)

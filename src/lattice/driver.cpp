@@ -418,10 +418,8 @@ void run_dhumieres(const scene::Scene &scene, const std::string &out_dir,
                       " is shorter than tagged.max_lag = " + std::to_string(max_lag) +
                       "; allowed: run.steps >= tagged.max_lag");
   const std::string dir = out_dir.empty() ? scene.output.dir : out_dir;
-  engine::make_output_dir(dir, comm);
-  engine::Log log(rank == 0, dir + "/log.txt");
-  log.line("narrows " NARROWS_VERSION " run " + scene.file + " on " + std::to_string(ranks) +
-           " rank(s), output in " + dir);
+  engine::RunOutput output = engine::open_run_output(dir, -1, scene.file, comm);
+  engine::Log &log = output.log;
   for (const auto &line : describe(scene, comm))
     log.line(line);
   const auto ensemble = g.initial == scene::LgcaInitial::zero_momentum
@@ -524,13 +522,10 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, const std:
   }
   const bool restarting = !restart_file.empty();
   const std::string dir = out_dir.empty() ? scene.output.dir : out_dir;
-  engine::make_output_dir(dir, comm);
-  char from[16] = "";
-  if (restarting)
-    std::snprintf(from, sizeof from, "-%010lld", static_cast<long long>(restart_info.step));
-  engine::Log log(rank == 0, dir + "/log" + from + ".txt");
-  log.line("narrows " NARROWS_VERSION " run " + scene.file + " on " + std::to_string(ranks) +
-           " rank(s), output in " + dir);
+  engine::RunOutput output =
+      engine::open_run_output(dir, restarting ? restart_info.step : -1, scene.file, comm);
+  engine::Log &log = output.log;
+  const std::string &from = output.suffix;
   for (const auto &line : describe(scene, comm))
     log.line(line);
 

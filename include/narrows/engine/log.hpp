@@ -24,6 +24,17 @@ private:
 // together with one bad-input error (exit 2) naming the directory.
 void make_output_dir(const std::string &dir, MPI_Comm comm);
 
+// The output of one run: DIR made (make_output_dir), the suffix its files carry ("" for a
+// fresh run, "-<step as 10 digits>" for a continuation from `continued_from` >= 0, so that it
+// keeps what earlier runs wrote: log-0000001000.txt, observables-0000001000.h5), and
+// DIR/log<suffix>.txt opened with the run's first line (version, scene, ranks, directory).
+struct RunOutput {
+  std::string suffix;
+  Log log;
+};
+RunOutput open_run_output(const std::string &dir, std::int64_t continued_from,
+                          const std::string &scene_file, MPI_Comm comm);
+
 // "42s", "3m05s", "2h10m": for ETAs in progress lines.
 std::string format_duration(double seconds);
 
