@@ -79,15 +79,6 @@ check "1 rank to step 30, then 2 ranks to 60: bitwise the uninterrupted run" \
   '$py "$tmp/compare.py" "$tmp/straight/checkpoint-0000000060.h5" "$tmp/one/checkpoint-0000000060.h5"'
 
 # Refused: exit 2, one line on stderr matching a pattern.
-refused() { # name, pattern, narrows arguments...
-  local name=$1 pattern=$2
-  shift 2
-  "$@" > "$tmp/rout" 2> "$tmp/rerr"
-  local code=$?
-  check "$name: exit 2 (got $code)" '[ "$code" -eq 2 ]'
-  check "$name: one line on stderr" '[ "$(grep -c . "$tmp/rerr")" -eq 1 ]'
-  check "$name: message matches '$pattern'" 'grep -q -- "$pattern" "$tmp/rerr" || { cat "$tmp/rerr"; false; }'
-}
 good="$tmp/part/checkpoint-0000000060.h5"
 refused "--set of a physics key" "fluid.dt cannot change on a restart.*allowed: run.steps, output" \
   "$narrows" run "$tmp/s.toml" --restart "$good" --set fluid.dt=0.2 --out "$tmp/x"
