@@ -53,13 +53,31 @@ def unwrap(x, L):
     return np.concatenate([x[:1], x[:1] + np.cumsum(d, axis=0)])
 
 
-def chain_distances(pos, L, group=5):
+def chain_distances(pos, L, g, group=5):
+    """D_i(t) of seed 000 §4.5: colloids ordered by initial x from the head (the front in the
+    direction of gravity; for g = 0 the largest x) to the tail, gaps d between successive ones,
+    D_i = mean of group i's 5 gaps, so D_1 is at the head as in the seed's fig 4.12."""
     x = unwrap(pos[:, :, 0], L)
     order = np.argsort(x[0])
+    if g >= 0.0:
+        order = order[::-1]
     x = x[:, order]
-    gaps = np.diff(x, axis=1)  # d between consecutive colloids
+    gaps = np.abs(np.diff(x, axis=1))  # d between consecutive colloids
     groups = gaps.shape[1] // group
     return np.stack([gaps[:, i * group:(i + 1) * group].mean(axis=1) for i in range(groups)], 1)
+
+
+def growth_rates(t, D, blocks):
+    """Least-squares slope dD_i/dt over the whole run, with an error from the scatter of the
+    slopes fitted in `blocks` consecutive time blocks (each block's slope is an independent
+    estimate of the same rate if the growth is steady; a curved D_i(t) shows as a large error)."""
+    rates, errors = [], []
+    n = len(t) // blocks
+    for i in range(D.shape[1]):
+        rates.append(float(np.polyfit(t, D[:, i], 1)[0]))
+        b = [np.polyfit(t[k * n:(k + 1) * n], D[k * n:(k + 1) * n, i], 1)[0] for k in range(blocks)]
+        errors.append(float(np.std(b, ddof=1) / np.sqrt(blocks)))
+    return np.array(rates), np.array(errors)
 
 
 def main():
@@ -89,14 +107,22 @@ def main():
             import matplotlib
             matplotlib.use("Agg")
             import matplotlib.pyplot as plt
-            D = chain_distances(pos, float(scene["domain"]["size"][0]))
+            D = chain_distances(pos, float(scene["domain"]["size"][0]), g)
             for i in range(D.shape[1]):
                 plt.plot(pos_t, D[:, i], label=f"D_{i + 1}")
             plt.xlabel("t")
-            plt.ylabel("D_i")
+            plt.ylabel("D_i (D_1 at the head)")
+            plt.title(f"chain of {pos.shape[1]} colloids, g = {g:g}")
             plt.legend()
             plt.savefig(a.chain, dpi=120)
-            print(f"chain distances: {a.chain}; final D_i = {np.round(D[-1], 3)}")
+            print(f"chain distances: {a.chain}; initial D_i = {np.round(D[0], 3)}, "
+                  f"final D_i = {np.round(D[-1], 3)}")
+            rate, err = growth_rates(pos_t, D, 4)
+            for i in range(D.shape[1]):
+                print(f"  dD_{i + 1}/dt = {rate[i]:.3e} +- {err[i]:.1e}")
+            head_tail = rate[0] - rate[-1]
+            print(f"  head - tail: {head_tail:.3e} +- {np.hypot(err[0], err[-1]):.1e}; "
+                  f"slope of the rates against i: {np.polyfit(np.arange(1, len(rate) + 1), rate, 1)[0]:.3e}")
     if len(set(gs)) >= 2:
         g, v = np.array(gs), np.array(vs)
         mu = float(np.sum(g * v) / np.sum(g * g))  # v_s = mu g through the origin

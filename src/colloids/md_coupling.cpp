@@ -283,11 +283,9 @@ PotentialEnergy MdCoupling::forces(const mpcd::Fluid &f, const Colloids &c, MPI_
     }
   }
   for (int k = 0; k < D; ++k)
-    if (params_.gravity[k] != 0.0) {
-      const std::int64_t g = to_fixed(params_.gravity[k]);
+    if (params_.gravity[k] != 0.0) // the field g of seed 000 (eq 4.4): force M g on each colloid
       for (std::size_t a = 0; a < nc; ++a)
-        colloid_force_[a * D + k] += g;
-    }
+        colloid_force_[a * D + k] += to_fixed(c.mass[a] * params_.gravity[k]);
   return energy;
 }
 

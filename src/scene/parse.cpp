@@ -651,7 +651,8 @@ std::optional<Colloids> parse_colloids(const Ctx &c, const value *sec, const Dom
         static_cast<int>(as_integer(c, *v, "colloids.md_substeps", "an integer from 1 to 10000",
                                     [](std::int64_t n) { return n >= 1 && n <= 10000; }));
   if (const value *v = find(sec, "gravity"))
-    out.gravity = as_vector(c, *v, "colloids.gravity", dims, "the force on each colloid");
+    out.gravity = as_vector(c, *v, "colloids.gravity", dims,
+                            "the gravitational acceleration g (force: mass times g)");
   const double half_width = domain.size[1] / 2.0;
   if (const value *v = find(sec, "wall_sigma")) {
     if (!walls)

@@ -38,7 +38,7 @@ dt = 0.1
 [colloids]
 radius = 1.5
 count = 3
-gravity = [0.5, 0.0]
+gravity = [0.02, 0.0]
 [output]
 every = 10
 checkpoint_every = 30

@@ -99,7 +99,7 @@ Config make_config(bool walls, unsigned seed) {
   for (int a = 0; a < 3; ++a) {
     c.colloids.x[0][a] = pos[a][0];
     c.colloids.x[1][a] = pos[a][1];
-    c.colloids.mass[a] = 50.0;
+    c.colloids.mass[a] = 50.0 + 10.0 * a; // unequal, so gravity's M g is checked per colloid
     c.colloids.radius[a] = 2.0;
     c.colloids.id[a] = a;
   }
@@ -198,12 +198,17 @@ TEST(ColloidForces, NewtonsThirdLawIsExactInFixedPoint) {
       nonzero += md.colloid_force(a, k) != 0;
   }
   EXPECT_GT(nonzero, 0);
-  // With gravity the sum is exactly N_c g in fixed point.
+  // With gravity (a field: force M_a g on colloid a) the sum is exactly sum_a M_a g in fixed
+  // point.
   c.params.gravity = {0.3, -0.1, 0.0};
   MdCoupling mg = make_md(c);
   mg.compute_forces(c.fluid, c.colloids, MPI_COMM_NULL);
-  for (int k = 0; k < 2; ++k)
-    EXPECT_EQ(total(c, mg, k), 3 * fixed::from_double(c.params.gravity[k]));
+  for (int k = 0; k < 2; ++k) {
+    std::int64_t expected = 0;
+    for (std::size_t a = 0; a < 3; ++a)
+      expected += fixed::from_double(c.colloids.mass[a] * c.params.gravity[k]);
+    EXPECT_EQ(total(c, mg, k), expected) << "axis " << k;
+  }
 }
 
 TEST(ColloidPlacement, RandomKeepsColloidsApartAndOffTheWalls) {

@@ -40,7 +40,7 @@ struct MdParams {
   int substeps = 15;
   double sigma_cf = 2.0, sigma_cc = 4.0, epsilon = 1.0;
   double sigma_wall = 4.0, wall_q = 1.0; // used when the box has walls along y
-  std::array<double, 3> gravity{0.0, 0.0, 0.0};
+  std::array<double, 3> gravity{0.0, 0.0, 0.0}; // acceleration: the force on colloid a is M_a g
   double fluid_accel = 0.0; // largest body-force acceleration of a fluid particle
 };
 

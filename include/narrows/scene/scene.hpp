@@ -53,7 +53,8 @@ struct Walls {
 
 // MD-coupled colloids of seed 000 §3.4 (species "colloids"). Potentials: colloid-fluid WCA
 // (sigma_cf = radius), colloid-colloid 48-24 (sigma_cc = 2 radius), integrated LJ wall (with
-// [walls]); gravity is a constant force on every colloid.
+// [walls]); gravity is the gravitational field g_c of seed 000 (an acceleration: the force on a
+// colloid is its mass times g, eq 4.4 without buoyancy, as the fluid feels no gravity).
 enum class ColloidPlacement { lattice, list, random };
 
 struct Colloids {
@@ -62,7 +63,7 @@ struct Colloids {
   std::int64_t count = 0;
   ColloidPlacement placement = ColloidPlacement::lattice; // lattice: a row along x, centred
   std::vector<std::array<double, 3>> positions;           // placement "list"
-  std::array<double, 3> gravity{0.0, 0.0, 0.0};           // force on each colloid
+  std::array<double, 3> gravity{0.0, 0.0, 0.0};           // acceleration g; force M g
   int md_substeps = 15;                                   // tau_MD = fluid.dt / md_substeps
   double epsilon = 1.0;                                   // eps_cf = eps_cc = eps_w (kT units)
   double wall_sigma = 0.0; // sigma_w of the wall potential, 0: 2 radius (seed 000 table 3.1)
