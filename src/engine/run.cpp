@@ -159,16 +159,18 @@ void run_scene(const scene::Scene &scene, const RunOptions &options, MPI_Comm co
         std::make_unique<io::ObservablesWriter>(dir + "/observables" + from + ".h5", scene.text);
   Observer observer(sim, std::move(writer));
   std::optional<io::TrajectoryWriter> trajectory;
+  const colloids::Colloids *colloids = scene.colloids ? &sim.colloids() : nullptr;
   const std::int64_t frame_every = scene.output.trajectory_every;
   if (frame_every > 0) {
-    trajectory.emplace(dir + "/trajectory" + from + ".h5", scene.text, sim.box(),
-                       particle_count(scene),
-                       static_cast<std::uint64_t>(scene.output.trajectory_subsample), comm);
-    log.line("trajectory: " + std::to_string(trajectory->tracked()) + " fluid particles every " +
-             std::to_string(frame_every) + " steps to " + dir + "/trajectory" + from +
+    trajectory.emplace(
+        dir + "/trajectory" + from + ".h5", scene.text, sim.box(), particle_count(scene),
+        static_cast<std::uint64_t>(scene.output.trajectory_subsample), comm, colloids);
+    log.line("trajectory: " + std::to_string(trajectory->tracked()) + " fluid particles" +
+             (colloids ? " and " + std::to_string(colloids->size()) + " colloids" : "") +
+             " every " + std::to_string(frame_every) + " steps to " + dir + "/trajectory" + from +
              ".h5 (ParaView: trajectory" + from + ".xdmf)");
     if (!restarting)
-      trajectory->write_frame(sim.step(), sim.time(), sim.fluid());
+      trajectory->write_frame(sim.step(), sim.time(), sim.fluid(), colloids);
   }
   const InvariantCheck invariants(sim);
   const std::int64_t every = scene.output.every;
@@ -208,7 +210,7 @@ void run_scene(const scene::Scene &scene, const RunOptions &options, MPI_Comm co
       observer.sample();
     }
     if (trajectory && sim.step() % frame_every == 0)
-      trajectory->write_frame(sim.step(), sim.time(), sim.fluid());
+      trajectory->write_frame(sim.step(), sim.time(), sim.fluid(), colloids);
     if ((stop = signals.requested(comm)) != 0)
       break;
     const std::int64_t cadence = scene.output.checkpoint_every;

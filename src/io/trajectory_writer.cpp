@@ -33,9 +33,11 @@ std::string base_name(const std::string &path) {
 
 TrajectoryWriter::TrajectoryWriter(const std::string &h5_path, const std::string &scene_text,
                                    const mpcd::Box &box, std::uint64_t total,
-                                   std::uint64_t subsample, MPI_Comm comm)
+                                   std::uint64_t subsample, MPI_Comm comm,
+                                   const colloids::Colloids *colloids)
     : path_(h5_path), comm_(comm), dim_(box.dim), subsample_(subsample),
-      rows_((total + subsample - 1) / subsample) {
+      rows_((total + subsample - 1) / subsample),
+      colloid_rows_(colloids != nullptr ? colloids->size() : 0) {
   MPI_Comm_rank(comm, &rank_);
   xdmf_path_ = path_.size() > 3 && path_.ends_with(".h5")
                    ? path_.substr(0, path_.size() - 3) + ".xdmf"
@@ -47,34 +49,74 @@ TrajectoryWriter::TrajectoryWriter(const std::string &h5_path, const std::string
   h5::write_scalar<std::uint64_t>(parameters.get(), "subsample", subsample, path_);
 
   const h5::Group particles = h5::create_group(file_.get(), "particles", path_);
-  const h5::Group fluid = h5::create_group(particles.get(), "fluid", path_);
-  const h5::Group box_group = h5::create_group(fluid.get(), "box", path_);
-  const std::array<std::int32_t, 1> dimension{box.dim};
-  h5::write_attribute<std::int32_t>(box_group.get(), "dimension", dimension, path_);
-  std::vector<std::string> boundary;
-  for (int k = 0; k < box.dim; ++k)
-    boundary.push_back(k == 1 && box.walls_y ? "none" : "periodic");
-  write_strings_attribute(box_group.get(), "boundary", boundary, path_);
-  h5::write_dataset<double>(box_group.get(), "edges",
-                            std::span<const double>(box.length.data(), box.dim), path_);
-
+  // A species group with its box and id; its position and velocity series go to the arrays.
+  auto species = [&](const char *name, std::span<const std::uint64_t> ids, h5::Dataset *step,
+                     h5::Dataset *time, h5::Dataset *value) {
+    h5::Group group = h5::create_group(particles.get(), name, path_);
+    const h5::Group box_group = h5::create_group(group.get(), "box", path_);
+    const std::array<std::int32_t, 1> dimension{box.dim};
+    h5::write_attribute<std::int32_t>(box_group.get(), "dimension", dimension, path_);
+    std::vector<std::string> boundary;
+    for (int k = 0; k < box.dim; ++k)
+      boundary.push_back(k == 1 && box.walls_y ? "none" : "periodic");
+    write_strings_attribute(box_group.get(), "boundary", boundary, path_);
+    h5::write_dataset<double>(box_group.get(), "edges",
+                              std::span<const double>(box.length.data(), box.dim), path_);
+    h5::write_dataset<std::uint64_t>(group.get(), "id", ids, path_);
+    const std::vector<hsize_t> shape{ids.size(), static_cast<hsize_t>(dim_)};
+    const char *names[2] = {"position", "velocity"};
+    for (int f = 0; f < 2; ++f) {
+      const h5::Group g = h5::create_group(group.get(), names[f], path_);
+      step[f] = h5::create_series(g.get(), "step", H5T_STD_I64LE, {}, path_);
+      time[f] = h5::create_series(g.get(), "time", H5T_IEEE_F64LE, {}, path_);
+      value[f] = h5::create_series(g.get(), "value", H5T_IEEE_F64LE, shape, path_);
+    }
+    return group;
+  };
   std::vector<std::uint64_t> ids(rows_);
   for (std::uint64_t j = 0; j < rows_; ++j)
     ids[j] = j * subsample;
-  h5::write_dataset<std::uint64_t>(fluid.get(), "id", ids, path_);
-
-  const std::vector<hsize_t> shape{rows_, static_cast<hsize_t>(dim_)};
-  const char *names[2] = {"position", "velocity"};
-  for (int f = 0; f < 2; ++f) {
-    const h5::Group g = h5::create_group(fluid.get(), names[f], path_);
-    step_[f] = h5::create_series(g.get(), "step", H5T_STD_I64LE, {}, path_);
-    time_[f] = h5::create_series(g.get(), "time", H5T_IEEE_F64LE, {}, path_);
-    value_[f] = h5::create_series(g.get(), "value", H5T_IEEE_F64LE, shape, path_);
+  species("fluid", ids, step_, time_, value_);
+  if (colloid_rows_ > 0) {
+    const h5::Group group =
+        species("colloids", colloids->id, colloid_step_, colloid_time_, colloid_value_);
+    h5::write_dataset<double>(group.get(), "radius", colloids->radius, path_);
   }
   h5::flush(file_, path_);
 }
 
-void TrajectoryWriter::write_frame(std::int64_t step, double time, const mpcd::Fluid &fluid) {
+void TrajectoryWriter::write_colloid_frame(std::int64_t step, double time,
+                                           const colloids::Colloids &c) {
+  if (c.size() != colloid_rows_)
+    throw Error(ExitCode::other, path_ + ": frame at step " + std::to_string(step) + " has " +
+                                     std::to_string(c.size()) + " colloids, expected " +
+                                     std::to_string(colloid_rows_));
+  std::vector<double> data[2];
+  for (int f = 0; f < 2; ++f)
+    data[f].resize(colloid_rows_ * dim_);
+  for (std::size_t a = 0; a < colloid_rows_; ++a)
+    for (int k = 0; k < dim_; ++k) {
+      data[0][a * dim_ + k] = c.x[k][a];
+      data[1][a * dim_ + k] = c.v[k][a];
+    }
+  const std::vector<hsize_t> shape{colloid_rows_, static_cast<hsize_t>(dim_)};
+  const hsize_t frame = frame_times_.size();
+  const char *names[2] = {"position", "velocity"};
+  for (int f = 0; f < 2; ++f) {
+    const std::string prefix = std::string("/particles/colloids/") + names[f] + "/";
+    h5::write_row(colloid_step_[f], frame, H5T_NATIVE_INT64, {}, &step, path_, prefix + "step");
+    h5::write_row(colloid_time_[f], frame, H5T_NATIVE_DOUBLE, {}, &time, path_, prefix + "time");
+    h5::write_row(colloid_value_[f], frame, H5T_NATIVE_DOUBLE, shape, data[f].data(), path_,
+                  prefix + "value");
+  }
+}
+
+void TrajectoryWriter::write_frame(std::int64_t step, double time, const mpcd::Fluid &fluid,
+                                   const colloids::Colloids *colloids) {
+  if ((colloids != nullptr) != (colloid_rows_ > 0))
+    throw Error(ExitCode::other, path_ + ": write_frame " +
+                                     (colloids ? "given colloids the file has no group for"
+                                               : "without the colloids the file expects"));
   // This rank's tracked particles: row, then position and velocity.
   send_rows_.clear();
   send_values_.clear();
@@ -139,6 +181,8 @@ void TrajectoryWriter::write_frame(std::int64_t step, double time, const mpcd::F
     h5::write_row(time_[f], frame, H5T_NATIVE_DOUBLE, {}, &time, path_, prefix + "time");
     h5::write_row(value_[f], frame, H5T_NATIVE_DOUBLE, shape, data[f], path_, prefix + "value");
   }
+  if (colloids != nullptr)
+    write_colloid_frame(step, time, *colloids);
   h5::flush(file_, path_);
   frame_times_.push_back(time);
   write_xdmf();
@@ -150,28 +194,42 @@ void TrajectoryWriter::write_xdmf() const {
   {
     std::ofstream out(tmp);
     const std::string h5 = base_name(path_);
-    const std::string m = std::to_string(rows_), d = std::to_string(dim_);
+    const std::string d = std::to_string(dim_);
     const std::string t = std::to_string(frame_times_.size());
-    out << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n<Domain>\n"
-        << "<Grid Name=\"fluid\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-    for (std::size_t f = 0; f < frame_times_.size(); ++f) {
-      auto slab = [&](const char *field) {
-        return "<DataItem ItemType=\"HyperSlab\" Dimensions=\"" + m + " " + d +
-               "\">\n <DataItem Dimensions=\"3 3\" Format=\"XML\">" + std::to_string(f) +
-               " 0 0 1 1 1 1 " + m + " " + d + "</DataItem>\n <DataItem Dimensions=\"" + t + " " +
-               m + " " + d + "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" + h5 +
-               ":/particles/fluid/" + field + "/value</DataItem>\n</DataItem>\n";
-      };
-      char time[40];
-      std::snprintf(time, sizeof time, "%.17g", frame_times_[f]);
-      out << "<Grid Name=\"frame " << f << "\" GridType=\"Uniform\">\n<Time Value=\"" << time
-          << "\"/>\n<Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << m << "\"/>\n"
-          << "<Geometry GeometryType=\"" << (dim_ == 3 ? "XYZ" : "XY") << "\">\n"
-          << slab("position") << "</Geometry>\n"
-          << "<Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n"
-          << slab("velocity") << "</Attribute>\n</Grid>\n";
-    }
-    out << "</Grid>\n</Domain>\n</Xdmf>\n";
+    out << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n<Domain>\n";
+    // One temporal collection per species; the colloids also carry their radius.
+    auto collection = [&](const std::string &name, std::size_t rows) {
+      const std::string m = std::to_string(rows);
+      out << "<Grid Name=\"" << name << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+      for (std::size_t f = 0; f < frame_times_.size(); ++f) {
+        auto slab = [&](const char *field) {
+          return "<DataItem ItemType=\"HyperSlab\" Dimensions=\"" + m + " " + d +
+                 "\">\n <DataItem Dimensions=\"3 3\" Format=\"XML\">" + std::to_string(f) +
+                 " 0 0 1 1 1 1 " + m + " " + d + "</DataItem>\n <DataItem Dimensions=\"" + t + " " +
+                 m + " " + d + "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" + h5 +
+                 ":/particles/" + name + "/" + field + "/value</DataItem>\n</DataItem>\n";
+        };
+        char time[40];
+        std::snprintf(time, sizeof time, "%.17g", frame_times_[f]);
+        out << "<Grid Name=\"frame " << f << "\" GridType=\"Uniform\">\n<Time Value=\"" << time
+            << "\"/>\n<Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << m << "\"/>\n"
+            << "<Geometry GeometryType=\"" << (dim_ == 3 ? "XYZ" : "XY") << "\">\n"
+            << slab("position") << "</Geometry>\n"
+            << "<Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n"
+            << slab("velocity") << "</Attribute>\n";
+        if (name == "colloids")
+          out << "<Attribute Name=\"radius\" AttributeType=\"Scalar\" Center=\"Node\">\n"
+              << "<DataItem Dimensions=\"" << m
+              << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5
+              << ":/particles/colloids/radius</DataItem>\n</Attribute>\n";
+        out << "</Grid>\n";
+      }
+      out << "</Grid>\n";
+    };
+    collection("fluid", rows_);
+    if (colloid_rows_ > 0)
+      collection("colloids", colloid_rows_);
+    out << "</Domain>\n</Xdmf>\n";
     if (!out)
       throw Error(ExitCode::other, tmp + ": cannot write the XDMF description");
   }
