@@ -22,6 +22,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -55,8 +56,8 @@ const std::vector<Section> &schema() {
       {"walls", {"slip", "virtual_particles", "virtual_flow"}},
       {"thermostat", {"kind", "gamma"}},
       {"colloids",
-       {"radius", "mass", "count", "placement", "positions", "gravity", "md_substeps", "epsilon",
-        "wall_sigma", "wall_q"}},
+       {"radius", "mass", "count", "placement", "positions", "positions_file", "gravity",
+        "md_substeps", "epsilon", "wall_sigma", "wall_q"}},
       {"kmc",
        {"length", "boundary", "rates", "left", "right", "initial", "time", "warmup", "replicas",
         "charge", "samples", "preset", "parameters", "fugacity", "boundary_rates",
@@ -673,40 +674,110 @@ std::optional<Colloids> parse_colloids(const Ctx &c, const value *sec, const Dom
   const value *count = find(sec, "count");
   const value *placement = find(sec, "placement");
   const value *positions = find(sec, "positions");
+  const value *positions_file = find(sec, "positions_file");
+  bool from_file = false;
   if (placement != nullptr) {
     const std::size_t i = as_choice(c, *placement, "colloids.placement", "a known placement",
-                                    {"lattice", "list", "random"});
-    out.placement = static_cast<ColloidPlacement>(i);
+                                    {"lattice", "list", "random", "file"});
+    from_file = i == 3;
+    out.placement = from_file ? ColloidPlacement::list : static_cast<ColloidPlacement>(i);
   }
+  // A position inside the box (and off the walls), or one line naming `key` and what was found.
+  auto check_position = [&](const std::string &key, const std::array<double, 3> &p,
+                            const std::string &found) {
+    for (int d = 0; d < dims; ++d)
+      if (!(p[d] >= 0.0 && p[d] < domain.size[d]))
+        c.fail(key, key + " = " + found +
+                        " lies outside the box; allowed: 0 <= x_k < "
+                        "domain.size[k]");
+    if (walls && !(p[1] > 0.0 && p[1] < domain.size[1]))
+      c.fail(key, key + " = " + found + " lies on a wall; allowed: 0 < y < L_y");
+  };
+  const std::string coords = std::string(dims == 3 ? "x y z" : "x y");
   if (out.placement == ColloidPlacement::list) {
+    const std::string source = from_file ? "colloids.positions_file" : "colloids.positions";
     if (count != nullptr)
-      c.fail("colloids.count", "colloids.count = " + repr(*count) +
-                                   " cannot be mixed with placement = \"list\"; allowed: the "
-                                   "number of colloids is the length of colloids.positions");
-    const std::string allowed =
-        "an array of [x, y" + std::string(dims == 3 ? ", z" : "") + "] positions inside the box";
-    if (positions == nullptr)
-      c.missing("colloids.positions", allowed);
-    if (!positions->is_array() || positions->as_array().empty())
-      c.wrong_type("colloids.positions", *positions, allowed);
-    const auto &a = positions->as_array();
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      const std::string key = "colloids.positions[" + std::to_string(i) + "]";
-      const auto p = as_vector(c, a[i], key, dims, "a position inside the box");
-      for (int d = 0; d < dims; ++d)
-        if (!(p[d] >= 0.0 && p[d] < domain.size[d]))
-          c.fail(key, key + " = " + repr(a[i]) +
-                          " lies outside the box; allowed: 0 <= x_k < "
-                          "domain.size[k]");
-      if (walls && !(p[1] > 0.0 && p[1] < domain.size[1]))
-        c.fail(key, key + " = " + repr(a[i]) + " lies on a wall; allowed: 0 < y < L_y");
-      out.positions.push_back(p);
+      c.fail(
+          "colloids.count",
+          "colloids.count = " + repr(*count) + " cannot be mixed with placement = \"" +
+              (from_file ? "file" : "list") +
+              "\"; allowed: the number of colloids is the number of " +
+              (from_file ? "lines in colloids.positions_file" : "entries of colloids.positions"));
+    if (from_file) {
+      if (positions != nullptr)
+        c.fail("colloids.positions",
+               "colloids.positions cannot be mixed with placement = \"file\"; "
+               "allowed: the positions in colloids.positions_file");
+      const std::string allowed = "the path of a text file (relative to the scene file) with one "
+                                  "colloid per line: " +
+                                  coords + " inside the box; # comments";
+      if (positions_file == nullptr)
+        c.missing("colloids.positions_file", allowed);
+      const std::string name = as_string(c, *positions_file, "colloids.positions_file", allowed);
+      std::filesystem::path path(name);
+      if (path.is_relative())
+        path = std::filesystem::path(c.file()).parent_path() / path;
+      std::ifstream in(path);
+      if (!in)
+        c.fail("colloids.positions_file", "colloids.positions_file = \"" + name +
+                                              "\": cannot open " + path.string() +
+                                              "; allowed: " + allowed);
+      std::string line;
+      for (int number = 1; std::getline(in, line); ++number) {
+        const std::string text = line.substr(0, line.find('#'));
+        std::istringstream fields(text);
+        std::array<double, 3> p{0.0, 0.0, 0.0};
+        int n = 0;
+        std::string word;
+        while (fields >> word) {
+          double x = 0.0;
+          const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), x);
+          if (ec != std::errc() || end != word.data() + word.size() || n == dims) {
+            n = -1;
+            break;
+          }
+          p[static_cast<std::size_t>(n++)] = x;
+        }
+        if (n == 0)
+          continue; // blank or comment
+        const std::string key =
+            "colloids.positions_file (" + path.string() + ":" + std::to_string(number) + ")";
+        if (n != dims)
+          c.fail("colloids.positions_file", key + ": found \"" + text + "\"; allowed: " +
+                                                std::to_string(dims) + " numbers " + coords);
+        check_position(key, p, "\"" + text + "\"");
+        out.positions.push_back(p);
+      }
+      if (out.positions.empty())
+        c.fail("colloids.positions_file", "colloids.positions_file = \"" + name +
+                                              "\": " + path.string() +
+                                              " holds no position; allowed: " + allowed);
+    } else {
+      const std::string allowed =
+          "an array of [x, y" + std::string(dims == 3 ? ", z" : "") + "] positions inside the box";
+      if (positions_file != nullptr)
+        c.fail("colloids.positions_file", "colloids.positions_file needs placement = \"file\"");
+      if (positions == nullptr)
+        c.missing("colloids.positions", allowed);
+      if (!positions->is_array() || positions->as_array().empty())
+        c.wrong_type("colloids.positions", *positions, allowed);
+      const auto &a = positions->as_array();
+      for (std::size_t i = 0; i < a.size(); ++i) {
+        const std::string key = "colloids.positions[" + std::to_string(i) + "]";
+        const auto p = as_vector(c, a[i], key, dims, "a position inside the box");
+        check_position(key, p, repr(a[i]));
+        out.positions.push_back(p);
+      }
     }
-    out.count = static_cast<std::int64_t>(a.size());
+    out.count = static_cast<std::int64_t>(out.positions.size());
   } else {
     if (positions != nullptr)
       c.fail("colloids.positions", "colloids.positions needs placement = \"list\"; allowed with "
                                    "placement = \"lattice\" or \"random\": count");
+    if (positions_file != nullptr)
+      c.fail("colloids.positions_file",
+             "colloids.positions_file needs placement = \"file\"; "
+             "allowed with placement = \"lattice\" or \"random\": count");
     if (count == nullptr)
       c.missing("colloids.count", "an integer >= 1");
     out.count = as_integer(c, *count, "colloids.count", "an integer from 1 to 1000000",

@@ -2,7 +2,8 @@
 # Scenes with [colloids]: every one in run/ runs briefly with finite observables; a colloid channel
 # run on 2 ranks ends bitwise equal to 1 rank (fluid and colloids, compared by id in the final
 # checkpoints); a restart (2 ranks to step 30, then 1 rank to 60) ends bitwise equal to the
-# uninterrupted run; a checkpoint with the wrong colloid count is refused.
+# uninterrupted run; a checkpoint with the wrong colloid count is refused; placement = "file"
+# reads the positions from a text file next to the scene, and a bad file is refused in one line.
 set -u
 source "$(dirname "$0")/common.bash"
 py=/usr/bin/python3
@@ -76,4 +77,22 @@ sed 's/count = 3/count = 2/' "$tmp/c.toml" > "$tmp/c2.toml"
 code=$?
 check "a scene with another colloid count is refused (exit 2, got $code)" \
   '[ "$code" -eq 2 ] && grep -q "colloids.count" "$tmp/err2"'
+# Positions from a file (relative to the scene file; comments, blank lines and commas-free
+# whitespace-separated numbers).
+sed -e 's/^count = 3/placement = "file"\npositions_file = "pos.txt"/' "$tmp/c.toml" > "$tmp/f.toml"
+printf '# x y\n4.5 5.0\n\n12.0 4.0   # second\n19.5 6.0\n' > "$tmp/pos.txt"
+"$narrows" run "$tmp/f.toml" --set run.steps=0 --out "$tmp/file" > /dev/null 2> "$tmp/errf"
+check "placement = file runs: $(head -c 300 "$tmp/errf")" '[ $? -eq 0 ]'
+check "placement = file puts the colloids at the file's positions" '$py -c "
+import h5py, sys, numpy as np
+p = h5py.File(sys.argv[1])[\"/particles/colloids/position/value\"][()]
+assert np.array_equal(p, [[4.5, 5.0], [12.0, 4.0], [19.5, 6.0]]), p" "$tmp/file/checkpoint-0000000000.h5"'
+printf '4.5 5.0\n12.0 x\n' > "$tmp/pos.txt"
+refused "a position file with a word" 'colloids.positions_file (.*pos.txt:2): found "12.0 x"' \
+  "$narrows" check "$tmp/f.toml"
+printf '4.5 5.0\n12.0 10.0\n' > "$tmp/pos.txt"
+refused "a position file with a colloid on the wall" 'pos.txt:2).*lies' "$narrows" check "$tmp/f.toml"
+rm "$tmp/pos.txt"
+refused "a missing position file" 'colloids.positions_file = "pos.txt": cannot open' \
+  "$narrows" check "$tmp/f.toml"
 finish "colloid scenes"
