@@ -124,12 +124,22 @@ def main():
             print(f"  head - tail: {head_tail:.3e} +- {np.hypot(err[0], err[-1]):.1e}; "
                   f"slope of the rates against i: {np.polyfit(np.arange(1, len(rate) + 1), rate, 1)[0]:.3e}")
     if len(set(gs)) >= 2:
-        g, v = np.array(gs), np.array(vs)
+        g, v, e = np.array(gs), np.array(vs), np.array(es)
         mu = float(np.sum(g * v) / np.sum(g * g))  # v_s = mu g through the origin
         slope, icpt = np.polyfit(g, v, 1)
         r2 = 1.0 - np.sum((v - (slope * g + icpt)) ** 2) / np.sum((v - v.mean()) ** 2)
         print(f"\nlinear fit v_s = {slope:.4f} g + {icpt:.5f}, R^2 = {r2:.4f}; "
               f"through the origin mu = {mu:.4f}")
+        if len(g) >= 3 and np.all(e > 0):
+            # Weighted by the block errors; chi^2 per degree of freedom says whether the
+            # straight line describes the points within their errors.
+            w = 1.0 / e**2
+            A = np.stack([g, np.ones_like(g)], 1)
+            cov = np.linalg.inv(A.T @ (A * w[:, None]))
+            p = cov @ (A.T @ (w * v))
+            chi2 = float(np.sum(w * (v - A @ p) ** 2)) / (len(g) - 2)
+            print(f"weighted fit: slope {p[0]:.4f} +- {np.sqrt(cov[0, 0]):.4f}, intercept "
+                  f"{p[1]:.5f} +- {np.sqrt(cov[1, 1]):.5f}, chi^2/dof = {chi2:.2f}")
 
 
 if __name__ == "__main__":
