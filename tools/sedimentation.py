@@ -80,6 +80,16 @@ def growth_rates(t, D, blocks):
     return np.array(rates), np.array(errors)
 
 
+def weighted_line(x, v, e):
+    """Straight line v = a x + b weighted by the errors e: (a, da, b, db, chi^2 per dof)."""
+    w = 1.0 / e**2
+    A = np.stack([x, np.ones_like(x)], 1)
+    cov = np.linalg.inv(A.T @ (A * w[:, None]))
+    p = cov @ (A.T @ (w * v))
+    chi2 = float(np.sum(w * (v - A @ p) ** 2)) / max(1, len(x) - 2)
+    return p[0], np.sqrt(cov[0, 0]), p[1], np.sqrt(cov[1, 1]), chi2
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("runs", nargs="+")
@@ -87,9 +97,9 @@ def main():
     ap.add_argument("--blocks", type=int, default=10)
     ap.add_argument("--chain", help="PNG of the chain distances D_i(t) of the first run")
     a = ap.parse_args()
-    gs, vs, es = [], [], []
-    print("| run | g | v_s | error | Re |")
-    print("|---|---|---|---|---|")
+    gs, vs, es, ns, phis = [], [], [], [], []
+    print("| run | g | N_c | phi | v_s | error | Re |")
+    print("|---|---|---|---|---|---|---|")
     for run in a.runs:
         scene, t, v, pos_t, pos = read(run)
         fl = scene["fluid"]
@@ -101,8 +111,13 @@ def main():
         m, e = block_mean(keep, a.blocks)
         Ly = float(scene["domain"]["size"][1])
         re = abs(m) * Ly / nu if nu else float("nan")
-        print(f"| {run} | {g:g} | {m:.5f} | {e:.5f} | {re:.4f} |")
-        gs.append(g), vs.append(m), es.append(e)
+        nc = pos.shape[1] if pos is not None else int(scene["colloids"].get("count", 0))
+        r = float(scene["colloids"].get("radius", 2.0))
+        area = float(np.prod(scene["domain"]["size"]))
+        phi = nc * np.pi * r * r / area if scene["run"].get("dimensions", 2) == 2 else \
+            nc * 4.0 / 3.0 * np.pi * r**3 / area
+        print(f"| {run} | {g:g} | {nc} | {phi:.4f} | {m:.5f} | {e:.5f} | {re:.4f} |")
+        gs.append(g), vs.append(m), es.append(e), ns.append(nc), phis.append(phi)
         if a.chain and run == a.runs[0] and pos is not None:
             import matplotlib
             matplotlib.use("Agg")
@@ -133,13 +148,21 @@ def main():
         if len(g) >= 3 and np.all(e > 0):
             # Weighted by the block errors; chi^2 per degree of freedom says whether the
             # straight line describes the points within their errors.
-            w = 1.0 / e**2
-            A = np.stack([g, np.ones_like(g)], 1)
-            cov = np.linalg.inv(A.T @ (A * w[:, None]))
-            p = cov @ (A.T @ (w * v))
-            chi2 = float(np.sum(w * (v - A @ p) ** 2)) / (len(g) - 2)
-            print(f"weighted fit: slope {p[0]:.4f} +- {np.sqrt(cov[0, 0]):.4f}, intercept "
-                  f"{p[1]:.5f} +- {np.sqrt(cov[1, 1]):.5f}, chi^2/dof = {chi2:.2f}")
+            sl, dsl, ic, dic, chi2 = weighted_line(g, v, e)
+            print(f"weighted fit: slope {sl:.4f} +- {dsl:.4f}, intercept "
+                  f"{ic:.5f} +- {dic:.5f}, chi^2/dof = {chi2:.2f}")
+    elif len(set(ns)) >= 2 and np.all(np.array(es) > 0):
+        # Seed 000 §4.2-4.3 (fig 4.6-4.8): v_s against the number of colloids at fixed g.
+        n, phi, v, e = np.array(ns, float), np.array(phis), np.array(vs), np.array(es)
+        sl, dsl, ic, dic, chi2 = weighted_line(n, v, e)
+        sp, dsp, _, _, _ = weighted_line(phi, v, e)
+        # If chi^2/dof > 1 the block errors are too small (blocks shorter than the slowest
+        # correlation time); the error is then scaled by sqrt(chi^2/dof).
+        scale = np.sqrt(max(1.0, chi2))
+        print(f"\nweighted fit against N_c: dv_s/dN_c = {sl:.3e} +- {dsl:.1e} "
+              f"({sl / dsl:+.1f} sigma; {sl / (dsl * scale):+.1f} sigma with the error scaled by "
+              f"sqrt(chi^2/dof)), v_s(0) = {ic:.5f} +- {dic:.5f}, chi^2/dof = {chi2:.2f}; "
+              f"against phi: dv_s/dphi = {sp:.4f} +- {dsp:.4f} (seed fig 4.6 at its g: a = 0.15)")
 
 
 if __name__ == "__main__":
