@@ -247,8 +247,9 @@ std::vector<std::string> describe(const scene::Scene &scene) {
                 ") moved left to right across each bond, per unit time");
   const double bytes = static_cast<double>(k.length) * (1.0 + 32.0 + 4.0 * 8.0);
   out.push_back("memory per replica: about " + fmt("%.3g", bytes / 1048576.0) + " MiB");
-  out.push_back("dynamics: continuous time, exact Exp(R) waiting times, events chosen by "
-                "rejection over bonds; xoshiro256++ per replica");
+  out.push_back("dynamics: continuous time, uniformised: Poisson numbers of tries between fixed "
+                "times, a try picks a bond or boundary site uniformly and accepts with rate / "
+                "R_max; xoshiro256++ per replica");
   return out;
 }
 
