@@ -290,27 +290,37 @@ template <int M, bool EveryBond> std::uint64_t Lattice::try_bulk(std::uint64_t c
   const std::int8_t *dq = next_dq_.data();
   Xoshiro256 rng = rng_;
   std::uint64_t done = 0;
-  for (std::uint64_t i = 0; i < count; ++i) {
-    const unsigned __int128 p = static_cast<unsigned __int128>(rng.next()) * slots;
-    const auto slot = static_cast<std::uint64_t>(p >> 64);
-    const auto f = static_cast<std::uint64_t>(p);
-    if (slot >= inner) [[unlikely]] {
-      done += edge_try(slot, f);
-      continue;
+  // Tries go in blocks: the draws of a block first (their sites prefetched), then the tries.
+  constexpr std::uint64_t block = 64;
+  std::array<std::uint64_t, block> slot_of, f_of;
+  for (std::uint64_t first = 0; first < count; first += block) {
+    const std::uint64_t nb = std::min(block, count - first);
+    for (std::uint64_t i = 0; i < nb; ++i) {
+      const unsigned __int128 p = static_cast<unsigned __int128>(rng.next()) * slots;
+      slot_of[i] = static_cast<std::uint64_t>(p >> 64);
+      f_of[i] = static_cast<std::uint64_t>(p);
+      __builtin_prefetch(n + slot_of[i], 1);
     }
-    // Branch-free: the pair is always written back, unchanged when the try is rejected.
-    std::uint16_t w;
-    std::memcpy(&w, n + slot, 2);
-    const int c = 3 * (w & 0xff) + (w >> 8);
-    int m = 0;
-    for (int j = 0; j < M; ++j)
-      m += f > up[M * c + j];
-    const std::uint16_t w2 = next[9 * c + m];
-    std::memcpy(n + slot, &w2, 2);
-    done += w2 != w;
-    if constexpr (EveryBond)
-      if (w2 != w)
-        q[slot] += dq[9 * c + m];
+    for (std::uint64_t i = 0; i < nb; ++i) {
+      const std::uint64_t slot = slot_of[i], f = f_of[i];
+      if (slot >= inner) [[unlikely]] {
+        done += edge_try(slot, f);
+        continue;
+      }
+      // Branch-free: the pair is always written back, unchanged when the try is rejected.
+      std::uint16_t w;
+      std::memcpy(&w, n + slot, 2);
+      const int c = 3 * (w & 0xff) + (w >> 8);
+      int m = 0;
+      for (int j = 0; j < M; ++j)
+        m += f > up[M * c + j];
+      const std::uint16_t w2 = next[9 * c + m];
+      std::memcpy(n + slot, &w2, 2);
+      done += w2 != w;
+      if constexpr (EveryBond)
+        if (w2 != w)
+          q[slot] += dq[9 * c + m];
+    }
   }
   rng_ = rng;
   return done;
