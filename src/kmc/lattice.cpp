@@ -150,6 +150,8 @@ void Lattice::start_observing(double window) {
   const std::size_t L = n_.size();
   hist1_.assign(L, 0);
   hist2_.assign(L, 0);
+  recent_.assign(L, 0);
+  recent_count_ = 0;
   flushed1_.clear();
   flushed2_.clear();
   hist_pair_.assign(pairs_ ? 9 * bonds_ : 0, 0);
@@ -171,11 +173,11 @@ void Lattice::start_observing(double window) {
 void Lattice::snapshot() {
   const std::size_t L = n_.size();
   const std::uint8_t *n = n_.data();
-  std::uint32_t *h1 = hist1_.data(), *h2 = hist2_.data();
-  for (std::size_t k = 0; k < L; ++k) {
-    h1[k] += n[k] == 1;
-    h2[k] += n[k] == 2;
-  }
+  std::uint16_t *h = recent_.data();
+  for (std::size_t k = 0; k < L; ++k) // states 0, 1, 2 add 0, 1, 256
+    h[k] = static_cast<std::uint16_t>(h[k] + (n[k] & 1u) + ((n[k] & 2u) << 7));
+  if (++recent_count_ == 255)
+    add_recent();
   if (pairs_) {
     std::uint32_t *hp = hist_pair_.data();
     for (std::size_t k = 0; k < bonds_; ++k)
@@ -186,7 +188,19 @@ void Lattice::snapshot() {
     flush_histogram();
 }
 
+void Lattice::add_recent() {
+  std::uint32_t *h1 = hist1_.data(), *h2 = hist2_.data();
+  std::uint16_t *h = recent_.data();
+  for (std::size_t k = 0; k < recent_.size(); ++k) {
+    h1[k] += h[k] & 0xffu;
+    h2[k] += h[k] >> 8;
+    h[k] = 0;
+  }
+  recent_count_ = 0;
+}
+
 void Lattice::flush_histogram() {
+  add_recent();
   flushed1_.resize(hist1_.size(), 0.0);
   flushed2_.resize(hist2_.size(), 0.0);
   for (std::size_t k = 0; k < hist1_.size(); ++k) {
@@ -398,8 +412,8 @@ ReplicaResult Lattice::result() const {
   const double inv_samples = samples_ > 0 ? 1.0 / static_cast<double>(samples_) : 0.0;
   r.density.resize(3 * L);
   for (std::size_t k = 0; k < L; ++k) {
-    const double c1 = hist1_[k] + (flushed1_.empty() ? 0.0 : flushed1_[k]);
-    const double c2 = hist2_[k] + (flushed2_.empty() ? 0.0 : flushed2_[k]);
+    const double c1 = hist1_[k] + (recent_[k] & 0xffu) + (flushed1_.empty() ? 0.0 : flushed1_[k]);
+    const double c2 = hist2_[k] + (recent_[k] >> 8) + (flushed2_.empty() ? 0.0 : flushed2_[k]);
     r.density[3 * k + 0] = (static_cast<double>(samples_) - c1 - c2) * inv_samples;
     r.density[3 * k + 1] = c1 * inv_samples;
     r.density[3 * k + 2] = c2 * inv_samples;

@@ -130,6 +130,7 @@ private:
   std::uint64_t poisson(double mean);
   void snapshot();
   void flush_histogram();
+  void add_recent(); // recent_ into hist1_/hist2_
   int code(std::size_t bond) const {
     const std::size_t b1 = bond + 1 == n_.size() ? 0 : bond + 1;
     return 3 * n_[bond] + n_[b1];
@@ -162,6 +163,12 @@ private:
   std::uint64_t samples_ = 0;
   std::uint32_t pending_ = 0;                // snapshots in hist1_/hist2_ not yet flushed
   std::vector<std::uint32_t> hist1_, hist2_; // snapshots with n_k = 1, 2
+  // The latest (at most 255) snapshots, not yet in hist1_/hist2_: per site the count with
+  // n_k = 1 in the low byte, n_k = 2 in the high byte. A snapshot then reads 3 bytes per site
+  // and writes 2, where two 4-byte counters read and wrote 16 (snapshots are bandwidth-bound
+  // and dominate short observation windows).
+  std::vector<std::uint16_t> recent_;
+  std::uint32_t recent_count_ = 0;
   bool pairs_ = false;
   std::vector<std::uint32_t> hist_pair_; // snapshots with bond k in pair state c: [k * 9 + c]
   std::vector<double> flushed_pair_;
