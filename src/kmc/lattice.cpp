@@ -47,23 +47,13 @@ Xoshiro256::Xoshiro256(std::uint64_t seed, std::uint64_t stream, std::uint32_t s
     s_[0] = 0x9E3779B97F4A7C15ull; // the one forbidden state
 }
 
-XoshiroLanes::XoshiroLanes(std::uint64_t seed, std::uint64_t stream) {
-  for (int l = 0; l < lanes; ++l) {
-    const auto st = Xoshiro256(seed, stream, static_cast<std::uint32_t>(2 + l)).state();
-    s0_[l] = st[0];
-    s1_[l] = st[1];
-    s2_[l] = st[2];
-    s3_[l] = st[3];
-  }
-}
-
 Lattice::Lattice(const scene::Kmc &model, std::uint64_t seed, std::uint64_t replica,
                  LatticeOptions options)
     : model_(model), periodic_(model.boundary == scene::KmcBoundary::periodic),
       every_bond_(options.count_every_bond),
       bonds_(static_cast<std::size_t>(periodic_ ? model.length : model.length - 1)),
       n_(static_cast<std::size_t>(model.length)), rng_(seed, replica, 0),
-      rng_time_(seed, replica, 1), lanes_(seed, replica) {
+      rng_time_(seed, replica, 1) {
   pairs_ = options.pair_histogram;
   const auto &C = model.charge;
   for (int from = 0; from < 9; ++from) {
@@ -300,26 +290,8 @@ std::uint64_t Lattice::edge_try(std::uint64_t slot, std::uint64_t f) {
   return 1;
 }
 
-void Lattice::refill() {
-  // x * slots in 32-bit halves (slots < 2^32: kmc.length < 2^31), so that it vectorises: the
-  // high word is the slot, the low word the fraction, as with a 128-bit product.
-  const std::uint64_t slots = bonds_ + (periodic_ ? 0 : 2);
-  alignas(64) std::array<std::uint64_t, block_> x;
-  for (unsigned i = 0; i < block_; i += XoshiroLanes::lanes)
-    lanes_.next(x.data() + i);
-  for (unsigned i = 0; i < block_; ++i) {
-    const std::uint64_t lo = (x[i] & 0xffffffffu) * slots, hi = (x[i] >> 32) * slots;
-    const std::uint64_t mid = hi + (lo >> 32);
-    slot_[i] = mid >> 32;
-    frac_[i] = (mid << 32) | (lo & 0xffffffffu);
-  }
-  const std::uint8_t *n = n_.data();
-  for (unsigned i = 0; i < block_; ++i)
-    __builtin_prefetch(n + slot_[i], 1); // slot L (a boundary site) is one past: harmless
-  used_ = 0;
-}
-
 template <int M, bool EveryBond> std::uint64_t Lattice::try_bulk(std::uint64_t count) {
+  const std::uint64_t slots = bonds_ + (periodic_ ? 0 : 2);
   const std::uint64_t inner = n_.size() - 1; // slots below: bonds (k, k+1) with k + 1 < L
   std::uint8_t *n = n_.data();
   std::int64_t *q = EveryBond ? q_bond_.data() : nullptr;
@@ -330,14 +302,21 @@ template <int M, bool EveryBond> std::uint64_t Lattice::try_bulk(std::uint64_t c
       up[M * c + j] = classes_[c].up[j];
   const std::uint16_t *next = next_pair_.data();
   const std::int8_t *dq = next_dq_.data();
+  Xoshiro256 rng = rng_;
   std::uint64_t done = 0;
-  while (count > 0) {
-    if (used_ == block_)
-      refill();
-    const unsigned end = static_cast<unsigned>(std::min<std::uint64_t>(block_, used_ + count));
-    count -= end - used_;
-    for (unsigned i = used_; i < end; ++i) {
-      const std::uint64_t slot = slot_[i], f = frac_[i];
+  // Tries go in blocks: the draws of a block first (their sites prefetched), then the tries.
+  constexpr std::uint64_t block = 64;
+  std::array<std::uint64_t, block> slot_of, f_of;
+  for (std::uint64_t first = 0; first < count; first += block) {
+    const std::uint64_t nb = std::min(block, count - first);
+    for (std::uint64_t i = 0; i < nb; ++i) {
+      const unsigned __int128 p = static_cast<unsigned __int128>(rng.next()) * slots;
+      slot_of[i] = static_cast<std::uint64_t>(p >> 64);
+      f_of[i] = static_cast<std::uint64_t>(p);
+      __builtin_prefetch(n + slot_of[i], 1);
+    }
+    for (std::uint64_t i = 0; i < nb; ++i) {
+      const std::uint64_t slot = slot_of[i], f = f_of[i];
       if (slot >= inner) [[unlikely]] {
         done += edge_try(slot, f);
         continue;
@@ -356,8 +335,8 @@ template <int M, bool EveryBond> std::uint64_t Lattice::try_bulk(std::uint64_t c
         if (w2 != w)
           q[slot] += dq[9 * c + m];
     }
-    used_ = end;
   }
+  rng_ = rng;
   return done;
 }
 

@@ -34,7 +34,6 @@
 
 #include <array>
 #include <cstdint>
-#include <cstring>
 #include <functional>
 #include <vector>
 
@@ -43,8 +42,7 @@ namespace narrows::kmc {
 // xoshiro256++ (Blackman & Vigna, public domain).
 class Xoshiro256 {
 public:
-  // Substream 0 draws the initial state, 1 the Poisson numbers of tries, 2..9 are the lanes
-  // of XoshiroLanes (the tries).
+  // Substream 0 draws the tries, 1 the Poisson numbers of tries.
   Xoshiro256(std::uint64_t seed, std::uint64_t stream, std::uint32_t substream = 0);
   std::uint64_t next() {
     const std::uint64_t result = rotl(s_[0] + s_[3], 23) + s_[0];
@@ -59,37 +57,10 @@ public:
   }
   // Uniform in (0, 1] with 53 bits.
   double open01() { return static_cast<double>((next() >> 11) + 1) * 0x1p-53; }
-  const std::array<std::uint64_t, 4> &state() const { return s_; }
 
 private:
   static std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
   std::array<std::uint64_t, 4> s_;
-};
-
-// Eight xoshiro256++ generators side by side (substreams 2..9 of Xoshiro256), stepped together
-// in one vector of 8 x 64 bits (GCC/Clang vector extensions: one AVX-512 register, or pieces
-// of narrower ones on other machines; the numbers are the same).
-class XoshiroLanes {
-public:
-  static constexpr int lanes = 8;
-  XoshiroLanes(std::uint64_t seed, std::uint64_t stream);
-  // out[l] = the next number of lane l.
-  void next(std::uint64_t *out) {
-    const V result = rotl(s0_ + s3_, 23) + s0_;
-    const V t = s1_ << 17;
-    s2_ ^= s0_;
-    s3_ ^= s1_;
-    s1_ ^= s2_;
-    s0_ ^= s3_;
-    s2_ ^= t;
-    s3_ = rotl(s3_, 45);
-    std::memcpy(out, &result, sizeof result);
-  }
-
-private:
-  typedef std::uint64_t V __attribute__((vector_size(8 * lanes)));
-  static V rotl(V x, int k) { return (x << k) | (x >> (64 - k)); }
-  V s0_, s1_, s2_, s3_;
 };
 
 struct ReplicaResult {
@@ -179,15 +150,6 @@ private:
   std::array<std::int8_t, 81> next_dq_{};
   double r_max_ = 0.0;
   Xoshiro256 rng_, rng_time_;
-  // The tries: draws are made 64 at a time (lane l gives draws l, l + 8, ...), split into the
-  // slot (high word of x * slots) and the uniform fraction (low word), and their pairs
-  // prefetched; unused ones wait for the next call, so the stream of tries does not depend on
-  // how the run is cut into calls.
-  static constexpr unsigned block_ = 64;
-  XoshiroLanes lanes_;
-  alignas(64) std::array<std::uint64_t, block_> slot_{}, frac_{};
-  unsigned used_ = block_; // draws of the block already tried
-  void refill();
   double t_ = 0.0;
   std::uint64_t events_ = 0, tries_ = 0;
   bool absorbing_ = false;        // no transition is possible any more (checked, not assumed)
