@@ -309,12 +309,20 @@ template <int M, bool EveryBond> std::uint64_t Lattice::try_bulk(std::uint64_t c
   std::array<std::uint64_t, block> slot_of, f_of;
   for (std::uint64_t first = 0; first < count; first += block) {
     const std::uint64_t nb = std::min(block, count - first);
+    // the draws (a serial chain), then x * slots in 32-bit halves (slots < 2^32 as
+    // kmc.length < 2^31) so that it vectorises: the high word of the product is the slot, the
+    // low word the fraction, as with a 128-bit product
+    alignas(64) std::array<std::uint64_t, block> x;
+    for (std::uint64_t i = 0; i < nb; ++i)
+      x[i] = rng.next();
     for (std::uint64_t i = 0; i < nb; ++i) {
-      const unsigned __int128 p = static_cast<unsigned __int128>(rng.next()) * slots;
-      slot_of[i] = static_cast<std::uint64_t>(p >> 64);
-      f_of[i] = static_cast<std::uint64_t>(p);
-      __builtin_prefetch(n + slot_of[i], 1);
+      const std::uint64_t lo = (x[i] & 0xffffffffu) * slots, hi = (x[i] >> 32) * slots;
+      const std::uint64_t mid = hi + (lo >> 32);
+      slot_of[i] = mid >> 32;
+      f_of[i] = (mid << 32) | (lo & 0xffffffffu);
     }
+    for (std::uint64_t i = 0; i < nb; ++i)
+      __builtin_prefetch(n + slot_of[i], 1); // slot L (a boundary site) is one past: harmless
     for (std::uint64_t i = 0; i < nb; ++i) {
       const std::uint64_t slot = slot_of[i], f = f_of[i];
       if (slot >= inner) [[unlikely]] {
