@@ -371,7 +371,7 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, const std:
 
   // Checkpoints hold the running sums over the finished replicas: every
   // output.checkpoint_every replicas, at the end, and on SIGTERM/SIGUSR1 (the unfinished round
-  // of replicas is dropped; each rank checks every 2^20 events).
+  // of replicas is dropped; each rank checks about every 2^20 tries).
   const auto save_checkpoint = [&](const ReplicaSums &sums) {
     io::CheckpointInfo info;
     info.scene_text = scene.text;
