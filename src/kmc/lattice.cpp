@@ -1,19 +1,40 @@
-// One replica of the three-state lattice gas: rejection-chosen events, exact Exp(R) waiting
-// times, conserved-charge currents and snapshot densities (see kmc/lattice.hpp).
+// One replica of the three-state lattice gas: uniformised tries (Poisson numbers of tries
+// between fixed times), conserved-charge currents and snapshot densities (see kmc/lattice.hpp).
 #include "narrows/kmc/lattice.hpp"
 
 #include "narrows/core/rng.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <limits>
 
 namespace narrows::kmc {
 
 namespace {
 
-// The incrementally kept total rate is recomputed from the bond counts this often, so rounding
-// never accumulates over more than this many events.
-constexpr std::uint64_t resync_every = 1u << 16;
+// Tries per Poisson draw at most (the span to the next fixed time is cut into pieces of this
+// mean), which is also how often `interrupted` is asked.
+constexpr double piece_tries = 1u << 20;
+
+// The two state bytes of a pair code as they lie in memory (n_k first).
+std::uint16_t pair_bytes(int code) {
+  const std::uint8_t b[2] = {static_cast<std::uint8_t>(code / 3),
+                             static_cast<std::uint8_t>(code % 3)};
+  std::uint16_t w;
+  std::memcpy(&w, b, 2);
+  return w;
+}
+
+// f > up picks transitions with probability (cumulative rate) / r_max: up = that fraction of
+// 2^64, minus one (the whole range when the fraction is 1).
+std::uint64_t upper(double cumulative, double r_max) {
+  const double x = cumulative / r_max;
+  if (x >= 1.0)
+    return std::numeric_limits<std::uint64_t>::max();
+  const auto t = static_cast<std::uint64_t>(x * 0x1p64);
+  return t == 0 ? 0 : t - 1;
+}
 
 } // namespace
 
@@ -50,6 +71,7 @@ Lattice::Lattice(const scene::Kmc &model, std::uint64_t seed, std::uint64_t repl
         conserving_ = false;
     }
     c.rate = sum;
+    c.count = m;
   }
   if (!conserving_)
     every_bond_ = true;
@@ -71,9 +93,25 @@ Lattice::Lattice(const scene::Kmc &model, std::uint64_t seed, std::uint64_t repl
         c.t[m++] = {sum, static_cast<std::uint8_t>(to), static_cast<std::int8_t>(dq)};
       }
       c.rate = sum;
+      c.count = m;
     }
   for (const auto &c : classes_)
     r_max_ = std::max(r_max_, c.rate);
+  int most = 0;
+  for (int k = 0; k < 15; ++k) {
+    Class &c = classes_[k];
+    c.up.fill(std::numeric_limits<std::uint64_t>::max());
+    for (int m = 0; m < c.count; ++m)
+      c.up[m] = upper(c.t[m].threshold, r_max_);
+    if (k < 9) {
+      most = std::max(most, c.count);
+      for (int m = 0; m < 9; ++m) {
+        next_pair_[9 * k + m] = pair_bytes(m < c.count ? c.t[m].to : k);
+        next_dq_[9 * k + m] = m < c.count ? c.t[m].dq : 0;
+      }
+    }
+  }
+  max_bulk_ = most <= 1 ? 1 : (most <= 2 ? 2 : (most <= 4 ? 4 : 8));
 
   // Product measure, or a shock measure (eq 2.23): sites 1..shock_site from `initial`, the
   // rest from `initial_right`.
@@ -87,16 +125,15 @@ Lattice::Lattice(const scene::Kmc &model, std::uint64_t seed, std::uint64_t repl
       s = static_cast<std::uint8_t>(p[1] > 0.0 ? 1 : (p[0] > 0 ? 0 : 2));
     n_[k] = s;
   }
-  for (std::size_t b = 0; b < bonds_; ++b)
-    ++count_[code(b)];
-  rate_ = total_rate();
-  ahead_ = rng_.next();
 }
 
 double Lattice::total_rate() const {
+  std::array<std::int64_t, 9> count{};
+  for (std::size_t b = 0; b < bonds_; ++b)
+    ++count[code(b)];
   double r = 0.0;
   for (int j = 0; j < 9; ++j)
-    r += static_cast<double>(count_[j]) * classes_[j].rate;
+    r += static_cast<double>(count[j]) * classes_[j].rate;
   if (!periodic_)
     r += classes_[9 + n_.front()].rate + classes_[12 + n_.back()].rate;
   return r;
@@ -113,6 +150,8 @@ void Lattice::start_observing(double window) {
   const std::size_t L = n_.size();
   hist1_.assign(L, 0);
   hist2_.assign(L, 0);
+  recent_.assign(L, 0);
+  recent_count_ = 0;
   flushed1_.clear();
   flushed2_.clear();
   hist_pair_.assign(pairs_ ? 9 * bonds_ : 0, 0);
@@ -134,11 +173,11 @@ void Lattice::start_observing(double window) {
 void Lattice::snapshot() {
   const std::size_t L = n_.size();
   const std::uint8_t *n = n_.data();
-  std::uint32_t *h1 = hist1_.data(), *h2 = hist2_.data();
-  for (std::size_t k = 0; k < L; ++k) {
-    h1[k] += n[k] == 1;
-    h2[k] += n[k] == 2;
-  }
+  std::uint16_t *h = recent_.data();
+  for (std::size_t k = 0; k < L; ++k) // states 0, 1, 2 add 0, 1, 256
+    h[k] = static_cast<std::uint16_t>(h[k] + (n[k] & 1u) + ((n[k] & 2u) << 7));
+  if (++recent_count_ == 255)
+    add_recent();
   if (pairs_) {
     std::uint32_t *hp = hist_pair_.data();
     for (std::size_t k = 0; k < bonds_; ++k)
@@ -149,7 +188,19 @@ void Lattice::snapshot() {
     flush_histogram();
 }
 
+void Lattice::add_recent() {
+  std::uint32_t *h1 = hist1_.data(), *h2 = hist2_.data();
+  std::uint16_t *h = recent_.data();
+  for (std::size_t k = 0; k < recent_.size(); ++k) {
+    h1[k] += h[k] & 0xffu;
+    h2[k] += h[k] >> 8;
+    h[k] = 0;
+  }
+  recent_count_ = 0;
+}
+
 void Lattice::flush_histogram() {
+  add_recent();
   flushed1_.resize(hist1_.size(), 0.0);
   flushed2_.resize(hist2_.size(), 0.0);
   for (std::size_t k = 0; k < hist1_.size(); ++k) {
@@ -173,141 +224,192 @@ bool Lattice::run_until(double t_end, const std::function<bool()> &interrupted) 
   return run<true, false>(t_end, interrupted);
 }
 
-template <bool Observe, bool EveryBond>
-bool Lattice::run(double t_end, const std::function<bool()> &interrupted) {
-  const std::size_t L = n_.size();
-  const std::uint64_t slots = bonds_ + (periodic_ ? 0 : 2);
-  const double r_max = r_max_;
-  const bool periodic = periodic_;
-  const Class *cls = classes_.data();
-  std::uint8_t *n = n_.data();
-  std::int64_t *cnt = count_.data();
-  double t = t_;
-  double rate = rate_;
-  std::uint64_t events = 0, tries = 0;
-  std::uint64_t until_resync = resync_every;
-  std::uint64_t x_next = ahead_;
+// Poisson(mean): multiplication of uniforms below 10, else Hoermann's transformed rejection
+// with squeeze (PTRS, W. Hoermann, Insurance Math. Econom. 12, 39 (1993)), both exact.
+std::uint64_t Lattice::poisson(double mean) {
+  if (!(mean > 0.0))
+    return 0;
+  if (mean < 10.0) {
+    const double limit = std::exp(-mean);
+    std::uint64_t k = 0;
+    double prod = rng_time_.open01();
+    while (prod > limit) {
+      ++k;
+      prod *= rng_time_.open01();
+    }
+    return k;
+  }
+  const double slam = std::sqrt(mean), loglam = std::log(mean);
+  const double b = 0.931 + 2.53 * slam;
+  const double a = -0.059 + 0.02483 * b;
+  const double inv_alpha = 1.1239 + 1.1328 / (b - 3.4);
+  const double vr = 0.9277 - 3.6224 / (b - 2.0);
+  for (;;) {
+    const double u = rng_time_.open01() - 0.5; // (-1/2, 1/2]
+    const double v = rng_time_.open01();       // (0, 1]
+    const double us = 0.5 - std::abs(u);
+    const double k = std::floor((2.0 * a / us + b) * u + mean + 0.43);
+    if (us >= 0.07 && v <= vr)
+      return static_cast<std::uint64_t>(k);
+    if (k < 0.0 || (us < 0.013 && v > us))
+      continue;
+    if (std::log(v) + std::log(inv_alpha) - std::log(a / (us * us) + b) <=
+        -mean + k * loglam - std::lgamma(k + 1.0))
+      return static_cast<std::uint64_t>(k);
+  }
+}
 
-  bool finished = true;
-  while (true) {
-    if ((events & ((std::uint64_t{1} << 20) - 1)) == 0 && events > 0 && interrupted &&
-        interrupted()) {
-      finished = false;
-      break;
+// A try on a slot the bulk kernel leaves out: the bond L -> 1 (periodic) or a boundary site
+// (open: slot L - 1 is site 1, slot L is site L).
+std::uint64_t Lattice::edge_try(std::uint64_t slot, std::uint64_t f) {
+  const std::size_t L = n_.size();
+  if (periodic_) {
+    const Class &c = classes_[3 * n_[L - 1] + n_[0]];
+    int m = 0;
+    while (m < c.count && f > c.up[m])
+      ++m;
+    if (m == c.count)
+      return 0;
+    n_[L - 1] = static_cast<std::uint8_t>(c.t[m].to / 3);
+    n_[0] = static_cast<std::uint8_t>(c.t[m].to % 3);
+    q_wrap_ += c.t[m].dq;
+    if (!q_bond_.empty())
+      q_bond_[L - 1] += c.t[m].dq;
+    return 1;
+  }
+  const bool left = slot == bonds_;
+  std::uint8_t &site = left ? n_[0] : n_[L - 1];
+  const Class &c = classes_[(left ? 9 : 12) + site];
+  int m = 0;
+  while (m < c.count && f > c.up[m])
+    ++m;
+  if (m == c.count)
+    return 0;
+  (left ? q_left_ : q_right_) += c.t[m].dq;
+  site = c.t[m].to;
+  return 1;
+}
+
+template <int M, bool EveryBond> std::uint64_t Lattice::try_bulk(std::uint64_t count) {
+  const std::uint64_t slots = bonds_ + (periodic_ ? 0 : 2);
+  const std::uint64_t inner = n_.size() - 1; // slots below: bonds (k, k+1) with k + 1 < L
+  std::uint8_t *n = n_.data();
+  std::int64_t *q = EveryBond ? q_bond_.data() : nullptr;
+  // The thresholds of the 9 bulk classes side by side: up[9 * code + j], j < M.
+  std::array<std::uint64_t, 9 * M> up;
+  for (int c = 0; c < 9; ++c)
+    for (int j = 0; j < M; ++j)
+      up[M * c + j] = classes_[c].up[j];
+  const std::uint16_t *next = next_pair_.data();
+  const std::int8_t *dq = next_dq_.data();
+  Xoshiro256 rng = rng_;
+  std::uint64_t done = 0;
+  // Tries go in blocks: the draws of a block first (their sites prefetched), then the tries.
+  constexpr std::uint64_t block = 64;
+  std::array<std::uint64_t, block> slot_of, f_of;
+  for (std::uint64_t first = 0; first < count; first += block) {
+    const std::uint64_t nb = std::min(block, count - first);
+    // the draws (a serial chain), then x * slots in 32-bit halves (slots < 2^32 as
+    // kmc.length < 2^31) so that it vectorises: the high word of the product is the slot, the
+    // low word the fraction, as with a 128-bit product
+    alignas(64) std::array<std::uint64_t, block> x;
+    for (std::uint64_t i = 0; i < nb; ++i)
+      x[i] = rng.next();
+    for (std::uint64_t i = 0; i < nb; ++i) {
+      const std::uint64_t lo = (x[i] & 0xffffffffu) * slots, hi = (x[i] >> 32) * slots;
+      const std::uint64_t mid = hi + (lo >> 32);
+      slot_of[i] = mid >> 32;
+      f_of[i] = (mid << 32) | (lo & 0xffffffffu);
     }
-    if (--until_resync == 0) {
-      rate_ = rate;
-      rate = total_rate();
-      until_resync = resync_every;
-    }
-    if (!(rate > 0.0)) { // absorbing state: nothing happens any more
-      rate = total_rate();
-      if (!(rate > 0.0)) {
-        t = t_end;
-        break;
-      }
-    }
-    const double dt = -std::log(rng_time_.open01()) / rate;
-    const double t_next = t + dt;
-    if constexpr (Observe) {
-      // the configuration is constant on [t, t_next): it is what the snapshots in there see
-      while (next_sample_ < t_next && next_sample_ < t_end) {
-        snapshot();
-        next_sample_ += sample_dt_;
-      }
-    }
-    if (t_next >= t_end) {
-      t = t_end;
-      break;
-    }
-    t = t_next;
-    ++events;
-    for (;;) {
-      ++tries;
-      // One 64-bit draw gives both the slot (high word of x * slots) and a uniform fraction
-      // (low word) that decides acceptance and the transition.
-      const unsigned __int128 p = static_cast<unsigned __int128>(x_next) * slots;
-      x_next = rng_.next();
-      const std::uint64_t slot_next =
-          static_cast<std::uint64_t>((static_cast<unsigned __int128>(x_next) * slots) >> 64);
-      __builtin_prefetch(n + std::min<std::uint64_t>(slot_next, L - 1));
-      const std::uint64_t slot = static_cast<std::uint64_t>(p >> 64);
-      const double v = static_cast<double>(static_cast<std::uint64_t>(p)) * 0x1p-64 * r_max;
-      if (slot < bonds_) {
-        const std::size_t k = slot;
-        const std::size_t k2 = k + 1 == L ? 0 : k + 1;
-        const int a = n[k], b = n[k2];
-        const Class &c = cls[3 * a + b];
-        if (!(v < c.rate))
-          continue;
-        int m = 0;
-        while (!(v < c.t[m].threshold))
-          ++m;
-        const int to = c.t[m].to;
-        const int a2 = to / 3, b2 = to % 3;
-        --cnt[3 * a + b];
-        ++cnt[to];
-        rate += cls[to].rate - c.rate;
-        if (a2 != a) {
-          if (k > 0 || periodic) {
-            const std::size_t kl = k == 0 ? L - 1 : k - 1;
-            const int before = 3 * n[kl] + a, after = 3 * n[kl] + a2;
-            --cnt[before];
-            ++cnt[after];
-            rate += cls[after].rate - cls[before].rate;
-          } else { // site 1 of an open chain: its boundary rates change
-            rate += cls[9 + a2].rate - cls[9 + a].rate;
-          }
-          n[k] = static_cast<std::uint8_t>(a2);
-        }
-        if (b2 != b) {
-          if (k2 + 1 < L || periodic) {
-            const std::size_t kr = k2 + 1 == L ? 0 : k2 + 1;
-            const int before = 3 * b + n[kr], after = 3 * b2 + n[kr];
-            --cnt[before];
-            ++cnt[after];
-            rate += cls[after].rate - cls[before].rate;
-          } else { // site L of an open chain
-            rate += cls[12 + b2].rate - cls[12 + b].rate;
-          }
-          n[k2] = static_cast<std::uint8_t>(b2);
-        }
-        if constexpr (Observe) {
-          if constexpr (EveryBond)
-            q_bond_[k] += c.t[m].dq;
-          else if (k2 == 0) // the bond L -> 1 of a periodic chain
-            q_wrap_ += c.t[m].dq;
-        }
-        break;
-      }
-      const bool left = slot == bonds_;
-      const std::size_t site = left ? 0 : L - 1;
-      const int s = n[site];
-      const Class &c = cls[(left ? 9 : 12) + s];
-      if (!(v < c.rate))
+    for (std::uint64_t i = 0; i < nb; ++i)
+      __builtin_prefetch(n + slot_of[i], 1); // slot L (a boundary site) is one past: harmless
+    for (std::uint64_t i = 0; i < nb; ++i) {
+      const std::uint64_t slot = slot_of[i], f = f_of[i];
+      if (slot >= inner) [[unlikely]] {
+        done += edge_try(slot, f);
         continue;
+      }
+      // Branch-free: the pair is always written back, unchanged when the try is rejected.
+      std::uint16_t w;
+      std::memcpy(&w, n + slot, 2);
+      const int c = 3 * (w & 0xff) + (w >> 8);
       int m = 0;
-      while (!(v < c.t[m].threshold))
-        ++m;
-      const int s2 = c.t[m].to;
-      rate += cls[(left ? 9 : 12) + s2].rate - c.rate;
-      const int before = left ? 3 * s + n[1] : 3 * n[L - 2] + s;
-      const int after = left ? 3 * s2 + n[1] : 3 * n[L - 2] + s2;
-      --cnt[before];
-      ++cnt[after];
-      rate += cls[after].rate - cls[before].rate;
-      if constexpr (Observe)
-        (left ? q_left_ : q_right_) += c.t[m].dq;
-      n[site] = static_cast<std::uint8_t>(s2);
-      break;
+      for (int j = 0; j < M; ++j)
+        m += f > up[M * c + j];
+      const std::uint16_t w2 = next[9 * c + m];
+      std::memcpy(n + slot, &w2, 2);
+      done += w2 != w;
+      if constexpr (EveryBond)
+        if (w2 != w)
+          q[slot] += dq[9 * c + m];
     }
   }
-  t_ = t;
-  ahead_ = x_next;
-  rate_ = total_rate();
-  events_ += events;
-  tries_ += tries;
-  return finished;
+  rng_ = rng;
+  return done;
+}
+
+template <bool Observe, bool EveryBond>
+bool Lattice::run(double t_end, const std::function<bool()> &interrupted) {
+  const std::uint64_t slots = bonds_ + (periodic_ ? 0 : 2);
+  const double lambda = static_cast<double>(slots) * r_max_;
+  const double piece = piece_tries / lambda; // longest span per Poisson draw
+  double t = t_;
+  while (t < t_end) {
+    // the next fixed time: a snapshot, or the end
+    bool snap = false;
+    double stop = t_end;
+    if constexpr (Observe)
+      if (next_sample_ < t_end) {
+        stop = std::max(next_sample_, t);
+        snap = true;
+      }
+    while (t < stop) {
+      const double to = stop - t > piece && !absorbing_ ? t + piece : stop;
+      if (!absorbing_) {
+        const std::uint64_t k = poisson(lambda * (to - t));
+        std::uint64_t done = 0;
+        switch (max_bulk_) {
+        case 1:
+          done = try_bulk<1, EveryBond>(k);
+          break;
+        case 2:
+          done = try_bulk<2, EveryBond>(k);
+          break;
+        case 4:
+          done = try_bulk<4, EveryBond>(k);
+          break;
+        default:
+          done = try_bulk<8, EveryBond>(k);
+          break;
+        }
+        tries_ += k;
+        events_ += done;
+        since_asked_ += k;
+        idle_tries_ = done > 0 ? 0 : idle_tries_ + k;
+        // A long run of rejected tries (as many as there are slots) may mean that no transition
+        // is possible any more; then the tries are skipped (they would all be rejected).
+        if (idle_tries_ >= slots) {
+          absorbing_ = !(total_rate() > 0.0);
+          idle_tries_ = 0;
+        }
+      }
+      t = to;
+      if (since_asked_ >= (1u << 20)) {
+        since_asked_ = 0;
+        if (interrupted && interrupted()) {
+          t_ = t;
+          return false;
+        }
+      }
+    }
+    if (!snap)
+      break;
+    // the configuration at the snapshot time
+    snapshot();
+    next_sample_ += sample_dt_;
+  }
+  t_ = std::max(t, t_end);
+  return true;
 }
 
 ReplicaResult Lattice::result() const {
@@ -318,8 +420,8 @@ ReplicaResult Lattice::result() const {
   const double inv_samples = samples_ > 0 ? 1.0 / static_cast<double>(samples_) : 0.0;
   r.density.resize(3 * L);
   for (std::size_t k = 0; k < L; ++k) {
-    const double c1 = hist1_[k] + (flushed1_.empty() ? 0.0 : flushed1_[k]);
-    const double c2 = hist2_[k] + (flushed2_.empty() ? 0.0 : flushed2_[k]);
+    const double c1 = hist1_[k] + (recent_[k] & 0xffu) + (flushed1_.empty() ? 0.0 : flushed1_[k]);
+    const double c2 = hist2_[k] + (recent_[k] >> 8) + (flushed2_.empty() ? 0.0 : flushed2_[k]);
     r.density[3 * k + 0] = (static_cast<double>(samples_) - c1 - c2) * inv_samples;
     r.density[3 * k + 1] = c1 * inv_samples;
     r.density[3 * k + 2] = c2 * inv_samples;

@@ -48,7 +48,9 @@ check "3 replicas then 3 more on 2 ranks: bitwise the uninterrupted numbers" \
   'same "$tmp/full/observables.h5" "$tmp/grow/observables-0000000003.h5"'
 
 # SIGTERM during a long run: the unfinished round is dropped, the finished replicas are kept.
-long=(--set kmc.length=2000 --set kmc.time=4000 --set kmc.warmup=100 --set kmc.replicas=40
+# (Long enough that the engine is still running a second after it started: about 5 s on one
+# idle core.)
+long=(--set kmc.length=2000 --set kmc.time=16000 --set kmc.warmup=100 --set kmc.replicas=40
   --set output.progress=false)
 "$narrows" run "$scene" "${long[@]}" --out "$tmp/sig" > "$tmp/sig.out" 2>&1 &
 pid=$!

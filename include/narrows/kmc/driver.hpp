@@ -54,7 +54,7 @@ std::size_t replica_width(const scene::Kmc &model, ReplicaOptions options);
 
 // Hooks of run_replicas, called on every rank. `after_round`: after each round (one replica
 // per rank) with the sums complete on rank 0; returning true stops the run there. `stop`:
-// asked every 2^20 events inside a replica (this rank only); true drops the unfinished round.
+// asked about every 2^20 tries inside a replica (this rank only); true drops the unfinished round.
 struct ReplicaHooks {
   std::function<bool(const ReplicaSums &)> after_round;
   std::function<bool()> stop;

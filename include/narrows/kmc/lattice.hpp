@@ -1,17 +1,21 @@
 // One replica of the three-state stochastic lattice gas (seed 000 ch.2) in continuous time.
 //
-// Algorithm (exact, random-sequential): in a configuration with total rate R the waiting time
-// to the next event is Exp(R) and the event is chosen with probability rate/R, independently.
-// R is kept exactly from the number of bonds in each of the 9 pair states (plus the two
-// boundary sites), so each event draws one exponential waiting time. The event itself is
-// chosen by rejection: pick a slot (a bulk bond, or a boundary site) uniformly, accept it with
-// probability R(slot state)/R_max and pick the transition from the same uniform number; a
-// rejected try is redrawn without advancing time. This needs one byte per site and no lists.
+// Algorithm (exact, random-sequential, by uniformisation): tries come as a Poisson process of
+// rate Lambda = slots * R_max in time. A try picks a slot (a bulk bond, or a boundary site)
+// uniformly and makes the transition of its state with probability rate/R_max (else nothing
+// happens), so every transition of every slot happens at its own rate, exactly as in the
+// master equation. Between two fixed times the number of tries is Poisson(Lambda * span):
+// one Poisson draw per interval replaces the Exp(R) waiting time per event, and the
+// configuration at every fixed time (snapshots, the end of run_until) has exactly the law of
+// the continuous-time process. Tries per unit time are Lambda either way, so this does as many
+// tries as drawing Exp(R) per event and rejecting; what it saves is the logarithm and the
+// division per event, the bookkeeping of R, and the unpredictable branch of each try (a try is
+// a table look-up and a store, accepted or not). One byte per site and no lists.
 //
 // Random numbers: stateful xoshiro256++ generators per replica, seeded from Philox (seed,
-// kmc_replica, replica), because an event needs several draws (a counter-based draw per try
-// would cost more than the event). Event choices are drawn one try ahead so the state byte of
-// the next slot can be prefetched (at L = 1e6 the state does not fit in L2).
+// kmc_replica, replica). Substream 0 draws the tries (one 64-bit number: the slot is the high
+// word of x * slots, the low word a uniform fraction that decides acceptance and the
+// transition); substream 1 draws the Poisson numbers of tries.
 //
 // Observables over the observation window:
 // - current: the charge C moved across each bond, C(n_k) - C(n'_k) per transition (left to
@@ -38,8 +42,7 @@ namespace narrows::kmc {
 // xoshiro256++ (Blackman & Vigna, public domain).
 class Xoshiro256 {
 public:
-  // Substream 0 chooses events, 1 draws waiting times (so the event choice can be drawn one
-  // try ahead and its site prefetched).
+  // Substream 0 draws the tries, 1 the Poisson numbers of tries.
   Xoshiro256(std::uint64_t seed, std::uint64_t stream, std::uint32_t substream = 0);
   std::uint64_t next() {
     const std::uint64_t result = rotl(s_[0] + s_[3], 23) + s_[0];
@@ -82,9 +85,9 @@ public:
   Lattice(const scene::Kmc &model, std::uint64_t seed, std::uint64_t replica,
           LatticeOptions options = {});
 
-  // Advances to time t_end (the last event before it is done, the rest is waiting). If
-  // `interrupted` is given it is asked every 2^20 events; when it answers true the run stops
-  // there and returns false (the replica is then unfinished and should be dropped).
+  // Advances to time t_end. If `interrupted` is given it is asked about every 2^20 tries; when
+  // it answers true the run stops there and returns false (the replica is then unfinished and
+  // should be dropped).
   bool run_until(double t_end, const std::function<bool()> &interrupted = {});
   // Starts the observation window now; `window` (its planned length) sets the snapshot
   // interval so that a short window still gets >= 1000 snapshots.
@@ -93,7 +96,7 @@ public:
   ReplicaResult result() const;
 
   double time() const { return t_; }
-  double total_rate() const; // recomputed from the bond counts
+  double total_rate() const; // summed over the lattice (O(L))
   std::uint64_t events() const { return events_; }
   std::uint64_t tries() const { return tries_; }
   const std::vector<std::uint8_t> &state() const { return n_; }
@@ -110,13 +113,24 @@ private:
   // Classes 0..8 bulk pair codes, 9..11 left site states, 12..14 right site states.
   struct Class {
     double rate = 0.0; // total out-rate (= the last threshold)
+    int count = 0;     // transitions
     std::array<Transition, 8> t{};
+    // The try's uniform fraction f (64 bits) picks transition m when m thresholds are below
+    // it: f > up[j] for j < m (up[j] = cumulative rate / R_max * 2^64 - 1), and nothing when
+    // m = count. Unused entries are the largest value, so they never count.
+    std::array<std::uint64_t, 8> up{};
   };
 
   template <bool Observe, bool EveryBond>
   bool run(double t_end, const std::function<bool()> &interrupted);
+  // `count` tries; returns the transitions done. M: transitions counted per try (>= the most
+  // of any bulk class).
+  template <int M, bool EveryBond> std::uint64_t try_bulk(std::uint64_t count);
+  std::uint64_t edge_try(std::uint64_t slot, std::uint64_t f); // slots >= L - 1
+  std::uint64_t poisson(double mean);
   void snapshot();
   void flush_histogram();
+  void add_recent(); // recent_ into hist1_/hist2_
   int code(std::size_t bond) const {
     const std::size_t b1 = bond + 1 == n_.size() ? 0 : bond + 1;
     return 3 * n_[bond] + n_[b1];
@@ -129,13 +143,18 @@ private:
   std::size_t bonds_;
   std::vector<std::uint8_t> n_;
   std::array<Class, 15> classes_;
-  std::array<std::int64_t, 9> count_{}; // bonds in each pair state
+  int max_bulk_ = 1; // most transitions of a bulk class, rounded up to 1, 2, 4 or 8
+  // Bulk try outcome by 9 * code + m (m as above): the two state bytes after it (the same
+  // bytes when m is past the last transition) and the charge moved to the right.
+  std::array<std::uint16_t, 81> next_pair_{};
+  std::array<std::int8_t, 81> next_dq_{};
   double r_max_ = 0.0;
-  double rate_ = 0.0; // total rate, kept incrementally and resynchronised from count_
   Xoshiro256 rng_, rng_time_;
-  std::uint64_t ahead_ = 0; // the next event-choice draw, already taken from rng_
   double t_ = 0.0;
   std::uint64_t events_ = 0, tries_ = 0;
+  bool absorbing_ = false;        // no transition is possible any more (checked, not assumed)
+  std::uint64_t idle_tries_ = 0;  // tries since the last transition
+  std::uint64_t since_asked_ = 0; // tries since `interrupted` was last asked
 
   // observation
   bool observing_ = false;
@@ -144,6 +163,12 @@ private:
   std::uint64_t samples_ = 0;
   std::uint32_t pending_ = 0;                // snapshots in hist1_/hist2_ not yet flushed
   std::vector<std::uint32_t> hist1_, hist2_; // snapshots with n_k = 1, 2
+  // The latest (at most 255) snapshots, not yet in hist1_/hist2_: per site the count with
+  // n_k = 1 in the low byte, n_k = 2 in the high byte. A snapshot then reads 3 bytes per site
+  // and writes 2, where two 4-byte counters read and wrote 16 (snapshots are bandwidth-bound
+  // and dominate short observation windows).
+  std::vector<std::uint16_t> recent_;
+  std::uint32_t recent_count_ = 0;
   bool pairs_ = false;
   std::vector<std::uint32_t> hist_pair_; // snapshots with bond k in pair state c: [k * 9 + c]
   std::vector<double> flushed_pair_;
