@@ -262,10 +262,11 @@ def colloid_panel(ax, name, groups, args, scene, f0):
             cum0, cum1 = np.cumsum(zi), np.cumsum(s * zi)
             dth = lambda t: u2 / (4 * t) * (t + 2 * (t * cum0[int(t) - 2] - cum1[int(t) - 2]))
             dt = np.array([dth(t) for t in lags[ok]])
-            kt = np.polyfit(x, dt, 1)[0]
+            kt, ct2 = np.polyfit(x, dt, 1)[0], np.polyfit(x, dt, 2)[0]
             print(f"colloid D(t) ({tag}) = ({k:.4g} +- {ek:.2g}) ln t + {c:.4g} over lags "
                   f"{args.colloid_first:g}..{last:g}: R^2 = {r2:.5f}, curvature d2D/d(ln t)^2 = "
-                  f"{2 * c2:.4g} +- {2 * ec2:.2g}; theory slope there {kt:.4g} (unsteady Stokes), "
+                  f"{2 * c2:.4g} +- {2 * ec2:.2g}; theory there: slope {kt:.4g}, curvature "
+                  f"{2 * ct2:.4g} (unsteady Stokes), "
                   f"asymptote <U^2>/2 M/(8 pi rho nu) = {u2 / 2 * amp:.4g}")
             ax.plot(x, k * x + c, "-", color="C3", label=f"fit {k:.3g} ln t + {c:.3g}, R^2 = {r2:.4f}")
             ax.plot(x, dt, "--", color="C2", label="unsteady Stokes disc")
@@ -289,7 +290,7 @@ def main():
                     help="first lag of the colloid D(t) fit")
     ap.add_argument("--colloid-last", type=float, default=None,
                     help="last lag of the colloid D(t) fit (default: the last lag)")
-    ap.add_argument("--colloid-windows", default="100:300,300:1000,500:2000,1000:3000",
+    ap.add_argument("--colloid-windows", default="100:300,300:1000,500:2000,1000:2700",
                     help="lag windows t1:t2 of the colloid's local VACF exponents")
     ap.add_argument("--colloid-nu", type=float, default=None,
                     help="kinematic viscosity of the colloid theory (default: Boltzmann)")
