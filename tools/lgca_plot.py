@@ -213,7 +213,8 @@ def colloid_panel(ax, name, groups, args, scene, f0):
                     lw=0.3, label=f"Z(t), held colloid, {tag}")
         ax.loglog(tt, theory, "-", color="C2", lw=1,
                   label=f"unsteady Stokes disc, M = {m:.0f}, a = {a:g}, nu = {nu:.4f}")
-        ax.loglog(tt, amp / tt, "--", color="k", lw=0.8, label=f"M / (8 pi rho nu t)")
+        ta = tt[tt >= 100]
+        ax.loglog(ta, amp / ta, "--", color="k", lw=0.8, label="asymptote M / (8 pi rho nu t)")
         print(f"colloid VACF ({tag}, {len(groups)} file(s), "
               f"{0 if blocks is None else len(blocks)} blocks): M = {m:.1f} (disc + gas inside), "
               f"M_tot = {m_tot:.0f}, rho = {rho:.4f}, nu = {nu:.5f}, a = {a:g}; "
