@@ -7,9 +7,10 @@
 namespace narrows::lattice {
 
 ColloidCorrelations::ColloidCorrelations(int max_lag, int displacement_lag, int every,
-                                         std::int64_t steps, int blocks)
+                                         std::int64_t steps, std::array<double, 2> reference,
+                                         int blocks)
     : max_lag_(max_lag), dlag_(displacement_lag), every_(every), blocks_(blocks),
-      block_steps_(std::max<std::int64_t>(1, steps / blocks)) {
+      reference_(reference), block_steps_(std::max<std::int64_t>(1, steps / blocks)) {
   u_hist_.assign(static_cast<std::size_t>(max_lag_) + 1, {0.0, 0.0});
   x_hist_.assign(static_cast<std::size_t>(dlag_) + 1, {0.0, 0.0});
   const std::size_t nd = static_cast<std::size_t>(dlag_ / every_) + 1;
@@ -19,7 +20,8 @@ ColloidCorrelations::ColloidCorrelations(int max_lag, int displacement_lag, int 
   msd_n_ = msd_sum_;
 }
 
-void ColloidCorrelations::add(const std::array<double, 2> &u) {
+void ColloidCorrelations::add(const std::array<double, 2> &velocity) {
+  const std::array<double, 2> u{velocity[0] - reference_[0], velocity[1] - reference_[1]};
   const int b = static_cast<int>(std::min<std::int64_t>(t_ / block_steps_, blocks_ - 1));
   const std::size_t nu = u_hist_.size(), nx = x_hist_.size();
   u_hist_[t_ % nu] = u;
@@ -49,6 +51,7 @@ ColloidCorrelations::finish(const std::vector<std::vector<double>> &sums,
                             const std::vector<double> &lags, double scale_by_lag) const {
   Curve c;
   c.lags = lags;
+  c.blocks.assign(static_cast<std::size_t>(blocks_) * lags.size(), 0.0);
   for (std::size_t k = 0; k < lags.size(); ++k) {
     double s = 0.0, n = 0.0;
     std::vector<double> means;
@@ -59,6 +62,9 @@ ColloidCorrelations::finish(const std::vector<std::vector<double>> &sums,
         means.push_back(sums[b][k] / counts[b][k]);
     }
     const double scale = scale_by_lag > 0.0 && lags[k] > 0 ? 1.0 / (scale_by_lag * lags[k]) : 1.0;
+    for (int b = 0; b < blocks_; ++b)
+      c.blocks[static_cast<std::size_t>(b) * lags.size() + k] =
+          counts[b][k] > 0 ? sums[b][k] / counts[b][k] * scale : std::nan("");
     c.value.push_back(n > 0 ? s / n * scale : 0.0);
     double v = 0.0, m = 0.0;
     for (double x : means)
@@ -71,7 +77,7 @@ ColloidCorrelations::finish(const std::vector<std::vector<double>> &sums,
   return c;
 }
 
-ColloidCorrelations::Curve ColloidCorrelations::vacf() const {
+ColloidCorrelations::Curve ColloidCorrelations::vacf(double plateau) const {
   std::vector<double> lags;
   for (int t = 0; t <= max_lag_; ++t)
     lags.push_back(t);
@@ -79,9 +85,11 @@ ColloidCorrelations::Curve ColloidCorrelations::vacf() const {
   const double u2 = c.value[0];
   if (u2 > 0.0)
     for (std::size_t k = 0; k < c.value.size(); ++k) {
-      c.value[k] /= u2;
+      c.value[k] = c.value[k] / u2 + plateau;
       c.error[k] /= u2;
     }
+  for (double &x : c.blocks)
+    x = u2 > 0.0 ? x / u2 + plateau : x;
   return c;
 }
 
@@ -89,11 +97,17 @@ double ColloidCorrelations::mean_square_velocity() const {
   return finish(vacf_sum_, vacf_n_, {0.0}, 0.0).value[0];
 }
 
-ColloidCorrelations::Curve ColloidCorrelations::diffusion() const {
+ColloidCorrelations::Curve ColloidCorrelations::diffusion(double plateau) const {
   std::vector<double> lags;
   for (int t = 0; t <= dlag_; t += every_)
     lags.push_back(t);
   Curve c = finish(msd_sum_, msd_n_, lags, 4.0);
+  const double u2 = mean_square_velocity();
+  for (std::size_t k = 0; k < c.value.size(); ++k) {
+    c.value[k] += plateau * u2 * lags[k] / 4.0;
+    for (int b = 0; b < blocks_; ++b)
+      c.blocks[static_cast<std::size_t>(b) * lags.size() + k] += plateau * u2 * lags[k] / 4.0;
+  }
   return c;
 }
 

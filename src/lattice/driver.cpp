@@ -250,18 +250,26 @@ void read_colloid_state(const std::string &path, FhpColloid &c) {
 void finish_colloid(const FhpColloid &colloid, const ColloidCorrelations &stats,
                     const FhpLattice &lattice, bool closed, engine::Log &log,
                     io::ObservablesWriter *writer) {
+  // The eq 22 analogue M / M_tot (colloid_correlations.hpp): only where V is conserved.
+  const double m_total = colloid.params().mass + static_cast<double>(total_mass(lattice));
+  const double plateau = closed ? colloid.composite_mass(lattice) / m_total : 0.0;
   const auto z = stats.vacf(), d = stats.diffusion();
-  char line[400];
+  const auto zc = stats.vacf(plateau), dc = stats.diffusion(plateau);
+  const auto v = colloid.centre_of_mass_velocity(lattice);
+  char line[600];
   const auto u = colloid.velocity();
   std::snprintf(line, sizeof line,
-                "colloid (velocity of disc + gas inside): <U^2> = %.4g; "
-                "final U = (%.4g, %.4g), omega %.4g; %s; Z(%d) = %.4g +- %.2g; D(%d) = %.4g "
-                "+- %.2g",
-                stats.mean_square_velocity(), u[0], u[1], colloid.omega(),
+                "colloid (velocity U of disc + gas inside, about the centre-of-mass velocity V "
+                "= (%.3g, %.3g)): <(U - V)^2> = %.4g; final U = (%.4g, %.4g), omega %.4g; %s; "
+                "Z(%d) = %.4g +- %.2g (%.4g with the eq 22 analogue M/M_tot = %.4g); D(%d) = "
+                "%.4g +- %.2g (%.4g)",
+                closed ? v[0] : 0.0, closed ? v[1] : 0.0, stats.mean_square_velocity(), u[0], u[1],
+                colloid.omega(),
                 closed ? "fluid + colloid momentum conserved exactly (checked at every sample)"
-                       : "momentum not closed (walls, obstacles or force)",
-                static_cast<int>(z.lags.back()), z.value.back(), z.error.back(),
-                static_cast<int>(d.lags.back()), d.value.back(), d.error.back());
+                       : "momentum not closed (walls, obstacles or force), V taken as 0",
+                static_cast<int>(z.lags.back()), z.value.back(), z.error.back(), zc.value.back(),
+                plateau, static_cast<int>(d.lags.back()), d.value.back(), d.error.back(),
+                dc.value.back());
   log.line(line);
   if (writer == nullptr)
     return;
@@ -269,9 +277,15 @@ void finish_colloid(const FhpColloid &colloid, const ColloidCorrelations &stats,
   writer->write_result("colloid_vacf", lattice.time(), t, z.value,
                        {{"lags", z.lags},
                         {"error", z.error},
+                        {"corrected", zc.value},
+                        {"corrected_blocks", zc.blocks}, // [blocks][lags], row-major
+                        {"plateau", {plateau}},
                         {"mean_square_velocity", {stats.mean_square_velocity()}}});
   writer->write_result("colloid_diffusion", lattice.time(), t, d.value,
-                       {{"lags", d.lags}, {"error", d.error}});
+                       {{"lags", d.lags},
+                        {"error", d.error},
+                        {"corrected", dc.value},
+                        {"corrected_blocks", dc.blocks}});
   writer->flush();
 }
 
@@ -563,11 +577,14 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, const std:
     return p;
   };
   const MomentumUnits momentum0 = closed ? total_momentum() : MomentumUnits{};
+  // The colloid averages are of U - V, V the conserved centre-of-mass velocity (see
+  // colloid_correlations.hpp); V is not conserved with walls, obstacles or a force: then V = 0.
   std::unique_ptr<ColloidCorrelations> colloid_stats;
   if (colloid)
     colloid_stats = std::make_unique<ColloidCorrelations>(
         static_cast<int>(scene.colloid->max_lag), static_cast<int>(scene.colloid->displacement_lag),
-        static_cast<int>(scene.colloid->displacement_every), scene.run.steps - lattice.time());
+        static_cast<int>(scene.colloid->displacement_every), scene.run.steps - lattice.time(),
+        closed ? colloid->centre_of_mass_velocity(lattice) : std::array<double, 2>{0.0, 0.0});
   const std::int64_t sites = static_cast<std::int64_t>(lattice.size_x()) * lattice.size_y();
   auto save_checkpoint = [&] {
     Stopwatch watch;

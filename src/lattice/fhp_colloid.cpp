@@ -3,6 +3,7 @@
 
 #include "narrows/core/error.hpp"
 #include "narrows/core/rng.hpp"
+#include "narrows/lattice/fhp_observables.hpp"
 
 #include <bit>
 #include <cmath>
@@ -85,6 +86,20 @@ std::array<double, 2> FhpColloid::composite_velocity(const FhpLattice &lattice) 
   }
   const double m = params_.mass + static_cast<double>(n);
   return {0.5 * static_cast<double>(pa) / m, sqrt3_2 * static_cast<double>(pb) / m};
+}
+
+double FhpColloid::composite_mass(const FhpLattice &lattice) const {
+  std::int64_t n = 0;
+  for (const auto &s : inside_)
+    n += std::popcount(static_cast<unsigned>(lattice.row(s[1])[s[0]]));
+  return params_.mass + static_cast<double>(n);
+}
+
+std::array<double, 2> FhpColloid::centre_of_mass_velocity(const FhpLattice &lattice) const {
+  const MomentumUnits f = fluid_momentum(lattice);
+  const double m = params_.mass + static_cast<double>(total_mass(lattice));
+  return {0.5 * static_cast<double>(f[0] + momentum_[0]) / m,
+          sqrt3_2 * static_cast<double>(f[1] + momentum_[1]) / m};
 }
 
 void FhpColloid::apply(FhpLattice &lattice) {

@@ -66,7 +66,8 @@ PY'
 done
 
 # The plot tool draws both kinds of output.
-for name in lgca_shear_wave lgca_channel lgca_vacf_tail lgca_dhumieres_fig1 lgca_colloid_held; do
+for name in lgca_shear_wave lgca_channel lgca_vacf_tail lgca_dhumieres_fig1 lgca_colloid_held \
+  lgca_colloid_held_light; do
   /usr/bin/python3 "$src/tools/lgca_plot.py" "$tmp/$name/observables.h5" --first 5 \
     --png "$tmp/$name.png" > "$tmp/$name.plot" 2>&1
   check "$name: tools/lgca_plot.py writes a PNG" '[ $? -eq 0 ] && [ -s "$tmp/$name.png" ]'

@@ -56,6 +56,14 @@ public:
   // reflections on the inner side of the boundary links only move momentum between the two,
   // so this is the velocity the outside fluid exchanges momentum with (the one measured).
   std::array<double, 2> composite_velocity(const FhpLattice &lattice) const;
+  // M + the number of gas particles inside the disc: the mass that moves with composite_velocity.
+  double composite_mass(const FhpLattice &lattice) const;
+  // The centre-of-mass velocity of fluid + colloid, (P_fluid + P) / (N + M) (collective). Without
+  // walls, obstacles and body force it is conserved exactly, and it is the velocity the held
+  // colloid's fluctuates about: a random initial state gives it |V| ~ (N kT)^(1/2) / (N + M),
+  // which a time average of U(0).U(t) sees as a plateau |V|^2 and the virtual displacement as a
+  // drift V t (D(t) ~ |V|^2 t / 4). The colloid averages are taken of U - V.
+  std::array<double, 2> centre_of_mass_velocity(const FhpLattice &lattice) const;
   int boundary_links() const { return static_cast<int>(links_.size()); }
   int inside_sites() const { return inside_sites_; }
   // Restoring a checkpoint.
