@@ -58,12 +58,21 @@ inline std::int64_t to_fixed(double f) {
 } // namespace
 
 MdCoupling::MdCoupling(const MdParams &params, const mpcd::Box &box, FluidDrift drift)
-    : params_(params), box_(box), dim_(box.dim), drift_(std::move(drift)) {
-  const double cut = repulsive_cutoff(6, params_.sigma_cf);
+    : params_(params), box_(box), dim_(box.dim), drift_(std::move(drift)) {}
+
+void MdCoupling::size_cells(const Colloids &c) {
+  // Cells at least the largest WCA cut-off wide; the radii are fixed, so this runs once.
+  double r_max = 0.0;
+  for (const double r : c.radius)
+    r_max = std::max(r_max, r);
+  if (r_max == cell_radius_)
+    return;
+  cell_radius_ = r_max;
+  const double cut = repulsive_cutoff(6, r_max);
   std::size_t n = 1;
   for (int k = 0; k < dim_; ++k) {
-    cells_[k] = std::max(1, static_cast<int>(std::floor(box.length[k] / cut)));
-    inv_cell_[k] = cells_[k] / box.length[k];
+    cells_[k] = std::max(1, static_cast<int>(std::floor(box_.length[k] / cut)));
+    inv_cell_[k] = cells_[k] / box_.length[k];
     n *= static_cast<std::size_t>(cells_[k]);
   }
   head_.assign(n, -1);
@@ -112,10 +121,9 @@ void MdCoupling::select_near(const mpcd::Fluid &f, const Colloids &c) {
     max_reach = std::max(max_reach, reach(i));
   near_flag_.assign(n, 0);
   near_index_.clear();
-  const double cut = repulsive_cutoff(6, params_.sigma_cf);
   const auto &L = box_.length;
   for (std::size_t a = 0; a < c.size(); ++a) {
-    const double range = cut + margin_[a];
+    const double range = repulsive_cutoff(6, c.radius[a]) + margin_[a];
     const double xc[3] = {c.x[0][a], c.x[1][a], D == 3 ? c.x[2][a] : 0.0};
     // Cells along each axis within range + max_reach of the colloid's cell (all if that covers
     // the axis); along a wall axis clipped at the ends.
@@ -171,16 +179,18 @@ PotentialEnergy MdCoupling::forces(const mpcd::Fluid &f, const Colloids &c, MPI_
   fluid_flag_.resize(n, 0);
   const auto &L = box_.length;
 
+  size_cells(c);
   build_cell_list(f);
   const double *X[3] = {f.x[0].data(), f.x[1].data(), D == 3 ? f.x[2].data() : nullptr};
 
-  // Colloid-fluid pairs: each colloid scans the cells within one cell of its own (all cells of
-  // an axis with fewer than three, so none is visited twice).
+  // Colloid-fluid pairs (sigma_cf = r_a): each colloid scans the cells within one cell of its
+  // own (all cells of an axis with fewer than three, so none is visited twice).
   PotentialEnergy energy;
   colloid_local_.assign(nc * D, 0);
-  const double cut2 = std::pow(repulsive_cutoff(6, params_.sigma_cf), 2);
-  const double s2cf = params_.sigma_cf * params_.sigma_cf, eps = params_.epsilon;
+  const double eps = params_.epsilon;
   for (std::size_t a = 0; a < nc; ++a) {
+    const double cut2 = std::pow(repulsive_cutoff(6, c.radius[a]), 2);
+    const double s2cf = c.radius[a] * c.radius[a];
     double xc[3] = {0.0, 0.0, 0.0};
     int lo[3], hi[3], home[3];
     for (int k = 0; k < D; ++k) {
@@ -240,18 +250,18 @@ PotentialEnergy MdCoupling::forces(const mpcd::Fluid &f, const Colloids &c, MPI_
     energy.colloid_fluid = sum;
   }
 
-  // Colloid-colloid pairs, wall and gravity: the same on every rank (all hold all colloids).
-  const double cutcc2 = std::pow(repulsive_cutoff(24, params_.sigma_cc), 2);
-  const double s2cc = params_.sigma_cc * params_.sigma_cc;
+  // Colloid-colloid pairs (sigma_cc = r_a + r_b), wall and gravity: the same on every rank (all
+  // hold all colloids).
   for (std::size_t a = 0; a < nc; ++a)
     for (std::size_t b = a + 1; b < nc; ++b) {
       const double xa[3] = {c.x[0][a], c.x[1][a], D == 3 ? c.x[2][a] : 0.0};
       const double xb[3] = {c.x[0][b], c.x[1][b], D == 3 ? c.x[2][b] : 0.0};
       double d[3];
       const double r2 = separation<D, WallsY>(xa, xb, L, d);
-      if (r2 >= cutcc2)
+      const double scc = c.radius[a] + c.radius[b];
+      if (r2 >= std::pow(repulsive_cutoff(24, scc), 2))
         continue;
-      const PairTerm t = repulsive_pair<24>(r2, s2cc, eps);
+      const PairTerm t = repulsive_pair<24>(r2, scc * scc, eps);
       energy.colloid_colloid += t.energy;
       for (int k = 0; k < D; ++k) {
         const std::int64_t q = to_fixed(t.f_over_r * d[k]);
@@ -260,9 +270,9 @@ PotentialEnergy MdCoupling::forces(const mpcd::Fluid &f, const Colloids &c, MPI_
       }
     }
   if constexpr (WallsY) {
-    const double sw = params_.sigma_wall, hcut = wall_cutoff(sw);
     for (std::size_t a = 0; a < nc; ++a) {
-      const double y = c.x[1][a];
+      const double sw = params_.sigma_wall > 0.0 ? params_.sigma_wall : 2.0 * c.radius[a];
+      const double hcut = wall_cutoff(sw), y = c.x[1][a];
       if (!(y > 0.0 && y < L[1])) {
         std::ostringstream os;
         os.precision(17);

@@ -11,8 +11,8 @@
 // the near ones stream with the same kernel between the velocity-Verlet kicks. After the step
 // every colloid's displacement is checked against its assumed path (invariant_error if it went
 // further, which would mean a missed pair). Colloid-fluid pairs come from a cell list (cells
-// at least the WCA cut-off wide, over the whole box): of all local fluid once per step, of the
-// near particles every sub-step.
+// at least the largest WCA cut-off wide, over the whole box): of all local fluid once per step,
+// of the near particles every sub-step.
 //
 // Parallel model: every rank holds all colloids (they are few: at most a few thousand, and
 // each carries d + d + ... words). Each rank adds the forces of its own fluid particles on
@@ -35,11 +35,13 @@
 
 namespace narrows::colloids {
 
+// Pair ranges follow each colloid's own radius r_a (Colloids::radius): sigma_cf = r_a,
+// sigma_cc = r_a + r_b, and sigma_w = 2 r_a unless sigma_wall is set.
 struct MdParams {
   double tau = 0.1 / 15; // MD time step
   int substeps = 15;
-  double sigma_cf = 2.0, sigma_cc = 4.0, epsilon = 1.0;
-  double sigma_wall = 4.0, wall_q = 1.0; // used when the box has walls along y
+  double epsilon = 1.0;
+  double sigma_wall = 0.0, wall_q = 1.0; // used when the box has walls along y; sigma_wall 0: 2 r_a
   std::array<double, 3> gravity{0.0, 0.0, 0.0}; // acceleration: the force on colloid a is M_a g
   double fluid_accel = 0.0; // largest body-force acceleration of a fluid particle
 };
@@ -81,11 +83,13 @@ private:
   void clear_fluid_forces();
   template <int D, bool WallsY> void select_near(const mpcd::Fluid &f, const Colloids &c);
   void build_cell_list(const mpcd::Fluid &f);
+  void size_cells(const Colloids &c);
 
   MdParams params_;
   mpcd::Box box_;
   int dim_;
   FluidDrift drift_;
+  double cell_radius_ = -1.0;         // the largest colloid radius the cells were sized for
   std::array<int, 3> cells_{1, 1, 1}; // cell list cells per axis
   std::array<double, 3> inv_cell_{1.0, 1.0, 1.0};
   std::vector<std::int32_t> head_, next_;
