@@ -1,7 +1,8 @@
 // Colloid potentials and MD forces: forces are minus gradients (finite differences), also with
 // unequal radii, the wall potential's minimum is its cut-off, Newton's third law holds exactly
-// in fixed point, radii drawn from a truncated Gaussian have its mean and spread, and the
-// placement keeps colloids apart and fluid out of them.
+// in fixed point, the colloid cell list gives bitwise the forces of a double loop, radii drawn
+// from a truncated Gaussian have its mean and spread, and the placement keeps colloids apart
+// and fluid out of them.
 #include "narrows/colloids/md_coupling.hpp"
 #include "narrows/colloids/placement.hpp"
 #include "narrows/colloids/potentials.hpp"
@@ -13,7 +14,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
+#include <string>
+#include <utility>
+#include <vector>
 
 using namespace narrows;
 using namespace narrows::colloids;
@@ -321,4 +326,135 @@ TEST(ColloidPlacement, UnequalRadiiSetMassesDistancesAndFluidCount) {
   spec.mass = 33.0;
   for (const double m : place_colloids(spec, box, 10.0, 77).mass)
     EXPECT_EQ(m, 33.0);
+}
+
+namespace {
+
+// The colloid-colloid and wall forces by a plain double loop over a < b (the reference the
+// cell list must equal): fixed-point forces into `force` [a * dim + k], energy summed in that
+// order; returns {colloid-colloid energy, wall energy}.
+std::pair<double, double> double_loop_forces(const Colloids &c, const mpcd::Box &box, double eps,
+                                             std::vector<std::int64_t> &force) {
+  const int D = box.dim;
+  const std::size_t n = c.size();
+  force.assign(n * D, 0);
+  double e_cc = 0.0, e_wall = 0.0;
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = a + 1; b < n; ++b) {
+      double d[3], r2 = 0.0;
+      for (int k = 0; k < D; ++k) {
+        d[k] = c.x[k][a] - c.x[k][b];
+        const double L = box.length[k];
+        if (!(k == 1 && box.walls_y))
+          d[k] = d[k] > 0.5 * L ? d[k] - L : (d[k] < -0.5 * L ? d[k] + L : d[k]);
+        r2 += d[k] * d[k];
+      }
+      const double s = c.radius[a] + c.radius[b];
+      if (r2 >= std::pow(repulsive_cutoff(24, s), 2))
+        continue;
+      const PairTerm t = repulsive_pair<24>(r2, s * s, eps);
+      e_cc += t.energy;
+      for (int k = 0; k < D; ++k) {
+        const std::int64_t q = fixed::from_double(t.f_over_r * d[k]);
+        force[a * D + k] += q;
+        force[b * D + k] -= q;
+      }
+    }
+  if (box.walls_y)
+    for (std::size_t a = 0; a < n; ++a) {
+      const double sw = 2.0 * c.radius[a], y = c.x[1][a], Ly = box.length[1];
+      if (y < wall_cutoff(sw)) {
+        const WallTerm w = wall_term(y, sw, eps, 1.0);
+        e_wall += w.energy;
+        force[a * D + 1] += fixed::from_double(w.force);
+      }
+      if (Ly - y < wall_cutoff(sw)) {
+        const WallTerm w = wall_term(Ly - y, sw, eps, 1.0);
+        e_wall += w.energy;
+        force[a * D + 1] -= fixed::from_double(w.force);
+      }
+    }
+  return {e_cc, e_wall};
+}
+
+} // namespace
+
+TEST(ColloidForces, CellListEqualsTheDoubleLoopBitwise) {
+  // Boxes with many cells, and with axes of 1, 2 and 3 cells (largest cut-off 2^(1/24) 2.4 =
+  // 2.47 for radii in [0.8, 1.2]), periodic and with walls, 2D and 3D.
+  struct Box {
+    int dim;
+    std::array<int, 3> cells;
+    bool walls;
+    int count;
+  };
+  const Box boxes[] = {
+      {2, {60, 40, 1}, false, 300}, {2, {60, 40, 1}, true, 300}, {3, {24, 16, 20}, false, 300},
+      {3, {24, 16, 20}, true, 300}, {2, {60, 5, 1}, false, 60},  {2, {60, 8, 1}, true, 100},
+      {2, {4, 60, 1}, false, 50},   {3, {30, 3, 5}, false, 40},  {3, {7, 8, 30}, true, 60}};
+  std::mt19937_64 gen(2024);
+  for (const Box &spec : boxes) {
+    mpcd::Box box = mpcd::make_periodic_box(spec.dim, spec.cells);
+    box.walls_y = spec.walls;
+    Colloids c;
+    c.dim = spec.dim;
+    std::uniform_real_distribution<double> radius(0.8, 1.2);
+    // Random positions; no pair closer than 0.9 sigma_cc (forces within the fixed-point range)
+    // and no centre within 1 of a wall.
+    for (int tries = 0; static_cast<int>(c.size()) < spec.count && tries < 100000; ++tries) {
+      std::array<double, 3> p{0.0, 0.0, 0.0};
+      for (int k = 0; k < spec.dim; ++k) {
+        const double L = box.length[k];
+        p[k] = k == 1 && spec.walls ? std::uniform_real_distribution<double>(1.0, L - 1.0)(gen)
+                                    : std::uniform_real_distribution<double>(0.0, L)(gen);
+      }
+      const double r = radius(gen);
+      bool ok = true;
+      for (std::size_t b = 0; b < c.size() && ok; ++b) {
+        double r2 = 0.0;
+        for (int k = 0; k < spec.dim; ++k) {
+          double d = p[k] - c.x[k][b];
+          const double L = box.length[k];
+          if (!(k == 1 && spec.walls))
+            d = d > 0.5 * L ? d - L : (d < -0.5 * L ? d + L : d);
+          r2 += d * d;
+        }
+        ok = r2 > std::pow(0.9 * (r + c.radius[b]), 2);
+      }
+      if (!ok)
+        continue;
+      const std::size_t a = c.size();
+      c.resize(a + 1);
+      for (int k = 0; k < spec.dim; ++k)
+        c.x[k][a] = p[k];
+      c.radius[a] = r;
+      c.mass[a] = 1.0;
+      c.id[a] = a;
+    }
+    ASSERT_EQ(static_cast<int>(c.size()), spec.count);
+    MdParams params;
+    params.gravity = {0.0, 0.0, 0.0};
+    MdCoupling md(params, box, [](mpcd::Fluid &, double) {});
+    mpcd::Fluid none;
+    none.dim = spec.dim;
+    const PotentialEnergy e = md.compute_forces(none, c, MPI_COMM_NULL, true);
+    std::vector<std::int64_t> ref;
+    const auto [e_cc, e_wall] = double_loop_forces(c, box, params.epsilon, ref);
+    std::size_t differ = 0, nonzero = 0;
+    for (std::size_t a = 0; a < c.size(); ++a)
+      for (int k = 0; k < spec.dim; ++k) {
+        differ += md.colloid_force(a, k) != ref[a * spec.dim + k];
+        nonzero += ref[a * spec.dim + k] != 0;
+      }
+    const std::string where = std::to_string(spec.dim) + "D " + std::to_string(spec.cells[0]) +
+                              "x" + std::to_string(spec.cells[1]) + "x" +
+                              std::to_string(spec.cells[2]) + (spec.walls ? " walls" : "");
+    EXPECT_EQ(differ, 0u) << where;
+    EXPECT_GT(nonzero, c.size() / 4) << where; // many pairs interact
+    // The energy too, summed in the double loop's order.
+    EXPECT_EQ(std::memcmp(&e.colloid_colloid, &e_cc, sizeof(double)), 0)
+        << where << ": " << e.colloid_colloid << " vs " << e_cc;
+    EXPECT_EQ(std::memcmp(&e.wall, &e_wall, sizeof(double)), 0) << where;
+    EXPECT_GT(e_cc, 0.0) << where;
+  }
 }
