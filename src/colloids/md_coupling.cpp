@@ -58,15 +58,29 @@ inline std::int64_t to_fixed(double f) {
 } // namespace
 
 MdCoupling::MdCoupling(const MdParams &params, const mpcd::Box &box, FluidDrift drift)
-    : params_(params), box_(box), dim_(box.dim), drift_(std::move(drift)) {
-  const double cut = repulsive_cutoff(6, params_.sigma_cf);
-  std::size_t n = 1;
+    : params_(params), box_(box), dim_(box.dim), drift_(std::move(drift)) {}
+
+void MdCoupling::size_cells(const Colloids &c) {
+  // Fluid cells at least the largest WCA cut-off wide, colloid cells at least the largest
+  // 48-24 cut-off; the radii are fixed, so this runs once.
+  double r_max = 0.0;
+  for (const double r : c.radius)
+    r_max = std::max(r_max, r);
+  if (r_max == cell_radius_)
+    return;
+  cell_radius_ = r_max;
+  const double cut = repulsive_cutoff(6, r_max), cut_cc = repulsive_cutoff(24, 2.0 * r_max);
+  std::size_t n = 1, n_cc = 1;
   for (int k = 0; k < dim_; ++k) {
-    cells_[k] = std::max(1, static_cast<int>(std::floor(box.length[k] / cut)));
-    inv_cell_[k] = cells_[k] / box.length[k];
+    cells_[k] = std::max(1, static_cast<int>(std::floor(box_.length[k] / cut)));
+    inv_cell_[k] = cells_[k] / box_.length[k];
     n *= static_cast<std::size_t>(cells_[k]);
+    cc_cells_[k] = std::max(1, static_cast<int>(std::floor(box_.length[k] / cut_cc)));
+    cc_inv_cell_[k] = cc_cells_[k] / box_.length[k];
+    n_cc *= static_cast<std::size_t>(cc_cells_[k]);
   }
   head_.assign(n, -1);
+  cc_head_.assign(n_cc, -1);
 }
 
 void MdCoupling::clear_fluid_forces() {
@@ -112,10 +126,9 @@ void MdCoupling::select_near(const mpcd::Fluid &f, const Colloids &c) {
     max_reach = std::max(max_reach, reach(i));
   near_flag_.assign(n, 0);
   near_index_.clear();
-  const double cut = repulsive_cutoff(6, params_.sigma_cf);
   const auto &L = box_.length;
   for (std::size_t a = 0; a < c.size(); ++a) {
-    const double range = cut + margin_[a];
+    const double range = repulsive_cutoff(6, c.radius[a]) + margin_[a];
     const double xc[3] = {c.x[0][a], c.x[1][a], D == 3 ? c.x[2][a] : 0.0};
     // Cells along each axis within range + max_reach of the colloid's cell (all if that covers
     // the axis); along a wall axis clipped at the ends.
@@ -162,6 +175,82 @@ void MdCoupling::select_near(const mpcd::Fluid &f, const Colloids &c) {
 }
 
 template <int D, bool WallsY>
+void MdCoupling::colloid_pairs(const Colloids &c, PotentialEnergy &energy, bool want_energy) {
+  // A cell list of the colloids (cells at least the largest 48-24 cut-off wide): colloid a meets
+  // the partners b > a in the cells within one of its own (along an axis of fewer than three
+  // cells, all of its cells, so no cell is visited twice and no pair counted twice; along a
+  // wall axis the range stops at the walls). The pair forces are rounded to fixed point and
+  // summed as integers, so the order of the pairs does not matter; the energy is a sum of
+  // doubles, so for it the partners of each a are taken in increasing b, the order of a double
+  // loop over a < b.
+  const std::size_t nc = c.size();
+  const auto &L = box_.length;
+  const double eps = params_.epsilon;
+  std::fill(cc_head_.begin(), cc_head_.end(), -1);
+  cc_next_.resize(nc);
+  cc_cell_.resize(nc * D);
+  for (std::size_t a = 0; a < nc; ++a) {
+    std::size_t cell = 0;
+    for (int k = D - 1; k >= 0; --k) {
+      const int n = cc_cells_[k];
+      const int ck = std::clamp(static_cast<int>(c.x[k][a] * cc_inv_cell_[k]), 0, n - 1);
+      cc_cell_[a * D + k] = ck;
+      cell = cell * static_cast<std::size_t>(n) + static_cast<std::size_t>(ck);
+    }
+    cc_next_[a] = cc_head_[cell];
+    cc_head_[cell] = static_cast<std::int32_t>(a);
+  }
+  for (std::size_t a = 0; a < nc; ++a) {
+    int lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0}, home[3] = {0, 0, 0};
+    for (int k = 0; k < D; ++k) {
+      const int n = cc_cells_[k];
+      home[k] = cc_cell_[a * D + k];
+      if (n < 3) {
+        lo[k] = -home[k], hi[k] = n - 1 - home[k];
+      } else if (WallsY && k == 1) {
+        lo[k] = home[k] > 0 ? -1 : 0, hi[k] = home[k] < n - 1 ? 1 : 0;
+      } else {
+        lo[k] = -1, hi[k] = 1;
+      }
+    }
+    cc_partners_.clear();
+    int off[3] = {0, 0, 0};
+    for (off[2] = lo[2]; off[2] <= hi[2]; ++off[2])
+      for (off[1] = lo[1]; off[1] <= hi[1]; ++off[1])
+        for (off[0] = lo[0]; off[0] <= hi[0]; ++off[0]) {
+          std::size_t cell = 0;
+          for (int k = D - 1; k >= 0; --k) {
+            const int n = cc_cells_[k];
+            int ck = home[k] + off[k];
+            ck = ck < 0 ? ck + n : (ck >= n ? ck - n : ck);
+            cell = cell * static_cast<std::size_t>(n) + static_cast<std::size_t>(ck);
+          }
+          for (std::int32_t b = cc_head_[cell]; b >= 0; b = cc_next_[b])
+            if (static_cast<std::size_t>(b) > a)
+              cc_partners_.push_back(static_cast<std::uint32_t>(b));
+        }
+    if (want_energy)
+      std::sort(cc_partners_.begin(), cc_partners_.end());
+    const double xa[3] = {c.x[0][a], c.x[1][a], D == 3 ? c.x[2][a] : 0.0};
+    for (const std::uint32_t b : cc_partners_) {
+      const double xb[3] = {c.x[0][b], c.x[1][b], D == 3 ? c.x[2][b] : 0.0};
+      double d[3];
+      const double r2 = separation<D, WallsY>(xa, xb, L, d);
+      const double scc = c.radius[a] + c.radius[b];
+      if (r2 >= std::pow(repulsive_cutoff(24, scc), 2))
+        continue;
+      const PairTerm t = repulsive_pair<24>(r2, scc * scc, eps);
+      energy.colloid_colloid += t.energy;
+      for (int k = 0; k < D; ++k) {
+        const std::int64_t q = to_fixed(t.f_over_r * d[k]);
+        colloid_force_[a * D + k] += q;
+        colloid_force_[static_cast<std::size_t>(b) * D + k] -= q;
+      }
+    }
+  }
+}
+
+template <int D, bool WallsY>
 PotentialEnergy MdCoupling::forces(const mpcd::Fluid &f, const Colloids &c, MPI_Comm comm,
                                    bool want_energy) {
   const std::size_t n = f.size(), nc = c.size();
@@ -171,16 +260,18 @@ PotentialEnergy MdCoupling::forces(const mpcd::Fluid &f, const Colloids &c, MPI_
   fluid_flag_.resize(n, 0);
   const auto &L = box_.length;
 
+  size_cells(c);
   build_cell_list(f);
   const double *X[3] = {f.x[0].data(), f.x[1].data(), D == 3 ? f.x[2].data() : nullptr};
 
-  // Colloid-fluid pairs: each colloid scans the cells within one cell of its own (all cells of
-  // an axis with fewer than three, so none is visited twice).
+  // Colloid-fluid pairs (sigma_cf = r_a): each colloid scans the cells within one cell of its
+  // own (all cells of an axis with fewer than three, so none is visited twice).
   PotentialEnergy energy;
   colloid_local_.assign(nc * D, 0);
-  const double cut2 = std::pow(repulsive_cutoff(6, params_.sigma_cf), 2);
-  const double s2cf = params_.sigma_cf * params_.sigma_cf, eps = params_.epsilon;
+  const double eps = params_.epsilon;
   for (std::size_t a = 0; a < nc; ++a) {
+    const double cut2 = std::pow(repulsive_cutoff(6, c.radius[a]), 2);
+    const double s2cf = c.radius[a] * c.radius[a];
     double xc[3] = {0.0, 0.0, 0.0};
     int lo[3], hi[3], home[3];
     for (int k = 0; k < D; ++k) {
@@ -240,29 +331,13 @@ PotentialEnergy MdCoupling::forces(const mpcd::Fluid &f, const Colloids &c, MPI_
     energy.colloid_fluid = sum;
   }
 
-  // Colloid-colloid pairs, wall and gravity: the same on every rank (all hold all colloids).
-  const double cutcc2 = std::pow(repulsive_cutoff(24, params_.sigma_cc), 2);
-  const double s2cc = params_.sigma_cc * params_.sigma_cc;
-  for (std::size_t a = 0; a < nc; ++a)
-    for (std::size_t b = a + 1; b < nc; ++b) {
-      const double xa[3] = {c.x[0][a], c.x[1][a], D == 3 ? c.x[2][a] : 0.0};
-      const double xb[3] = {c.x[0][b], c.x[1][b], D == 3 ? c.x[2][b] : 0.0};
-      double d[3];
-      const double r2 = separation<D, WallsY>(xa, xb, L, d);
-      if (r2 >= cutcc2)
-        continue;
-      const PairTerm t = repulsive_pair<24>(r2, s2cc, eps);
-      energy.colloid_colloid += t.energy;
-      for (int k = 0; k < D; ++k) {
-        const std::int64_t q = to_fixed(t.f_over_r * d[k]);
-        colloid_force_[a * D + k] += q;
-        colloid_force_[b * D + k] -= q;
-      }
-    }
+  // Colloid-colloid pairs (sigma_cc = r_a + r_b), wall and gravity: the same on every rank (all
+  // hold all colloids).
+  colloid_pairs<D, WallsY>(c, energy, want_energy);
   if constexpr (WallsY) {
-    const double sw = params_.sigma_wall, hcut = wall_cutoff(sw);
     for (std::size_t a = 0; a < nc; ++a) {
-      const double y = c.x[1][a];
+      const double sw = params_.sigma_wall > 0.0 ? params_.sigma_wall : 2.0 * c.radius[a];
+      const double hcut = wall_cutoff(sw), y = c.x[1][a];
       if (!(y > 0.0 && y < L[1])) {
         std::ostringstream os;
         os.precision(17);

@@ -48,12 +48,38 @@ bool inside_any(const Colloids &c, const mpcd::Box &box, const std::array<double
   return false;
 }
 
+double colloid_radius(const scene::Colloids &spec, std::uint64_t seed, std::uint64_t id) {
+  if (spec.radius_sd == 0.0)
+    return spec.radius;
+  // Truncated at +-3 sd: the four deviates of a block are taken in order, a new block (the
+  // next attempt) when all four fall outside. The parser allows sd <= 0.2 radius, so every
+  // radius is at least 0.4 radius and at most radius + 3 sd (the size its checks assumed).
+  for (std::uint64_t attempt = 0;; ++attempt)
+    for (const double z :
+         rng::gaussian4(rng::draw(seed, rng::Purpose::colloid_radius, attempt, id)))
+      if (std::abs(z) <= 3.0)
+        return spec.radius + spec.radius_sd * z;
+}
+
+void set_radii_and_masses(Colloids &c, const scene::Colloids &spec, double density,
+                          std::uint64_t seed) {
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    c.radius[i] = colloid_radius(spec, seed, i);
+    c.mass[i] = spec.mass_of(c.dim, density, c.radius[i]);
+  }
+}
+
 std::uint64_t fluid_count_with_colloids(const scene::Colloids &spec, const mpcd::Box &box,
-                                        double density) {
+                                        double density, std::uint64_t seed) {
   double volume = 1.0;
   for (int k = 0; k < box.dim; ++k)
     volume *= box.length[k];
-  volume -= static_cast<double>(spec.count) * colloid_volume(box.dim, spec.radius);
+  if (spec.radius_sd == 0.0) {
+    volume -= static_cast<double>(spec.count) * colloid_volume(box.dim, spec.radius);
+  } else {
+    for (std::int64_t i = 0; i < spec.count; ++i)
+      volume -= colloid_volume(box.dim, colloid_radius(spec, seed, static_cast<std::uint64_t>(i)));
+  }
   return static_cast<std::uint64_t>(std::llround(density * volume));
 }
 
@@ -63,12 +89,9 @@ Colloids place_colloids(const scene::Colloids &spec, const mpcd::Box &box, doubl
   c.dim = box.dim;
   const auto n = static_cast<std::size_t>(spec.count);
   c.resize(n);
-  const double mass = spec.effective_mass(box.dim, density);
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < n; ++i)
     c.id[i] = i;
-    c.radius[i] = spec.radius;
-    c.mass[i] = mass;
-  }
+  set_radii_and_masses(c, spec, density, seed);
   switch (spec.placement) {
   case scene::ColloidPlacement::list:
     for (std::size_t i = 0; i < n; ++i)
@@ -83,8 +106,8 @@ Colloids place_colloids(const scene::Colloids &spec, const mpcd::Box &box, doubl
     }
     break;
   case scene::ColloidPlacement::random: {
-    const double min2 = std::pow(repulsive_cutoff(24, 2.0 * spec.radius), 2);
-    const double margin = box.walls_y ? wall_cutoff(spec.effective_wall_sigma()) : 0.0;
+    // Every colloid keeps the largest wall cut-off from the walls (the same band for all).
+    const double margin = box.walls_y ? wall_cutoff(spec.wall_sigma_of(spec.max_radius())) : 0.0;
     for (std::size_t i = 0; i < n; ++i) {
       bool placed = false;
       for (std::uint64_t attempt = 0; attempt < 100000 && !placed; ++attempt) {
@@ -97,7 +120,8 @@ Colloids place_colloids(const scene::Colloids &spec, const mpcd::Box &box, doubl
                                        : p[k] * box.length[k];
         placed = true;
         for (std::size_t j = 0; j < i && placed; ++j)
-          placed = distance2(box, p, position(c, j)) >= min2;
+          placed = distance2(box, p, position(c, j)) >=
+                   std::pow(repulsive_cutoff(24, c.radius[i] + c.radius[j]), 2);
         if (placed)
           for (int k = 0; k < box.dim; ++k)
             c.x[k][i] = p[k];

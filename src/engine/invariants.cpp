@@ -55,10 +55,12 @@ InvariantCheck::InvariantCheck(const MpcdSimulation &sim) {
       conserved_[k] = false; // the sine force injects sum_i sin(k y_i), which fluctuates
     if (scene.body_force && scene.body_force->kind == scene::ForceKind::constant)
       drive_[k] = scene.body_force->value[k] * static_cast<double>(count_);
-    if (scene.colloids) // gravity on the colloids: force M g on each
-      drive_[k] += scene.colloids->gravity[k] *
-                   scene.colloids->effective_mass(sim.box().dim, scene.fluid.density) *
-                   static_cast<double>(scene.colloids->count);
+    if (scene.colloids) { // gravity on the colloids: force M_a g on each
+      double mass = 0.0;
+      for (const double m : sim.colloids().mass)
+        mass += m;
+      drive_[k] += scene.colloids->gravity[k] * mass;
+    }
     // No-slip walls and virtual particles exchange momentum with the fluid; slip walls
     // without virtual particles only reverse v_y.
     if (scene.walls && (k == 1 || !scene.walls->slip || scene.walls->virtual_particles))

@@ -8,6 +8,7 @@
 #include "narrows/walls/bounce_back.hpp"
 #include "narrows/walls/virtual_particles.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -26,7 +27,7 @@ mpcd::Box make_box(const scene::Scene &scene) {
 std::uint64_t particle_count(const scene::Scene &scene) {
   if (scene.colloids)
     return colloids::fluid_count_with_colloids(*scene.colloids, make_box(scene),
-                                               scene.fluid.density);
+                                               scene.fluid.density, scene.run.seed);
   return mpcd::fluid_particle_count(make_box(scene), scene.fluid.density);
 }
 
@@ -181,10 +182,8 @@ void MpcdSimulation::build_pipeline() {
     colloids::MdParams p;
     p.substeps = c.md_substeps;
     p.tau = dt / c.md_substeps;
-    p.sigma_cf = c.radius;
-    p.sigma_cc = 2.0 * c.radius;
     p.epsilon = c.epsilon;
-    p.sigma_wall = c.effective_wall_sigma();
+    p.sigma_wall = c.wall_sigma; // 0: 2 r_a for each colloid
     p.wall_q = c.wall_q;
     p.gravity = c.gravity;
     if (scene_.body_force) {
@@ -195,13 +194,38 @@ void MpcdSimulation::build_pipeline() {
                                       b.value[2] * b.value[2]);
     }
     md_.emplace(p, box_, drift);
-    std::string md = "MD: " + std::to_string(c.count) + " colloids (r " + format_number(c.radius) +
-                     ", M " + format_number(c.effective_mass(dim, f.density)) + "), " +
+    // Sizes from the scene (on a restart the colloids are not here yet): the radii are drawn
+    // from (seed, id) alone.
+    std::string size =
+        "r " + format_number(c.radius) + ", M " + format_number(c.effective_mass(dim, f.density));
+    double r_lo = c.radius, r_hi = c.radius;
+    if (c.radius_sd > 0.0) {
+      for (std::int64_t i = 0; i < c.count; ++i) {
+        const double r = colloids::colloid_radius(c, seed, static_cast<std::uint64_t>(i));
+        r_lo = std::min(r_lo, r);
+        r_hi = std::max(r_hi, r);
+      }
+      size = "r " + format_number(c.radius) + " sd " + format_number(c.radius_sd) +
+             " truncated at 3 sd, drawn " + format_number(r_lo) + " to " + format_number(r_hi);
+      if (c.mass > 0.0)
+        size += ", M " + format_number(c.mass);
+      else
+        size += ", M " + format_number(c.mass_of(dim, f.density, r_lo)) + " to " +
+                format_number(c.mass_of(dim, f.density, r_hi));
+    }
+    std::string md = "MD: " + std::to_string(c.count) + " colloids (" + size + "), " +
                      std::to_string(c.md_substeps) + " velocity-Verlet sub-steps of " +
                      format_number(p.tau) + ": WCA colloid-fluid, 48-24 colloid-colloid";
-    if (scene_.walls)
-      md += ", LJ wall (sigma_w " + format_number(p.sigma_wall) + ", cut-off " +
-            format_number(colloids::wall_cutoff(p.sigma_wall)) + ")";
+    if (scene_.walls) {
+      const double lo = c.wall_sigma_of(r_lo), hi = c.wall_sigma_of(r_hi);
+      if (lo == hi)
+        md += ", LJ wall (sigma_w " + format_number(lo) + ", cut-off " +
+              format_number(colloids::wall_cutoff(lo)) + ")";
+      else
+        md += ", LJ wall (sigma_w 2 r_a " + format_number(lo) + " to " + format_number(hi) +
+              ", cut-off " + format_number(colloids::wall_cutoff(lo)) + " to " +
+              format_number(colloids::wall_cutoff(hi)) + ")";
+    }
     if (c.gravity != std::array<double, 3>{0.0, 0.0, 0.0})
       md += ", gravity";
     stages_.push_back({md + "; fluid between kicks: " + name,

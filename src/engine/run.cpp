@@ -150,7 +150,7 @@ void run_scene(const scene::Scene &scene, const RunOptions &options, MPI_Comm co
     sim.restore(io::read_fluid(restart_file, restart_info, comm), restart_info.step);
     if (scene.colloids)
       sim.restore_colloids(io::read_colloids(restart_file, *scene.colloids, scene.run.dimensions,
-                                             scene.fluid.density, comm));
+                                             scene.fluid.density, scene.run.seed, comm));
     log.line("restarted from " + restart_file + " at step " + std::to_string(sim.step()));
   }
   std::unique_ptr<io::ObservablesWriter> writer;

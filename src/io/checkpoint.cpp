@@ -2,6 +2,7 @@
 // checks and the stop signals.
 #include "narrows/io/checkpoint.hpp"
 
+#include "narrows/colloids/placement.hpp"
 #include "narrows/core/error.hpp"
 #include "narrows/io/direct_writer.hpp"
 #include "narrows/io/hdf5.hpp"
@@ -31,6 +32,8 @@ std::size_t SpeciesFields::rows() const {
     return words.front().second->size();
   if (!vectors.empty())
     return vectors.front().second[0]->size();
+  if (!scalars.empty())
+    return scalars.front().second->size();
   return 0;
 }
 
@@ -275,6 +278,11 @@ double create_species(hid_t particles, const SpeciesFields &s, const CheckpointI
   for (const auto &[name, words] : s.words) {
     RowJob job = field(name, H5T_STD_U64LE, 1, false);
     job.words = words;
+    jobs.push_back(job);
+  }
+  for (const auto &[name, values] : s.scalars) {
+    RowJob job = field(name, H5T_IEEE_F64LE, 1, false);
+    job.components[0] = values;
     jobs.push_back(job);
   }
   return bytes;
@@ -629,6 +637,24 @@ void read_species_rows(const std::string &path, SpeciesFields &s, std::uint64_t 
         },
         path);
   }
+  for (auto &[name, values] : s.scalars) {
+    const auto d = open_required(file.get(), base + name + "/value", path);
+    values->resize(n);
+    read_rows<double>(
+        d.get(), first, n, 1, comm,
+        [values](double *buf, std::size_t at, std::size_t count) {
+          std::copy_n(buf, count, values->data() + at);
+        },
+        path);
+  }
+}
+
+bool has_species_field(const std::string &path, const std::string &species,
+                       const std::string &field, MPI_Comm comm) {
+  h5::silence_errors();
+  const auto fapl = mpio_fapl(comm, path);
+  const h5::File file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()), path, "open file");
+  return path_exists(file.get(), "/particles/" + species + "/" + field + "/value");
 }
 
 mpcd::Fluid read_fluid(const std::string &path, const CheckpointInfo &info, MPI_Comm comm) {
@@ -762,6 +788,7 @@ void check_restart_scene(const scene::Scene &given, const CheckpointInfo &info,
   if (g.colloids && s.colloids) {
     const auto &a = *g.colloids, &b = *s.colloids;
     differ("colloids.radius", a.radius, b.radius);
+    differ("colloids.radius_sd", a.radius_sd, b.radius_sd);
     differ("colloids.mass", a.mass, b.mass);
     differ("colloids.count", a.count, b.count);
     differ("colloids.md_substeps", a.md_substeps, b.md_substeps);
@@ -773,15 +800,14 @@ void check_restart_scene(const scene::Scene &given, const CheckpointInfo &info,
   }
   diff.refuse(head, checkpoint);
   const auto scene_box = [&] {
-    double n = 1;
+    std::array<int, 3> cells{1, 1, 1};
     for (int k = 0; k < g.run.dimensions; ++k)
-      n *= g.domain.size[k];
-    if (g.colloids) // the space the colloids take holds no fluid (colloids/placement.hpp)
-      n -= static_cast<double>(g.colloids->count) *
-           (g.run.dimensions == 2
-                ? 3.14159265358979323846 * std::pow(g.colloids->radius, 2)
-                : 4.0 / 3.0 * 3.14159265358979323846 * std::pow(g.colloids->radius, 3));
-    return static_cast<std::uint64_t>(std::llround(n * g.fluid.density));
+      cells[k] = static_cast<int>(std::lround(g.domain.size[k]));
+    const mpcd::Box box = mpcd::make_periodic_box(g.run.dimensions, cells);
+    // The space the colloids take holds no fluid: the count the run made (radii from the seed).
+    if (g.colloids)
+      return colloids::fluid_count_with_colloids(*g.colloids, box, g.fluid.density, g.run.seed);
+    return mpcd::fluid_particle_count(box, g.fluid.density);
   }();
   if (scene_box != info.fluid_particles)
     throw input_error(checkpoint + ": holds " + std::to_string(info.fluid_particles) +

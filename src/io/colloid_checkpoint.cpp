@@ -1,9 +1,11 @@
 // Writing and reading the replicated colloid species of a checkpoint.
 #include "narrows/io/colloid_checkpoint.hpp"
 
+#include "narrows/colloids/placement.hpp"
 #include "narrows/core/error.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <vector>
 
@@ -11,14 +13,18 @@ namespace narrows::io {
 
 namespace {
 
-// The stored fields of c: position, velocity, id.
-SpeciesFields fields_of(colloids::Colloids &c) {
+// The stored fields of c: position, velocity, id, and (sizes) radius and mass.
+SpeciesFields fields_of(colloids::Colloids &c, bool sizes = true) {
   SpeciesFields s;
   s.name = "colloids";
   s.dim = c.dim;
   s.vectors.push_back({"position", {&c.x[0], &c.x[1], &c.x[2]}});
   s.vectors.push_back({"velocity", {&c.v[0], &c.v[1], &c.v[2]}});
   s.words.push_back({"id", &c.id});
+  if (sizes) {
+    s.scalars.push_back({"radius", &c.radius});
+    s.scalars.push_back({"mass", &c.mass});
+  }
   return s;
 }
 
@@ -35,17 +41,20 @@ SpeciesFields colloid_fields(colloids::Colloids &c, colloids::Colloids &empty, M
 }
 
 colloids::Colloids read_colloids(const std::string &path, const scene::Colloids &spec, int dim,
-                                 double density, MPI_Comm comm) {
+                                 double density, std::uint64_t seed, MPI_Comm comm) {
   colloids::Colloids block;
   block.dim = dim;
   block.resize(0);
-  SpeciesFields s = fields_of(block);
+  // Checkpoints written before radius and mass were stored: both follow from the scene.
+  const bool sizes = has_species_field(path, "colloids", "radius", comm) &&
+                     has_species_field(path, "colloids", "mass", comm);
+  SpeciesFields s = fields_of(block, sizes);
   read_species(path, s, comm);
 
-  // Gather every rank's block everywhere: rows of 2 dim + 1 words.
+  // Gather every rank's block everywhere: rows of 2 dim + 3 words (id, radius, mass).
   int ranks = 1;
   MPI_Comm_size(comm, &ranks);
-  const int row = 2 * dim + 1;
+  const int row = 2 * dim + 3;
   const int mine = static_cast<int>(block.id.size());
   std::vector<int> counts(ranks), displs(ranks, 0);
   MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
@@ -57,6 +66,8 @@ colloids::Colloids read_colloids(const std::string &path, const scene::Colloids 
       r[dim + k] = block.v[k][i];
     }
     r[2 * dim] = static_cast<double>(block.id[i]); // ids < 2^53
+    r[2 * dim + 1] = sizes ? block.radius[i] : 0.0;
+    r[2 * dim + 2] = sizes ? block.mass[i] : 0.0;
   }
   int total = 0;
   for (int r = 0; r < ranks; ++r) {
@@ -73,7 +84,7 @@ colloids::Colloids read_colloids(const std::string &path, const scene::Colloids 
   colloids::Colloids c;
   c.dim = dim;
   c.resize(static_cast<std::size_t>(total));
-  const double mass = spec.effective_mass(dim, density);
+  colloids::set_radii_and_masses(c, spec, density, seed);
   for (int i = 0; i < total; ++i) {
     const double *r = &all[static_cast<std::size_t>(i) * row];
     const auto id = static_cast<std::uint64_t>(r[2 * dim]);
@@ -85,8 +96,15 @@ colloids::Colloids read_colloids(const std::string &path, const scene::Colloids 
       c.v[k][id] = r[dim + k];
     }
     c.id[id] = id;
-    c.radius[id] = spec.radius;
-    c.mass[id] = mass;
+    if (sizes) { // restored exactly as they were written
+      const double radius = r[2 * dim + 1], mass = r[2 * dim + 2];
+      if (!(radius > 0.0 && std::isfinite(radius) && mass > 0.0 && std::isfinite(mass)))
+        throw input_error(path + ": colloid id " + std::to_string(id) + " has radius " +
+                          std::to_string(radius) + " and mass " + std::to_string(mass) +
+                          "; allowed: finite numbers > 0");
+      c.radius[id] = radius;
+      c.mass[id] = mass;
+    }
   }
   return c;
 }

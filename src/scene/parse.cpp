@@ -56,8 +56,8 @@ const std::vector<Section> &schema() {
       {"walls", {"slip", "virtual_particles", "virtual_flow"}},
       {"thermostat", {"kind", "gamma"}},
       {"colloids",
-       {"radius", "mass", "count", "placement", "positions", "positions_file", "gravity",
-        "md_substeps", "epsilon", "wall_sigma", "wall_q"}},
+       {"radius", "radius_sd", "mass", "count", "placement", "positions", "positions_file",
+        "gravity", "md_substeps", "epsilon", "wall_sigma", "wall_q"}},
       {"kmc",
        {"length", "boundary", "rates", "left", "right", "initial", "time", "warmup", "replicas",
         "charge", "samples", "preset", "parameters", "fugacity", "boundary_rates",
@@ -639,6 +639,19 @@ std::optional<Colloids> parse_colloids(const Ctx &c, const value *sec, const Dom
   else
     c.missing("colloids.radius", "a number > 0 (cell units; seed 000 uses 2)");
   const double r = out.radius;
+  if (const value *v = find(sec, "radius_sd"))
+    // Radii are drawn within +-3 sd of the mean: at most 0.2 r keeps every one >= 0.4 r.
+    out.radius_sd =
+        as_number(c, *v, "colloids.radius_sd",
+                  "a number from 0 (all radii equal) to 0.2 radius = " + float_text(0.2 * r) +
+                      " (radii are drawn within +-3 radius_sd of radius)",
+                  [&](double x) { return x >= 0.0 && x <= 0.2 * r; });
+  // Checks that depend on the size use the largest radius a colloid can draw.
+  const double r_max = out.max_radius();
+  const std::string largest =
+      out.radius_sd > 0.0
+          ? " (the largest radius, radius + 3 radius_sd = " + float_text(r_max) + ")"
+          : "";
   if (const value *v = find(sec, "mass"))
     out.mass =
         as_number(c, *v, "colloids.mass",
@@ -665,11 +678,15 @@ std::optional<Colloids> parse_colloids(const Ctx &c, const value *sec, const Dom
                   "a number > 0 whose cut-off 1.0631 wall_sigma is below half the channel width (" +
                       float_text(half_width) + ")",
                   [&](double x) { return x > 0.0 && 1.0631 * x < half_width; });
-  } else if (walls && 1.0631 * out.effective_wall_sigma() >= half_width) {
-    c.fail("colloids.wall_sigma",
-           "colloids.wall_sigma defaults to 2 radius = " + float_text(2.0 * r) +
-               ", whose cut-off 1.0631 wall_sigma does not fit in half the channel width (" +
-               float_text(half_width) + "); allowed: a smaller radius or an explicit wall_sigma");
+  } else if (walls && 1.0631 * out.wall_sigma_of(r_max) >= half_width) {
+    c.fail(
+        "colloids.wall_sigma",
+        std::string("colloids.wall_sigma defaults to ") +
+            (out.radius_sd > 0.0 ? "2 r_a, at most 2 (radius + 3 radius_sd) = " : "2 radius = ") +
+            float_text(2.0 * r_max) +
+            ", whose cut-off 1.0631 wall_sigma does not fit in half the channel width (" +
+            float_text(half_width) + "); allowed: a smaller radius" +
+            (out.radius_sd > 0.0 ? " or radius_sd" : "") + " or an explicit wall_sigma");
   }
   const value *count = find(sec, "count");
   const value *placement = find(sec, "placement");
@@ -782,23 +799,24 @@ std::optional<Colloids> parse_colloids(const Ctx &c, const value *sec, const Dom
       c.missing("colloids.count", "an integer >= 1");
     out.count = as_integer(c, *count, "colloids.count", "an integer from 1 to 1000000",
                            [](std::int64_t n) { return n >= 1 && n <= 1000000; });
-    const double sigma_cc = 2.0 * r;
+    const double sigma_cc = 2.0 * r_max;
     if (out.placement == ColloidPlacement::lattice &&
         static_cast<double>(out.count) * sigma_cc > domain.size[0])
       c.fail("colloids.count",
              "colloids.count = " + repr(*count) + " colloids of diameter " + float_text(sigma_cc) +
-                 " do not fit in a row along x of length " + float_text(domain.size[0]) +
+                 largest + " do not fit in a row along x of length " + float_text(domain.size[0]) +
                  "; allowed: at most " +
                  std::to_string(static_cast<std::int64_t>(domain.size[0] / sigma_cc)) +
                  " (placement = \"lattice\")");
   }
-  double box_volume = 1.0,
-         colloid_volume = dims == 2 ? 3.14159265358979 * r * r : 4.18879020478639 * r * r * r;
+  double box_volume = 1.0, colloid_volume = dims == 2 ? 3.14159265358979 * r_max * r_max
+                                                      : 4.18879020478639 * r_max * r_max * r_max;
   for (int d = 0; d < dims; ++d)
     box_volume *= domain.size[d];
   if (static_cast<double>(out.count) * colloid_volume > 0.9 * box_volume)
-    c.fail("colloids.count", "colloids.count = " + std::to_string(out.count) +
-                                 " colloids fill more than 90 % of the box; allowed: fewer or "
+    c.fail("colloids.count", "colloids.count = " + std::to_string(out.count) + " colloids" +
+                                 largest +
+                                 " fill more than 90 % of the box; allowed: fewer or "
                                  "smaller colloids");
   return out;
 }

@@ -51,12 +51,12 @@ const char *to_string(LgcaModel m) {
   return "unknown";
 }
 
-double Colloids::effective_mass(int dim, double density) const {
+double Colloids::mass_of(int dim, double density, double r) const {
   if (mass > 0.0)
     return mass;
   // Mass density of the colloid equal to the fluid's (seed 000 table 3.1: M = pi r^2 n).
   const double pi = std::numbers::pi;
-  return density * (dim == 2 ? pi * radius * radius : 4.0 / 3.0 * pi * radius * radius * radius);
+  return density * (dim == 2 ? pi * r * r : 4.0 / 3.0 * pi * r * r * r);
 }
 
 } // namespace narrows::scene

@@ -88,6 +88,9 @@ add colloids_gravity_length "$(colloids 'radius = 1' 'count = 1' 'gravity = [0.1
 add colloids_wall_sigma_no_walls "$(colloids 'radius = 1' 'count = 1' 'wall_sigma = 1.0')"
 add colloids_too_wide_for_channel "$(good_scene; echo; echo '[walls]'; echo; echo '[colloids]'; echo 'radius = 2'; echo 'count = 1')"
 add thermostat_unknown_kind "$(good_scene; echo; echo '[thermostat]'; echo 'kind = "andersen"')"
+add colloids_radius_sd_too_wide "$(colloids 'radius = 1' 'count = 1' 'radius_sd = 0.3')"
+add colloids_radius_sd_negative "$(colloids 'radius = 1' 'count = 1' 'radius_sd = -0.1')"
+add colloids_radius_sd_too_wide_for_channel "$(good_scene; echo; echo '[walls]'; echo; echo '[colloids]'; echo 'radius = 1.5'; echo 'radius_sd = 0.3'; echo 'count = 1')"
 add colloids_position_outside "$(colloids 'radius = 1' 'placement = "list"' 'positions = [[9.0, 4.0]]')"
 
 # check_bad NAME CMD...: runs CMD, expects exit 2 and one stderr line naming NAME.toml
@@ -159,6 +162,8 @@ check_good() {
 check_good good
 { good_scene; echo; echo '[walls]'; echo; echo '[colloids]'; echo 'radius = 1'; echo 'count = 2'; } >"$TMP/good_colloids.toml"
 check_good good_colloids
+{ good_scene; echo; echo '[walls]'; echo; echo '[colloids]'; echo 'radius = 1'; echo 'radius_sd = 0.2'; echo 'count = 2'; } >"$TMP/good_colloids_radius_sd.toml"
+check_good good_colloids_radius_sd
 
 echo "$passed passed, $failed failed"
 [[ $failed -eq 0 ]]

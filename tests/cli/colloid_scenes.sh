@@ -4,6 +4,8 @@
 # checkpoints); a restart (2 ranks to step 30, then 1 rank to 60) ends bitwise equal to the
 # uninterrupted run; a checkpoint with the wrong colloid count is refused; placement = "file"
 # reads the positions from a text file next to the scene, and a bad file is refused in one line.
+# With unequal radii (radius_sd) the checkpoint stores each colloid's radius and mass, and the
+# restart is bitwise equal too, also from a checkpoint without them (older format: drawn again).
 set -u
 source "$(dirname "$0")/common.bash"
 py=/usr/bin/python3
@@ -95,4 +97,43 @@ refused "a position file with a colloid on the wall" 'pos.txt:2).*lies' "$narrow
 rm "$tmp/pos.txt"
 refused "a missing position file" 'colloids.positions_file = "pos.txt": cannot open' \
   "$narrows" check "$tmp/f.toml"
+# Unequal radii: radius 1.5, sd 0.2 (largest 2.1: the wall cut-off 1.0631 * 4.2 fits in 5).
+sed 's/^radius = 1.5/radius = 1.5\nradius_sd = 0.2/' "$tmp/c.toml" > "$tmp/sd.toml"
+"$narrows" info "$tmp/sd.toml" > "$tmp/sd_info" 2>&1
+check "info names the radius spread: $(grep MD: "$tmp/sd_info" | head -c 300)" \
+  'grep -q "MD: 3 colloids (r 1.5 sd 0.2 truncated at 3 sd, drawn .* to .*, M .* to .*LJ wall (sigma_w 2 r_a" "$tmp/sd_info"'
+"$narrows" run "$tmp/sd.toml" --out "$tmp/sd_one" > /dev/null 2>&1
+check "radius_sd: 1 rank exits 0" '[ $? -eq 0 ]'
+"${mpi[@]}" -n 2 "$narrows" run "$tmp/sd.toml" --set run.steps=30 --out "$tmp/sd_part" > /dev/null 2>&1
+check "radius_sd: first part on 2 ranks exits 0" '[ $? -eq 0 ]'
+check "radius_sd: radius and mass stored per colloid (unequal, M = n pi r^2)" '$py - "$tmp/sd_part/checkpoint-0000000030.h5" <<PY
+import sys, h5py, numpy as np
+c = h5py.File(sys.argv[1], "r")["particles/colloids"]
+r, m = c["radius/value"][()], c["mass/value"][()]
+assert r.shape == (3,) and m.shape == (3,), (r.shape, m.shape)
+assert len(set(r)) == 3 and np.all(np.abs(r - 1.5) <= 0.6), r
+assert np.allclose(m, 5 * np.pi * r**2, rtol=1e-14), (m, r)
+PY'
+cp "$tmp/sd_part/checkpoint-0000000030.h5" "$tmp/sd_old.h5"
+"$narrows" run "$tmp/sd.toml" --restart "$tmp/sd_part" --out "$tmp/sd_part" > /dev/null 2> "$tmp/err"
+check "radius_sd: restart exits 0: $(head -c 300 "$tmp/err")" '[ $? -eq 0 ]'
+check "radius_sd: restart (2 ranks to 30, 1 rank to 60) bitwise equal to the uninterrupted run" \
+  '$py "$tmp/compare.py" "$tmp/sd_one/checkpoint-0000000060.h5" "$tmp/sd_part/checkpoint-0000000060.h5"'
+check "radius_sd: restart keeps radius and mass bitwise" '$py - "$tmp/sd_one/checkpoint-0000000060.h5" "$tmp/sd_part/checkpoint-0000000060.h5" <<PY
+import sys, h5py, numpy as np
+a, b = (h5py.File(p, "r")["particles/colloids"] for p in sys.argv[1:])
+oa, ob = np.argsort(a["id/value"][()]), np.argsort(b["id/value"][()])
+for f in ("radius", "mass"):
+    assert np.array_equal(a[f + "/value"][()][oa].view(np.uint64), b[f + "/value"][()][ob].view(np.uint64)), f
+PY'
+$py -c "import h5py, sys
+f = h5py.File(sys.argv[1], 'r+')
+del f['particles/colloids/radius'], f['particles/colloids/mass']" "$tmp/sd_old.h5"
+"$narrows" run "$tmp/sd.toml" --restart "$tmp/sd_old.h5" --out "$tmp/sd_old" > /dev/null 2> "$tmp/err"
+check "radius_sd: restart from a checkpoint without radius and mass exits 0: $(head -c 300 "$tmp/err")" '[ $? -eq 0 ]'
+check "radius_sd: ... and is bitwise equal to the uninterrupted run" \
+  '$py "$tmp/compare.py" "$tmp/sd_one/checkpoint-0000000060.h5" "$tmp/sd_old/checkpoint-0000000060.h5"'
+sed 's/^radius_sd = 0.2/radius_sd = 0.1/' "$tmp/sd.toml" > "$tmp/sd2.toml"
+refused "a restart with another radius_sd" 'colloids.radius_sd = 0.1[0-9]* but checkpoint .* has 0.2' \
+  "$narrows" run "$tmp/sd2.toml" --restart "$tmp/sd_part/checkpoint-0000000030.h5" --out "$tmp/sd_bad"
 finish "colloid scenes"

@@ -33,6 +33,7 @@ struct Case {
   bool mirror = false;     // ... whose mean velocity continues the flow (walls.virtual_flow)
   bool colloids = false;   // MD-coupled colloids with gravity (walls: also the wall potential)
   bool thermostat = false; // 2D: per-layer rescaling thermostat, 3D: Monte Carlo
+  double radius_sd = 0.0;  // colloid radii from a Gaussian of this standard deviation
 };
 
 class Bitwise : public ::testing::TestWithParam<Case> {};
@@ -67,6 +68,7 @@ TEST_P(Bitwise, TwoRanksEqualOneRank) {
     // across the slab edges within the test.
     col.gravity = {0.008, 0.001, 0.0005};
     col.md_substeps = 50; // tau_MD = 0.01 (at 0.1 a fast fluid particle runs deep into a colloid)
+    col.radius_sd = c.radius_sd;
     s.colloids = col;
   }
   // 2000 steps in CI (~4 s); longer by hand: NARROWS_BITWISE_STEPS=20000 mpirun -n 2 mpi_tests
@@ -92,6 +94,9 @@ TEST_P(Bitwise, TwoRanksEqualOneRank) {
     for (std::size_t a = 0; a < ca.size(); ++a)
       colloid_differ += std::memcmp(&ca.x[k][a], &cb.x[k][a], sizeof(double)) != 0 ||
                         std::memcmp(&ca.v[k][a], &cb.v[k][a], sizeof(double)) != 0;
+  for (std::size_t a = 0; a < ca.size(); ++a) // radii and masses (drawn from the seed)
+    colloid_differ += std::memcmp(&ca.radius[a], &cb.radius[a], sizeof(double)) != 0 ||
+                      std::memcmp(&ca.mass[a], &cb.mass[a], sizeof(double)) != 0;
   EXPECT_EQ(colloid_differ, 0u);
   std::size_t differ = 0;
   for (std::size_t j = 0; j < one.size(); ++j)
@@ -119,5 +124,11 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"srd3d_walls_colloids", 3, scene::Collision::srd, false, true, false, true},
         Case{"srd2d_walls_colloids_thermostat", 2, scene::Collision::srd, false, true, false, true,
              true},
-        Case{"srd3d_sine_thermostat", 3, scene::Collision::srd, true, false, false, false, true}),
+        Case{"srd3d_sine_thermostat", 3, scene::Collision::srd, true, false, false, false, true},
+        // unequal radii: sd 0.2 r (0.4 of 2), or with walls in 3D 0.1 (the largest wall cut-off,
+        // 1.0631 * 2 (1 + 0.3), must fit in half the width of 6)
+        Case{"srd2d_colloids_radius_sd", 2, scene::Collision::srd, false, false, false, true, false,
+             0.4},
+        Case{"srd3d_walls_colloids_radius_sd", 3, scene::Collision::srd, false, true, false, true,
+             false, 0.1}),
     [](const auto &info) { return std::string(info.param.name); });

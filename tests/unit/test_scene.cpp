@@ -429,6 +429,14 @@ TEST(Scene, ColloidsDefaultsAndValues) {
   EXPECT_EQ(l.colloids->count, 2);
   EXPECT_DOUBLE_EQ(l.colloids->positions[1][0], 20.5);
   EXPECT_FALSE(parse_scene(minimal_scene, "m.toml").colloids.has_value());
+  EXPECT_EQ(c.radius_sd, 0.0); // all radii equal
+  EXPECT_EQ(c.max_radius(), 2.0);
+  const Scene p = parse_scene(
+      with("colloids", "radius = 1.5\nradius_sd = 0.1\ncount = 3", channel_scene), "c.toml");
+  EXPECT_DOUBLE_EQ(p.colloids->radius_sd, 0.1);
+  EXPECT_DOUBLE_EQ(p.colloids->max_radius(), 1.8);
+  EXPECT_DOUBLE_EQ(p.colloids->wall_sigma_of(1.7), 3.4); // 2 r_a unless wall_sigma is set
+  EXPECT_NEAR(p.colloids->mass_of(2, 10.0, 1.7), 3.14159265358979 * 1.7 * 1.7 * 10.0, 1e-9);
 }
 
 TEST(SceneErrors, ColloidsKeys) {
@@ -451,6 +459,16 @@ TEST(SceneErrors, ColloidsKeys) {
   bad(with("colloids", "radius = 1\ncount = 1\nwall_sigma = 1"),
       {"colloids.wall_sigma", "[walls]"});
   bad(col("radius = 1\ncount = 1\nmass = 0"), {"colloids.mass = 0"});
+  // radius_sd: 0 to 0.2 radius; size checks use the largest radius, radius + 3 radius_sd.
+  bad(col("radius = 2\ncount = 1\nradius_sd = -0.1"),
+      {"colloids.radius_sd = -0.1", "out of range",
+       "from 0 (all radii equal) to 0.2 radius = 0.4"});
+  bad(col("radius = 2\ncount = 1\nradius_sd = 0.5"), {"colloids.radius_sd = 0.5", "0.2 radius"});
+  bad(col("radius = 2\ncount = 1\nradius_sd = \"wide\""), {"colloids.radius_sd", "string"});
+  bad(col("radius = 2\ncount = 1\nradius_sd = 0.2"),
+      {"colloids.wall_sigma", "2 (radius + 3 radius_sd) = 5.2", "half the channel width"});
+  bad(col("radius = 1\ncount = 13\nradius_sd = 0.2"),
+      {"colloids.count = 13", "diameter 3.2", "radius + 3 radius_sd = 1.6", "at most 12"});
   bad(with("output", "observables = [\"settling_velocity\"]"),
       {"settling_velocity", "only with [colloids]"});
 }

@@ -11,8 +11,9 @@
 // the near ones stream with the same kernel between the velocity-Verlet kicks. After the step
 // every colloid's displacement is checked against its assumed path (invariant_error if it went
 // further, which would mean a missed pair). Colloid-fluid pairs come from a cell list (cells
-// at least the WCA cut-off wide, over the whole box): of all local fluid once per step, of the
-// near particles every sub-step.
+// at least the largest WCA cut-off wide, over the whole box): of all local fluid once per step,
+// of the near particles every sub-step. Colloid-colloid pairs come from a cell list of the
+// colloids (cells at least the largest 48-24 cut-off wide), so many colloids cost O(N).
 //
 // Parallel model: every rank holds all colloids (they are few: at most a few thousand, and
 // each carries d + d + ... words). Each rank adds the forces of its own fluid particles on
@@ -35,11 +36,13 @@
 
 namespace narrows::colloids {
 
+// Pair ranges follow each colloid's own radius r_a (Colloids::radius): sigma_cf = r_a,
+// sigma_cc = r_a + r_b, and sigma_w = 2 r_a unless sigma_wall is set.
 struct MdParams {
   double tau = 0.1 / 15; // MD time step
   int substeps = 15;
-  double sigma_cf = 2.0, sigma_cc = 4.0, epsilon = 1.0;
-  double sigma_wall = 4.0, wall_q = 1.0; // used when the box has walls along y
+  double epsilon = 1.0;
+  double sigma_wall = 0.0, wall_q = 1.0; // used when the box has walls along y; sigma_wall 0: 2 r_a
   std::array<double, 3> gravity{0.0, 0.0, 0.0}; // acceleration: the force on colloid a is M_a g
   double fluid_accel = 0.0; // largest body-force acceleration of a fluid particle
 };
@@ -79,19 +82,28 @@ private:
   PotentialEnergy forces(const mpcd::Fluid &f, const Colloids &c, MPI_Comm comm, bool want_energy);
   void kick(mpcd::Fluid &fluid, Colloids &colloids) const;
   void clear_fluid_forces();
+  template <int D, bool WallsY>
+  void colloid_pairs(const Colloids &c, PotentialEnergy &energy, bool want_energy);
   template <int D, bool WallsY> void select_near(const mpcd::Fluid &f, const Colloids &c);
   void build_cell_list(const mpcd::Fluid &f);
+  void size_cells(const Colloids &c);
 
   MdParams params_;
   mpcd::Box box_;
   int dim_;
   FluidDrift drift_;
+  double cell_radius_ = -1.0;         // the largest colloid radius the cells were sized for
   std::array<int, 3> cells_{1, 1, 1}; // cell list cells per axis
   std::array<double, 3> inv_cell_{1.0, 1.0, 1.0};
   std::vector<std::int32_t> head_, next_;
-  std::vector<std::int64_t> fluid_force_; // [i * dim + k], zero unless flagged
-  std::vector<std::uint8_t> fluid_flag_;  // 1 if fluid particle i has a force
-  std::vector<std::uint32_t> touched_;    // the flagged particles
+  std::array<int, 3> cc_cells_{1, 1, 1}; // colloid cell list: cells per axis
+  std::array<double, 3> cc_inv_cell_{1.0, 1.0, 1.0};
+  std::vector<std::int32_t> cc_head_, cc_next_;
+  std::vector<int> cc_cell_;               // [a * dim + k]: cell coordinate of colloid a
+  std::vector<std::uint32_t> cc_partners_; // partners b > a of the colloid at hand
+  std::vector<std::int64_t> fluid_force_;  // [i * dim + k], zero unless flagged
+  std::vector<std::uint8_t> fluid_flag_;   // 1 if fluid particle i has a force
+  std::vector<std::uint32_t> touched_;     // the flagged particles
   std::vector<std::int64_t> colloid_force_, colloid_local_;
   std::vector<double> margin_;            // per colloid: its largest possible path this step
   std::vector<std::uint32_t> near_index_; // local fluid particles taking part in the sub-steps

@@ -11,20 +11,32 @@
 
 namespace narrows::colloids {
 
-// All colloids of the scene, at rest, ids 0..count-1, the same on every rank.
+// The radius of colloid `id`: spec.radius, or with spec.radius_sd > 0 a Gaussian deviate of
+// mean radius and standard deviation radius_sd truncated at +-3 radius_sd (deviates beyond are
+// drawn again), keyed by (seed, id) alone, so every rank draws the same radii without a message.
+double colloid_radius(const scene::Colloids &spec, std::uint64_t seed, std::uint64_t id);
+
+// Radius and mass of every colloid of the scene (ids 0..count-1): colloid_radius, and
+// spec.mass_of (the fluid's mass density times the own volume unless colloids.mass is set).
+void set_radii_and_masses(Colloids &c, const scene::Colloids &spec, double density,
+                          std::uint64_t seed);
+
+// All colloids of the scene, at rest, ids 0..count-1, the same on every rank, with radii and
+// masses from set_radii_and_masses.
 // lattice: evenly spaced along x at the centre of the cross-section;
-// random: uniform, no two closer than the 48-24 cut-off 2^(1/24) 2 r_c, and with walls no
-// closer to a wall than the wall potential's cut-off (draws keyed by (seed, attempt, index));
+// random: uniform, no pair closer than its 48-24 cut-off 2^(1/24) (r_a + r_b), and with walls
+// no closer to a wall than the largest wall cut-off (draws keyed by (seed, attempt, index));
 // input_error if 10^5 attempts cannot place a colloid.
 Colloids place_colloids(const scene::Colloids &spec, const mpcd::Box &box, double density,
                         std::uint64_t seed);
 
-// Fluid particles the scene has with colloids: round(n (V_box - N_c V_colloid)) (seed 000
-// §3.4.1: N_f = n (L_x L_y - N_c pi r_c^2)).
+// Fluid particles the scene has with colloids: round(n (V_box - sum_a V_a)) (seed 000 §3.4.1:
+// N_f = n (L_x L_y - N_c pi r_c^2) for equal radii); `seed` draws the radii.
 std::uint64_t fluid_count_with_colloids(const scene::Colloids &spec, const mpcd::Box &box,
-                                        double density);
+                                        double density, std::uint64_t seed);
 
-// True if p lies within distance r_c of a colloid centre (minimum image along periodic axes).
+// True if p lies within distance r_a of the centre of a colloid a (minimum image along periodic
+// axes).
 bool inside_any(const Colloids &c, const mpcd::Box &box, const std::array<double, 3> &p);
 
 } // namespace narrows::colloids

@@ -2,7 +2,8 @@
 //
 // Pair potentials phi(r) = 4 eps [(sigma/r)^(2n) - (sigma/r)^n + 1/4] for r < r_cut = 2^(1/n)
 // sigma (the repulsive, shifted Lennard-Jones form): n = 6 colloid-fluid (eq 3.42, sigma_cf =
-// r_c), n = 24 colloid-colloid (eq 3.43, sigma_cc = 2 r_c).
+// r_a, the colloid's radius), n = 24 colloid-colloid (eq 3.43, sigma_cc = r_a + r_b; the seed's
+// 2 r_c for equal radii).
 //
 // Wall (eq 3.35-3.37): a Lennard-Jones 12-6 line density q/sigma integrated along the wall,
 //   U(h) = (3 pi eps q / 2) [ (21/32)(sigma/h)^11 - (sigma/h)^5 ] ,  h = distance to the wall,

@@ -30,6 +30,7 @@ enum class Purpose : std::uint32_t {
   lgca_init = 17,           // step = link / 4, id = global site index: initial occupations
   lgca_force = 18,          // step = lattice step, id = row * blocks + x / 8: 8 16-bit uniforms
   lgca_colloid = 19,        // step = lattice step, id = boundary link: Ladd-Frenkel transmission
+  colloid_radius = 20,      // step = attempt, id = colloid id: radius from a truncated Gaussian
   dhumieres_collision = 40, // id = site: outcome of a 1D d'Humieres collision
   lgca_initial = 41,        // step = draw round (attempt), id = link or site: initial occupations
 };

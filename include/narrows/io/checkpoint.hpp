@@ -10,6 +10,7 @@
 //   /particles/<species>/<field>/{value, step, time}
 //                              vector fields (position, velocity): value [N][d] float64
 //                              word fields (id): value [N] uint64
+//                              scalar fields (colloid radius, mass): value [N] float64
 //   /parameters/{scene, step, time, seed, format_version, dimensions}
 //   /<engine>/<name>           engine-specific small arrays (CheckpointArray), e.g. /kmc/...
 //
@@ -51,14 +52,20 @@ struct CheckpointInfo {
 };
 
 // One species on this rank as structure-of-arrays views. Vector fields have `dim` component
-// arrays and are stored as [N][dim]; word fields are stored as [N].
+// arrays and are stored as [N][dim]; word and scalar fields are stored as [N].
 struct SpeciesFields {
   std::string name;
   int dim = 2;
   std::vector<std::pair<std::string, std::array<std::vector<double> *, 3>>> vectors;
   std::vector<std::pair<std::string, std::vector<std::uint64_t> *>> words;
+  std::vector<std::pair<std::string, std::vector<double> *>> scalars;
   std::size_t rows() const;
 };
+
+// Whether the checkpoint holds /particles/<species>/<field>/value (collective: every rank
+// opens the file), for fields that older checkpoints lack.
+bool has_species_field(const std::string &path, const std::string &species,
+                       const std::string &field, MPI_Comm comm);
 
 // The fluid as a species: position, velocity, id.
 SpeciesFields fluid_fields(mpcd::Fluid &fluid);

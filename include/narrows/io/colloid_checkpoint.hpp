@@ -1,6 +1,7 @@
-// Colloids in checkpoints: the species "colloids" (position, velocity, id). Every rank holds
-// all colloids, so rank 0 writes them and on reading every rank gets all of them back.
-// Radius and mass follow from the scene (monodisperse) and are not stored.
+// Colloids in checkpoints: the species "colloids" (position, velocity, id, radius, mass). Every
+// rank holds all colloids, so rank 0 writes them and on reading every rank gets all of them
+// back. Radius and mass are stored so a restart restores them exactly; checkpoints from before
+// they were stored get them from the scene (colloids::set_radii_and_masses).
 #pragma once
 
 #include "narrows/colloids/colloids.hpp"
@@ -9,6 +10,7 @@
 
 #include <mpi.h>
 
+#include <cstdint>
 #include <string>
 
 namespace narrows::io {
@@ -17,9 +19,10 @@ namespace narrows::io {
 // is the empty storage the other ranks point at).
 SpeciesFields colloid_fields(colloids::Colloids &c, colloids::Colloids &empty, MPI_Comm comm);
 
-// All colloids of a checkpoint on every rank, in id order, radius and mass from the scene
-// (collective). input_error if the species is missing or its count differs from the scene's.
+// All colloids of a checkpoint on every rank, in id order, radius and mass as stored (older
+// checkpoints: from the scene and `seed`) (collective). input_error if the species is missing,
+// its count differs from the scene's, or a stored radius or mass is not a finite number > 0.
 colloids::Colloids read_colloids(const std::string &path, const scene::Colloids &spec, int dim,
-                                 double density, MPI_Comm comm);
+                                 double density, std::uint64_t seed, MPI_Comm comm);
 
 } // namespace narrows::io

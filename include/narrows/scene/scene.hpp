@@ -51,26 +51,36 @@ struct Walls {
   VirtualFlow virtual_flow = VirtualFlow::rest;
 };
 
-// MD-coupled colloids of seed 000 §3.4 (species "colloids"). Potentials: colloid-fluid WCA
-// (sigma_cf = radius), colloid-colloid 48-24 (sigma_cc = 2 radius), integrated LJ wall (with
-// [walls]); gravity is the gravitational field g_c of seed 000 (an acceleration: the force on a
-// colloid is its mass times g, eq 4.4 without buoyancy, as the fluid feels no gravity).
+// MD-coupled colloids of seed 000 §3.4 (species "colloids"). Radii: `radius`, or with
+// radius_sd > 0 each drawn from a Gaussian of that mean and standard deviation truncated at
+// +-3 sd (colloids/placement.hpp). Potentials, with each colloid's own radius r_a:
+// colloid-fluid WCA (sigma_cf = r_a), colloid-colloid 48-24 (sigma_cc = r_a + r_b, 2 r_c for
+// equal radii), integrated LJ wall (with [walls]); gravity is the gravitational field g_c of seed
+// 000 (an acceleration: the force on a colloid is its mass times g, eq 4.4 without buoyancy, as the
+// fluid feels no gravity).
 enum class ColloidPlacement { lattice, list, random };
 
 struct Colloids {
   double radius = 2.0;
-  double mass = 0.0; // 0: pi r^2 n (2D) or (4/3) pi r^3 n (3D), n = fluid.density
+  double radius_sd = 0.0; // standard deviation of the radii (0: all equal to radius)
+  double mass = 0.0;      // 0: pi r^2 n (2D) or (4/3) pi r^3 n (3D), n = fluid.density
   std::int64_t count = 0;
   ColloidPlacement placement = ColloidPlacement::lattice; // lattice: a row along x, centred
   std::vector<std::array<double, 3>> positions;           // placement "list"
   std::array<double, 3> gravity{0.0, 0.0, 0.0};           // acceleration g; force M g
   int md_substeps = 15;                                   // tau_MD = fluid.dt / md_substeps
   double epsilon = 1.0;                                   // eps_cf = eps_cc = eps_w (kT units)
-  double wall_sigma = 0.0; // sigma_w of the wall potential, 0: 2 radius (seed 000 table 3.1)
+  double wall_sigma = 0.0; // sigma_w of the wall potential, 0: 2 r_a (seed 000 table 3.1)
   double wall_q = 1.0;     // q of eq 3.35
 
-  double effective_mass(int dim, double density) const;
-  double effective_wall_sigma() const { return wall_sigma > 0.0 ? wall_sigma : 2.0 * radius; }
+  // The largest radius a colloid can have: radius + 3 radius_sd (the truncation).
+  double max_radius() const { return radius + 3.0 * radius_sd; }
+  // The mass of a colloid of radius r: `mass` if set, else fluid mass density times its volume.
+  double mass_of(int dim, double density, double r) const;
+  double effective_mass(int dim, double density) const { return mass_of(dim, density, radius); }
+  // sigma_w of a colloid of radius r: `wall_sigma` if set, else 2 r.
+  double wall_sigma_of(double r) const { return wall_sigma > 0.0 ? wall_sigma : 2.0 * r; }
+  double effective_wall_sigma() const { return wall_sigma_of(radius); }
 };
 
 // Thermostats of seed 000 §3.4: "layers" rescales velocities relative to the cell means per layer
