@@ -91,14 +91,15 @@ void TrajectoryWriter::write_colloid_frame(std::int64_t step, double time,
     throw Error(ExitCode::other, path_ + ": frame at step " + std::to_string(step) + " has " +
                                      std::to_string(c.size()) + " colloids, expected " +
                                      std::to_string(colloid_rows_));
-  std::vector<double> data[2];
-  for (int f = 0; f < 2; ++f)
-    data[f].resize(colloid_rows_ * dim_);
+  // The fluid's row buffers are free again (its frame is written): reuse them.
+  position_.assign(colloid_rows_ * dim_, 0.0);
+  velocity_.assign(colloid_rows_ * dim_, 0.0);
   for (std::size_t a = 0; a < colloid_rows_; ++a)
     for (int k = 0; k < dim_; ++k) {
-      data[0][a * dim_ + k] = c.x[k][a];
-      data[1][a * dim_ + k] = c.v[k][a];
+      position_[a * dim_ + k] = c.x[k][a];
+      velocity_[a * dim_ + k] = c.v[k][a];
     }
+  const double *data[2] = {position_.data(), velocity_.data()};
   const std::vector<hsize_t> shape{colloid_rows_, static_cast<hsize_t>(dim_)};
   const hsize_t frame = frame_times_.size();
   const char *names[2] = {"position", "velocity"};
@@ -106,7 +107,7 @@ void TrajectoryWriter::write_colloid_frame(std::int64_t step, double time,
     const std::string prefix = std::string("/particles/colloids/") + names[f] + "/";
     h5::write_row(colloid_step_[f], frame, H5T_NATIVE_INT64, {}, &step, path_, prefix + "step");
     h5::write_row(colloid_time_[f], frame, H5T_NATIVE_DOUBLE, {}, &time, path_, prefix + "time");
-    h5::write_row(colloid_value_[f], frame, H5T_NATIVE_DOUBLE, shape, data[f].data(), path_,
+    h5::write_row(colloid_value_[f], frame, H5T_NATIVE_DOUBLE, shape, data[f], path_,
                   prefix + "value");
   }
 }
