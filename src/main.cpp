@@ -107,6 +107,7 @@ int main_inner(int argc, char **argv) {
                                      restart, out_dir, MPI_COMM_WORLD);
   }
   if (*check || *info) {
+    narrows::engine::check_colloid_placement(scene);
     if (root) {
       if (*check)
         std::cout << scene_file << ": scene is valid\n";

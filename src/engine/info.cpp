@@ -1,6 +1,8 @@
 // `narrows info` / `check`: describe the pipeline and the physical regime of a scene.
 #include "narrows/engine/info.hpp"
 
+#include "narrows/colloids/placement.hpp"
+#include "narrows/core/error.hpp"
 #include "narrows/engine/mpcd_simulation.hpp"
 #include "narrows/mpcd/transport_theory.hpp"
 
@@ -128,6 +130,18 @@ std::vector<std::string> describe_scene(const scene::Scene &s, MPI_Comm comm) {
     }
   }
   return out;
+}
+
+void check_colloid_placement(const scene::Scene &s) {
+  if (!s.colloids)
+    return;
+  try {
+    colloids::place_colloids(*s.colloids, make_box(s), s.fluid.density, s.run.seed);
+  } catch (const Error &e) {
+    if (e.code() != ExitCode::bad_input)
+      throw;
+    throw input_error(s.file + ": " + e.what());
+  }
 }
 
 std::vector<std::string> regime_warnings(const scene::Scene &s) {

@@ -135,6 +135,8 @@ void run_scene(const scene::Scene &scene, const RunOptions &options, MPI_Comm co
     io::check_restart_scene(scene, restart_info, restart_file);
   }
   const bool restarting = !restart_file.empty();
+  if (!restarting)
+    check_colloid_placement(scene);
 
   const std::string dir = options.out_dir.empty() ? scene.output.dir : options.out_dir;
   RunOutput output = open_run_output(dir, restarting ? restart_info.step : -1, scene.file, comm);

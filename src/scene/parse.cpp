@@ -764,6 +764,7 @@ std::optional<Colloids> parse_colloids(const Ctx &c, const value *sec, const Dom
                                                 std::to_string(dims) + " numbers " + coords);
         check_position(key, p, "\"" + text + "\"");
         out.positions.push_back(p);
+        out.position_keys.push_back(key);
       }
       if (out.positions.empty())
         c.fail("colloids.positions_file", "colloids.positions_file = \"" + name +
@@ -784,6 +785,7 @@ std::optional<Colloids> parse_colloids(const Ctx &c, const value *sec, const Dom
         const auto p = as_vector(c, a[i], key, dims, "a position inside the box");
         check_position(key, p, repr(a[i]));
         out.positions.push_back(p);
+        out.position_keys.push_back(key);
       }
     }
     out.count = static_cast<std::int64_t>(out.positions.size());

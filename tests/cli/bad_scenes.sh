@@ -92,6 +92,8 @@ add colloids_radius_sd_too_wide "$(colloids 'radius = 1' 'count = 1' 'radius_sd 
 add colloids_radius_sd_negative "$(colloids 'radius = 1' 'count = 1' 'radius_sd = -0.1')"
 add colloids_radius_sd_too_wide_for_channel "$(good_scene; echo; echo '[walls]'; echo; echo '[colloids]'; echo 'radius = 1.5'; echo 'radius_sd = 0.3'; echo 'count = 1')"
 add colloids_position_outside "$(colloids 'radius = 1' 'placement = "list"' 'positions = [[9.0, 4.0]]')"
+# cores overlap across the periodic x edge (0.5 and 7.0 are 1.5 apart; r_a + r_b = 2)
+add colloids_positions_overlap "$(colloids 'radius = 1' 'placement = "list"' 'positions = [[4.0, 2.0], [0.5, 5.0], [7.0, 5.0]]')"
 
 # check_bad NAME CMD...: runs CMD, expects exit 2 and one stderr line naming NAME.toml
 check_bad() {

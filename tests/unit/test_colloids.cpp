@@ -6,6 +6,7 @@
 #include "narrows/colloids/md_coupling.hpp"
 #include "narrows/colloids/placement.hpp"
 #include "narrows/colloids/potentials.hpp"
+#include "narrows/core/error.hpp"
 #include "narrows/core/fixed_point.hpp"
 #include "narrows/mpcd/streaming.hpp"
 
@@ -254,6 +255,35 @@ TEST(ColloidPlacement, RandomKeepsColloidsApartAndOffTheWalls) {
       static_cast<std::uint64_t>(std::llround(10.0 * (720.0 - 12 * 3.14159265358979 * 2.25))));
   EXPECT_TRUE(inside_any(c, box, {c.x[0][0] + 1.0, c.x[1][0], 0.0}));
   EXPECT_FALSE(inside_any(c, box, {c.x[0][0] + 1.0, c.x[1][0] + 1.2, 0.0}));
+}
+
+TEST(ColloidPlacement, ListRefusesOverlappingCoresAndAllowsTouching) {
+  scene::Colloids spec;
+  spec.radius = 2.0;
+  spec.placement = scene::ColloidPlacement::list;
+  const mpcd::Box box = mpcd::make_periodic_box(2, {40, 12, 1});
+  // Touching (centres r_a + r_b = 4 apart), also across the periodic edge: accepted.
+  spec.positions = {{10.0, 6.0, 0}, {14.0, 6.0, 0}, {2.0, 6.0, 0}, {38.0, 6.0, 0}};
+  spec.count = 4;
+  EXPECT_EQ(place_colloids(spec, box, 10.0, 77).size(), 4u);
+  const auto refused = [&](const std::string &expect) {
+    try {
+      place_colloids(spec, box, 10.0, 77);
+    } catch (const narrows::Error &e) {
+      EXPECT_NE(std::string(e.what()).find(expect), std::string::npos) << e.what();
+      return true;
+    }
+    return false;
+  };
+  // Overlap across the periodic edge, the pair named by its entries.
+  spec.position_keys = {"p[0]", "p[1]", "p[2]", "p[3]"};
+  spec.positions[3] = {38.5, 6.5, 0};
+  EXPECT_TRUE(refused("p[2] and p[3]: colloids 2 and 3 are 3.53553 apart"));
+  // Overlap in y only (same x), with unequal radii from radius_sd.
+  spec.positions = {{10.0, 3.0, 0}, {10.0, 6.9, 0}};
+  spec.position_keys.clear();
+  spec.count = 2;
+  EXPECT_TRUE(refused("colloids.positions[0] and colloids.positions[1]"));
 }
 
 TEST(ColloidRadii, AreATruncatedGaussianDrawnPerColloid) {

@@ -26,7 +26,9 @@ void set_radii_and_masses(Colloids &c, const scene::Colloids &spec, double densi
 // lattice: evenly spaced along x at the centre of the cross-section;
 // random: uniform, no pair closer than its 48-24 cut-off 2^(1/24) (r_a + r_b), and with walls
 // no closer to a wall than the largest wall cut-off (draws keyed by (seed, attempt, index));
-// input_error if 10^5 attempts cannot place a colloid.
+// input_error if 10^5 attempts cannot place a colloid;
+// list (and file): the given positions, input_error naming both entries if two cores overlap
+// (centres closer than r_a + r_b).
 Colloids place_colloids(const scene::Colloids &spec, const mpcd::Box &box, double density,
                         std::uint64_t seed);
 

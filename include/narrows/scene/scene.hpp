@@ -67,9 +67,12 @@ struct Colloids {
   std::int64_t count = 0;
   ColloidPlacement placement = ColloidPlacement::lattice; // lattice: a row along x, centred
   std::vector<std::array<double, 3>> positions;           // placement "list"
-  std::array<double, 3> gravity{0.0, 0.0, 0.0};           // acceleration g; force M g
-  int md_substeps = 15;                                   // tau_MD = fluid.dt / md_substeps
-  double epsilon = 1.0;                                   // eps_cf = eps_cc = eps_w (kT units)
+  // Where each position was given, for messages: "colloids.positions[3]" or
+  // "colloids.positions_file (path:line)"; empty: "colloids.positions[i]".
+  std::vector<std::string> position_keys;
+  std::array<double, 3> gravity{0.0, 0.0, 0.0}; // acceleration g; force M g
+  int md_substeps = 15;                         // tau_MD = fluid.dt / md_substeps
+  double epsilon = 1.0;                         // eps_cf = eps_cc = eps_w (kT units)
   double wall_sigma = 0.0; // sigma_w of the wall potential, 0: 2 r_a (seed 000 table 3.1)
   double wall_q = 1.0;     // q of eq 3.35
 
