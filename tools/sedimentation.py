@@ -2,6 +2,7 @@
 """Sedimentation observables of seed 000 ch.4 from one or more run directories.
 
 Usage: sedimentation.py RUN_DIR [RUN_DIR ...] [--skip 0.25] [--blocks 10] [--chain PNG]
+                        [--wake PNG]
 
 For every run: the colloids' mean settling velocity along the gravity (x) axis in the frame
 co-moving with the centre of mass (eq 4.8-4.10, the run's "settling_velocity" series, averaged
@@ -11,6 +12,11 @@ at different colloids.gravity, a linear fit v_s = mu g with its R^2 (seed 000 fi
 With --chain, the chain distances D_i(t) of §4.5 from "colloid_positions": colloids labelled
 by their initial x, groups of 5 consecutive ones, D_i = mean distance to the next colloid within
 group i; plotted against time for the first run.
+With --wake, the fluid number density along the channel in the frame of each colloid, from the
+first run's trajectory.h5 (output.trajectory_every, trajectory_subsample = 1): in the colloid's
+lane (|y - y_c| < r) and beside it, averaged over the frames after --skip and over the colloids,
+with block errors. A random solvent, which keeps mass but not momentum, piles fluid up ahead of
+a settling colloid and leaves it thinned behind; SRD's flow carries it round.
 """
 
 import argparse
@@ -80,6 +86,70 @@ def growth_rates(t, D, blocks):
     return np.array(rates), np.array(errors)
 
 
+def wake_profile(run, skip, blocks, half=40.0, width=1.0):
+    """Fluid density against dx = x - x_c (dx > 0 ahead along +x) in the colloid frames."""
+    path = os.path.join(run, "trajectory.h5")
+    with h5py.File(path, "r") as f:
+        if int(f["parameters/subsample"][()]) != 1:
+            sys.exit(f"{path}: --wake needs every fluid particle (output.trajectory_subsample = 1)")
+        L, W = f["particles/fluid/box/edges"][()][:2]
+        xf = f["particles/fluid/position/value"]
+        xc = f["particles/colloids/position/value"][()]
+        r = f["particles/colloids/radius"][()]
+        edges = np.arange(-half, half + 0.5 * width, width)
+        frames = range(int(skip * xf.shape[0]), xf.shape[0])
+        lane = np.zeros((len(frames), len(edges) - 1))
+        side = np.zeros_like(lane)
+        for i, fr in enumerate(frames):
+            p = xf[fr]
+            for c in range(xc.shape[1]):
+                dx = p[:, 0] - xc[fr, c, 0]
+                dx -= L * np.round(dx / L)
+                inlane = np.abs(p[:, 1] - xc[fr, c, 1]) < r[c]
+                lane[i] += np.histogram(dx[inlane], edges)[0] / (width * 2.0 * r[c])
+                side[i] += np.histogram(dx[~inlane], edges)[0] / (width * (W - 2.0 * r[c]))
+            lane[i] /= xc.shape[1]
+            side[i] /= xc.shape[1]
+    n = len(frames) // blocks
+    # block means: (blocks, bins)
+    return (0.5 * (edges[1:] + edges[:-1]), lane[: n * blocks].reshape(blocks, n, -1).mean(axis=1),
+            side[: n * blocks].reshape(blocks, n, -1).mean(axis=1))
+
+
+def print_wake(run, skip, blocks, png):
+    x, lane_b, side_b = wake_profile(run, skip, blocks)
+
+    def mean_err(b):
+        return b.mean(axis=0), b.std(axis=0, ddof=1) / np.sqrt(b.shape[0])
+
+    (lane, dl), (side, ds) = mean_err(lane_b), mean_err(side_b)
+    far = np.abs(x) > 30.0
+    n0 = float(np.mean(np.concatenate([lane[far], side[far]])))
+    print(f"\nfluid density in the colloid frame ({run}); far from the colloid n = {n0:.3f}")
+    print("| dx | lane | error | beside | error |")
+    print("|---|---|---|---|---|")
+    for i in range(len(x)):
+        if abs(x[i]) < 12.0 or i % 4 == 0:
+            print(f"| {x[i]:+.1f} | {lane[i]:.3f} | {dl[i]:.3f} | {side[i]:.3f} | {ds[i]:.3f} |")
+    ahead = (x > 2.0) & (x < 12.0)
+    behind = (x < -2.0) & (x > -12.0)
+    diff, err = mean_err(lane_b[:, ahead].mean(axis=1) - lane_b[:, behind].mean(axis=1))
+    print(f"lane, ahead (2 < dx < 12) minus behind (-12 < dx < -2): {diff:+.3f} +- {err:.3f} "
+          f"({diff / n0:+.1%} of n)")
+    if png:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        plt.errorbar(x, lane, dl, label="lane |y - y_c| < r")
+        plt.errorbar(x, side, ds, label="beside the colloid")
+        plt.axhline(n0, color="grey", lw=0.5)
+        plt.xlabel("x - x_c (gravity along +x)")
+        plt.ylabel("fluid number density")
+        plt.legend()
+        plt.savefig(png, dpi=120)
+        print(f"wake profile: {png}")
+
+
 def weighted_line(x, v, e):
     """Straight line v = a x + b weighted by the errors e: (a, da, b, db, chi^2 per dof)."""
     w = 1.0 / e**2
@@ -96,7 +166,10 @@ def main():
     ap.add_argument("--skip", type=float, default=0.25)
     ap.add_argument("--blocks", type=int, default=10)
     ap.add_argument("--chain", help="PNG of the chain distances D_i(t) of the first run")
+    ap.add_argument("--wake", help="PNG of the fluid density in the colloid frame (first run)")
     a = ap.parse_args()
+    if a.wake:
+        print_wake(a.runs[0], a.skip, a.blocks, a.wake)
     gs, vs, es, ns, phis = [], [], [], [], []
     print("| run | g | N_c | phi | v_s | error | Re |")
     print("|---|---|---|---|---|---|---|")
@@ -151,6 +224,15 @@ def main():
             sl, dsl, ic, dic, chi2 = weighted_line(g, v, e)
             print(f"weighted fit: slope {sl:.4f} +- {dsl:.4f}, intercept "
                   f"{ic:.5f} +- {dic:.5f}, chi^2/dof = {chi2:.2f}")
+    elif len(set(ns)) == 1 and len(set(phis)) >= 2 and np.all(np.array(es) > 0):
+        # Seed 000 fig 4.3, 4.4, 4.8: the same colloids in channels of different length.
+        phi, v, e = np.array(phis), np.array(vs), np.array(es)
+        sp, dsp, ic, dic, chi2 = weighted_line(phi, v, e)
+        scale = np.sqrt(max(1.0, chi2))
+        print(f"\nweighted fit against phi (N_c = {ns[0]}, length varied): dv_s/dphi = {sp:.4f} "
+              f"+- {dsp:.4f} ({sp / dsp:+.1f} sigma; {sp / (dsp * scale):+.1f} sigma scaled), "
+              f"relative {sp / ic:+.2f} +- {dsp / ic:.2f} per unit phi, v_s(0) = {ic:.5f} "
+              f"+- {dic:.5f}, chi^2/dof = {chi2:.2f}")
     elif len(set(ns)) >= 2 and np.all(np.array(es) > 0):
         # Seed 000 §4.2-4.3 (fig 4.6-4.8): v_s against the number of colloids at fixed g.
         n, phi, v, e = np.array(ns, float), np.array(phis), np.array(vs), np.array(es)
