@@ -94,6 +94,9 @@ void check_restart_lattice(const scene::Scene &given, const io::CheckpointInfo &
     differ("colloid.position[1]", g.y, s.y);
     differ("colloid.radius", g.radius, s.radius);
     differ("colloid.mass", g.mass, s.mass);
+    differ("colloid.held", g.held, s.held);
+    differ("colloid.velocity[0]", g.vx, s.vx);
+    differ("colloid.velocity[1]", g.vy, s.vy);
   }
   diff.refuse(given.file + ": ", checkpoint);
 }
@@ -218,35 +221,53 @@ ColloidParams colloid_params(const scene::Scene &scene) {
   return p;
 }
 
-// The colloid state in the checkpoint file beside the lattice: /colloid/{momentum, omega}.
+// The colloid state in the checkpoint file beside the lattice: /colloid/{momentum, omega,
+// position, angle} (the centre moves with a moving disc; checkpoints of held discs written
+// before position and angle were stored have only the first two, and the scene's position).
 void write_colloid_state(const std::string &path, const FhpColloid &c) {
   const io::h5::File f = io::h5::open_file(path, H5F_ACC_RDWR);
   const io::h5::Group g = io::h5::create_group(f.get(), "colloid", path);
   const MomentumUnits p = c.momentum();
   io::h5::write_dataset<std::int64_t>(g.get(), "momentum", std::span<const std::int64_t>(p), path);
   io::h5::write_scalar<double>(g.get(), "omega", c.omega(), path);
+  const std::array<double, 2> x = c.position();
+  io::h5::write_dataset<double>(g.get(), "position", std::span<const double>(x), path);
+  io::h5::write_scalar<double>(g.get(), "angle", c.angle(), path);
+}
+
+// Reads the dataset `name` of n values of `type` into `out`; false if it is missing.
+bool read_values(hid_t file, const char *name, hid_t type, void *out) {
+  if (H5Lexists(file, name, H5P_DEFAULT) <= 0)
+    return false;
+  const hid_t d = H5Dopen2(file, name, H5P_DEFAULT);
+  if (d < 0)
+    return false;
+  const bool ok = H5Dread(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out) >= 0;
+  H5Dclose(d);
+  return ok;
 }
 
 void read_colloid_state(const std::string &path, FhpColloid &c) {
   const io::h5::File f = io::h5::open_file(path);
   MomentumUnits p{};
-  double omega = 0.0;
-  const hid_t dp = H5Dopen2(f.get(), "/colloid/momentum", H5P_DEFAULT);
-  const hid_t dw = dp < 0 ? -1 : H5Dopen2(f.get(), "/colloid/omega", H5P_DEFAULT);
-  const bool ok = dp >= 0 && dw >= 0 &&
-                  H5Dread(dp, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, p.data()) >= 0 &&
-                  H5Dread(dw, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &omega) >= 0;
-  if (dp >= 0)
-    H5Dclose(dp);
-  if (dw >= 0)
-    H5Dclose(dw);
+  double omega = 0.0, angle = 0.0;
+  std::array<double, 2> x{c.params().x, c.params().y};
+  const bool ok = H5Lexists(f.get(), "/colloid", H5P_DEFAULT) > 0 &&
+                  read_values(f.get(), "/colloid/momentum", H5T_NATIVE_INT64, p.data()) &&
+                  read_values(f.get(), "/colloid/omega", H5T_NATIVE_DOUBLE, &omega);
   if (!ok)
     throw input_error(path + ": no readable /colloid/{momentum, omega}; allowed: a checkpoint "
                              "of a run with [colloid]");
-  c.set_state(p, omega);
+  const bool has_position = read_values(f.get(), "/colloid/position", H5T_NATIVE_DOUBLE, x.data());
+  if (!has_position && !c.params().held)
+    throw input_error(path + ": no /colloid/position (a checkpoint of a held disc) for a scene "
+                             "with colloid.held = false; allowed: a checkpoint of this scene");
+  read_values(f.get(), "/colloid/angle", H5T_NATIVE_DOUBLE, &angle);
+  c.set_state(p, omega, x, angle);
 }
 
-// The held colloid's VACF and virtual D(t): log lines and /observables/colloid_* (rank 0).
+// The colloid's VACF and (virtual, for a held disc) D(t): log lines and /observables/colloid_*
+// (rank 0).
 void finish_colloid(const FhpColloid &colloid, const ColloidCorrelations &stats,
                     const FhpLattice &lattice, bool closed, engine::Log &log,
                     io::ObservablesWriter *writer) {
@@ -256,15 +277,17 @@ void finish_colloid(const FhpColloid &colloid, const ColloidCorrelations &stats,
   const auto z = stats.vacf(), d = stats.diffusion();
   const auto zc = stats.vacf(plateau), dc = stats.diffusion(plateau);
   const auto v = colloid.centre_of_mass_velocity(lattice);
-  char line[600];
+  char line[700];
   const auto u = colloid.velocity();
+  const auto x = colloid.position();
   std::snprintf(line, sizeof line,
                 "colloid (velocity U of disc + gas inside, about the centre-of-mass velocity V "
-                "= (%.3g, %.3g)): <(U - V)^2> = %.4g; final U = (%.4g, %.4g), omega %.4g; %s; "
+                "= (%.3g, %.3g)): <(U - V)^2> = %.4g; final U = (%.4g, %.4g), omega %.4g, "
+                "centre (%.6g, %.6g); %s; "
                 "Z(%d) = %.4g +- %.2g (%.4g with the eq 22 analogue M/M_tot = %.4g); D(%d) = "
                 "%.4g +- %.2g (%.4g)",
                 closed ? v[0] : 0.0, closed ? v[1] : 0.0, stats.mean_square_velocity(), u[0], u[1],
-                colloid.omega(),
+                colloid.omega(), x[0], x[1],
                 closed ? "fluid + colloid momentum conserved exactly (checked at every sample)"
                        : "momentum not closed (walls, obstacles or force), V taken as 0",
                 static_cast<int>(z.lags.back()), z.value.back(), z.error.back(), zc.value.back(),
@@ -382,10 +405,13 @@ std::vector<std::string> describe(const scene::Scene &scene, MPI_Comm comm) {
   }
   if (scene.colloid) {
     const scene::LgcaColloid &c = *scene.colloid;
-    out.push_back("colloid (held in place, Ladd-Frenkel moving-boundary rules eq 23-27, 1 rank): "
+    out.push_back(std::string("colloid (") +
+                  (c.held ? "held in place" : "moving, centre advanced by U every step") +
+                  ", Ladd-Frenkel moving-boundary rules eq 23-27, replicated on every rank): "
                   "disc of radius " +
                   fmt("%.4g", c.radius) + " at (" + fmt("%.6g", c.x) + ", " + fmt("%.6g", c.y) +
-                  "), mass " + fmt("%.6g", c.mass) + "; velocity VACF lags 0.." +
+                  "), mass " + fmt("%.6g", c.mass) + ", initial velocity (" + fmt("%.4g", c.vx) +
+                  ", " + fmt("%.4g", c.vy) + "); velocity VACF lags 0.." +
                   std::to_string(c.max_lag) + ", virtual displacement D(t) every " +
                   std::to_string(c.displacement_every) + " up to " +
                   std::to_string(c.displacement_lag));
