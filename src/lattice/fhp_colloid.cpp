@@ -91,30 +91,39 @@ void FhpColloid::update_geometry(bool force) {
   }
   ++checks_;
   const double R = params_.radius;
-  const auto rel = [&](double px, double py) {
-    return std::array<double, 2>{std::remainder(px - x_, lx_), std::remainder(py - y_, ly_)};
-  };
-  const auto dist2 = [&](int x, int y) {
-    const auto r = rel(x + 0.5 * (y % 2), y * sqrt3_2);
-    return r[0] * r[0] + r[1] * r[1];
-  };
   // The bounding box of the disc plus one ring: every site within R, every neighbour of one.
   const std::vector<int> cols = wrapped_range(static_cast<int>(std::floor(x_ - R - 0.5)) - 1,
                                               static_cast<int>(std::ceil(x_ + R)) + 1, size_x_);
   const std::vector<int> rows =
       wrapped_range(static_cast<int>(std::floor((y_ - R) / sqrt3_2)) - 1,
                     static_cast<int>(std::ceil((y_ + R) / sqrt3_2)) + 1, size_y_);
+  const std::size_t nc = cols.size(), nr = rows.size();
+  // Offsets from the centre (nearest image): one remainder per column and per row; a site is
+  // then x offset + half a spacing on odd rows.
+  std::vector<double> ox(nc), oy(nr);
+  for (std::size_t i = 0; i < nc; ++i)
+    ox[i] = std::remainder(cols[i] - x_, lx_);
+  for (std::size_t j = 0; j < nr; ++j)
+    oy[j] = std::remainder(rows[j] * sqrt3_2 - y_, ly_);
+  const auto dist2 = [&](std::size_t i, std::size_t j) {
+    double dx = ox[i] + 0.5 * (rows[j] % 2);
+    if (dx > 0.5 * lx_)
+      dx -= lx_;
+    return dx * dx + oy[j] * oy[j];
+  };
   // Sites outside the box are more than R + 1.7 from the centre: a move below 0.5 cannot
   // bring them in.
   double margin = 0.5;
   std::vector<Site> inside;
-  std::vector<std::uint8_t> in(rows.size() * cols.size());
-  for (std::size_t j = 0; j < rows.size(); ++j)
-    for (std::size_t i = 0; i < cols.size(); ++i) {
-      const double d2 = dist2(cols[i], rows[j]);
+  std::vector<std::uint8_t> in(nr * nc);
+  for (std::size_t j = 0; j < nr; ++j)
+    for (std::size_t i = 0; i < nc; ++i) {
+      const double d2 = dist2(i, j);
       const bool s = d2 <= R * R;
-      in[j * cols.size() + i] = s;
-      margin = std::min(margin, std::abs(std::sqrt(d2) - R));
+      in[j * nc + i] = s;
+      // |d - R| < margin needs |d^2 - R^2| = |d - R| (d + R) < margin (2 R + margin)
+      if (std::abs(d2 - R * R) < margin * (2.0 * R + margin))
+        margin = std::min(margin, std::abs(std::sqrt(d2) - R));
       if (s)
         inside.push_back({cols[i], rows[j]});
     }
@@ -132,17 +141,33 @@ void FhpColloid::update_geometry(bool force) {
   inside_ = std::move(inside);
   links_.clear();
   sites_.clear();
+  // Where a global column / row sits in the box (-1: outside, not covered).
+  col_at_.assign(static_cast<std::size_t>(size_x_), -1);
+  row_at_.assign(static_cast<std::size_t>(size_y_), -1);
+  for (std::size_t i = 0; i < nc; ++i)
+    col_at_[cols[i]] = static_cast<int>(i);
+  for (std::size_t j = 0; j < nr; ++j)
+    row_at_[rows[j]] = static_cast<int>(j);
+  const auto covered = [&](int x, int y) {
+    const int i = col_at_[x], j = row_at_[y];
+    return i >= 0 && j >= 0 && in[static_cast<std::size_t>(j) * nc + i] != 0;
+  };
   struct Raw {
     Site a, b;
     int k;
     double mx, my;
   };
   std::vector<Raw> raw;
-  const auto covered = [&](int x, int y) { return dist2(x, y) <= R * R; };
-  for (std::size_t j = 0; j < rows.size(); ++j)
-    for (std::size_t i = 0; i < cols.size(); ++i) {
+  // Only sites within one spacing of the circle have a neighbour on the other side.
+  const double near_in = R > 1.01 ? (R - 1.01) * (R - 1.01) : -1.0,
+               near_out = (R + 1.01) * (R + 1.01);
+  for (std::size_t j = 0; j < nr; ++j)
+    for (std::size_t i = 0; i < nc; ++i) {
+      const double d2 = dist2(i, j);
+      if (d2 < near_in || d2 > near_out)
+        continue;
       const int x = cols[i], y = rows[j], o = y % 2;
-      const bool s = in[j * cols.size() + i] != 0;
+      const bool s = in[j * nc + i] != 0;
       const int nx[3] = {x + 1, x + o, x - 1 + o};
       const int ny[3] = {y, y + 1, y + 1};
       for (int k = 0; k < 3; ++k) {

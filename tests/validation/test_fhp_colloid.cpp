@@ -306,6 +306,41 @@ TEST(FhpColloid, MovingDiscConservesMomentumAcrossThePeriodicEdges) {
   EXPECT_GT(c.geometry_rebuilds(), 100); // the disc moved through many site sets
 }
 
+// The covered sites and boundary links of a moving disc, built from its bounding box and only
+// when the centre has moved farther than the smallest distance of a site from the circle,
+// are those of a brute-force pass over the whole lattice at every step, for small to
+// box-sized discs (R = 27.5: the box of the disc wraps onto itself) moving steadily (M = 1e6)
+// across the periodic edges.
+TEST(FhpColloid, MovingDiscGeometryMatchesABruteForcePass) {
+  FhpLattice l(params(), MPI_COMM_SELF);
+  l.initialise(0.5, 0.0);
+  for (const double r : {0.7, 4.2, 12.0, 27.5}) {
+    ColloidParams cp;
+    cp.x = 60.1;
+    cp.y = 3.3;
+    cp.radius = r;
+    cp.mass = 1e6;
+    cp.vx = 0.23;
+    cp.vy = -0.17;
+    cp.held = false;
+    cp.seed_for_rules = 21;
+    FhpColloid c(cp, l);
+    int mismatch = 0;
+    for (int i = 0; i < 200; ++i) {
+      c.apply(l);
+      const auto brute = covered_and_links(l, c.position(), r);
+      mismatch += brute[0] != c.inside_sites() || brute[1] != c.boundary_links();
+    }
+    std::printf("R = %.1f: %d sites, %d links at the end; covered set checked %lld times, "
+                "changed %lld times in 200 steps\n",
+                r, c.inside_sites(), c.boundary_links(),
+                static_cast<long long>(c.geometry_checks()),
+                static_cast<long long>(c.geometry_rebuilds()));
+    EXPECT_EQ(mismatch, 0) << "R = " << r;
+    EXPECT_GT(c.geometry_rebuilds(), 20) << "R = " << r;
+  }
+}
+
 // The moving disc's counterpart of HeldDiscHandsItsMomentumToTheFluid: started at U_x = 0.1
 // (M = 40) it is slowed by the fluid; averaged over 8 runs the mean U_x over steps 1500..2000
 // must be below half of U_0 (V_x = 3e-4 here).

@@ -113,6 +113,7 @@ private:
   std::vector<Site> sites_;  // end sites of the links, in (y, x) order
   std::vector<Site> inside_; // sites of the disc, in (y, x) order
   std::vector<std::uint8_t> patch_;
+  std::vector<int> col_at_, row_at_; // rebuild scratch: box index of a global column / row
   double x0_ = 0.0, y0_ = 0.0, margin_ = -1.0; // centre and its free distance at the last check
   std::int64_t checks_ = 0, rebuilds_ = 0;
   MomentumUnits momentum_{};
