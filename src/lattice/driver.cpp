@@ -224,7 +224,10 @@ ColloidParams colloid_params(const scene::Scene &scene) {
 // The colloid state in the checkpoint file beside the lattice: /colloid/{momentum, omega,
 // position, angle} (the centre moves with a moving disc; checkpoints of held discs written
 // before position and angle were stored have only the first two, and the scene's position).
-void write_colloid_state(const std::string &path, const FhpColloid &c) {
+// With the colloid's averages, also /colloid/correlations/{layout, values}
+// (ColloidCorrelations::State), so a restarted run continues them.
+void write_colloid_state(const std::string &path, const FhpColloid &c,
+                         const ColloidCorrelations *stats) {
   const io::h5::File f = io::h5::open_file(path, H5F_ACC_RDWR);
   const io::h5::Group g = io::h5::create_group(f.get(), "colloid", path);
   const MomentumUnits p = c.momentum();
@@ -233,6 +236,39 @@ void write_colloid_state(const std::string &path, const FhpColloid &c) {
   const std::array<double, 2> x = c.position();
   io::h5::write_dataset<double>(g.get(), "position", std::span<const double>(x), path);
   io::h5::write_scalar<double>(g.get(), "angle", c.angle(), path);
+  if (stats != nullptr) {
+    const ColloidCorrelations::State st = stats->state();
+    const io::h5::Group h = io::h5::create_group(g.get(), "correlations", path);
+    io::h5::write_dataset<std::int64_t>(h.get(), "layout", std::span<const std::int64_t>(st.layout),
+                                        path);
+    io::h5::write_dataset<double>(h.get(), "values", std::span<const double>(st.values), path);
+  }
+}
+
+// The colloid averages of a checkpoint, if it has them (empty layout otherwise).
+ColloidCorrelations::State read_colloid_correlations(const std::string &path) {
+  const io::h5::File f = io::h5::open_file(path);
+  ColloidCorrelations::State st;
+  const auto read = [&](const char *name, hid_t type, auto &out) {
+    if (H5Lexists(f.get(), "/colloid", H5P_DEFAULT) <= 0 ||
+        H5Lexists(f.get(), "/colloid/correlations", H5P_DEFAULT) <= 0 ||
+        H5Lexists(f.get(), name, H5P_DEFAULT) <= 0)
+      return false;
+    const hid_t d = H5Dopen2(f.get(), name, H5P_DEFAULT);
+    if (d < 0)
+      return false;
+    const hid_t space = H5Dget_space(d);
+    const hssize_t n = H5Sget_simple_extent_npoints(space);
+    H5Sclose(space);
+    out.resize(n > 0 ? static_cast<std::size_t>(n) : 0);
+    const bool ok = n > 0 && H5Dread(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) >= 0;
+    H5Dclose(d);
+    return ok;
+  };
+  if (!read("/colloid/correlations/layout", H5T_NATIVE_INT64, st.layout) ||
+      !read("/colloid/correlations/values", H5T_NATIVE_DOUBLE, st.values))
+    return {};
+  return st;
 }
 
 // Reads the dataset `name` of n values of `type` into `out`; false if it is missing.
@@ -611,13 +647,22 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, const std:
         static_cast<int>(scene.colloid->max_lag), static_cast<int>(scene.colloid->displacement_lag),
         static_cast<int>(scene.colloid->displacement_every), scene.run.steps - lattice.time(),
         closed ? colloid->centre_of_mass_velocity(lattice) : std::array<double, 2>{0.0, 0.0});
+  // A restart continues the colloid averages of the checkpoint (the same as one long run),
+  // unless the checkpoint has none or the scene changed their lags.
+  if (colloid_stats && restarting) {
+    if (colloid_stats->restore(read_colloid_correlations(restart_file)))
+      log.line("colloid VACF and D(t) continue the averages of the checkpoint");
+    else
+      log.line("colloid VACF and D(t) start afresh (the checkpoint has no averages of these "
+               "lags)");
+  }
   const std::int64_t sites = static_cast<std::int64_t>(lattice.size_x()) * lattice.size_y();
   auto save_checkpoint = [&] {
     Stopwatch watch;
     const std::string path = io::checkpoint_path(dir, lattice.time());
     const double bytes = write_lattice_checkpoint(path, lattice, scene.text);
     if (colloid && rank == 0)
-      write_colloid_state(path, *colloid);
+      write_colloid_state(path, *colloid, colloid_stats.get());
     if (rank == 0)
       io::prune_checkpoints(dir, scene.output.checkpoint_keep);
     char line[300];

@@ -99,22 +99,25 @@ code=$?
 check "restart with another scene exits 2 with one line (got $code)" \
   '[ "$code" -eq 2 ] && [ "$(grep -c . "$tmp/mismatch2.err")" -eq 1 ]'
 
-# Restart of the colloid: its momentum, angular velocity, centre and angle come back from the
-# checkpoint; the moving disc's first part runs on 2 ranks and continues on 1.
+# Restart of the colloid: its momentum, angular velocity, centre, angle and averages come back
+# from the checkpoint. A 600-step run on 2 ranks writes a checkpoint at step 300; continued from
+# it on 1 rank, the run ends in the same lattice, colloid and colloid observables.
 for cname in lgca_colloid_held lgca_colloid_moving; do
   # a 64 x 64 copy of the scene with a disc started at U = (0.3, 0.1) (a restart takes no
   # --set of scene keys other than run.steps and output.*)
   cscene=$tmp/$cname-small.toml
   sed -e 's/^size = .*/size = [64, 64]/' -e 's/^every = .*/every = 100/' \
+    -e 's/^max_lag = .*/max_lag = 50/' -e 's/^displacement_lag = .*/displacement_lag = 200/' \
+    -e 's/^displacement_every = .*/displacement_every = 10/' \
     -e 's/^position = .*/position = [60.0, 30.0]\nvelocity = [0.3, 0.1]/' \
     "$src/run/$cname.toml" > "$cscene"
-  "${mpi[@]}" -n 2 "$narrows" run "$cscene" --set run.steps=300 --out "$tmp/crs-$cname" \
+  "${mpi[@]}" -n 2 "$narrows" run "$cscene" --set run.steps=600 \
+    --set output.checkpoint_every=300 --out "$tmp/cstraight-$cname" > /dev/null 2>&1
+  check "$cname restart: straight run on 2 ranks exits 0" '[ $? -eq 0 ]'
+  "$narrows" run "$cscene" --set run.steps=600 \
+    --restart "$tmp/cstraight-$cname/checkpoint-0000000300.h5" --out "$tmp/crs-$cname" \
     > /dev/null 2>&1
-  check "$cname restart: first part on 2 ranks exits 0" '[ $? -eq 0 ]'
-  "$narrows" run "$cscene" --set run.steps=600 --restart "$tmp/crs-$cname" \
-    --out "$tmp/crs-$cname" > /dev/null 2>&1
-  check "$cname restart: continuation exits 0" '[ $? -eq 0 ]'
-  "$narrows" run "$cscene" --set run.steps=600 --out "$tmp/cstraight-$cname" > /dev/null 2>&1
+  check "$cname restart: continuation on 1 rank exits 0" '[ $? -eq 0 ]'
   check "$cname restart: bitwise the uninterrupted lattice and colloid" '/usr/bin/python3 - "$tmp" "$cname" <<PY
 import sys, h5py, numpy as np
 t, n = sys.argv[1], sys.argv[2]
@@ -122,25 +125,41 @@ a = h5py.File(t + "/crs-" + n + "/checkpoint-0000000600.h5", "r")
 b = h5py.File(t + "/cstraight-" + n + "/checkpoint-0000000600.h5", "r")
 k = "particles/lattice/state/value"
 assert np.array_equal(a[k][()], b[k][()])
-for q in ("momentum", "omega", "position", "angle"):
+for q in ("momentum", "omega", "position", "angle", "correlations/layout", "correlations/values"):
     assert np.array_equal(a["colloid"][q][()], b["colloid"][q][()]), q
 assert np.any(a["colloid/momentum"][()] != 0)
 moved = not np.array_equal(a["colloid/position"][()], [60.0, 30.0])
 assert moved == (n == "lgca_colloid_moving"), (n, a["colloid/position"][()])
 PY'
+  check "$cname restart: the colloid averages continue (observables bitwise the straight run)" \
+    'grep -q "continue the averages of the checkpoint" "$tmp/crs-$cname/log-0000000300.txt" && /usr/bin/python3 - "$tmp" "$cname" <<PY
+import sys, h5py, numpy as np
+t, n = sys.argv[1], sys.argv[2]
+a = h5py.File(t + "/crs-" + n + "/observables-0000000300.h5", "r")["observables"]
+b = h5py.File(t + "/cstraight-" + n + "/observables.h5", "r")["observables"]
+for g in ("colloid_vacf", "colloid_diffusion"):
+    assert sorted(a[g]) == sorted(b[g]), (list(a[g]), list(b[g]))
+    for k in a[g]:
+        assert np.array_equal(a[g][k][()], b[g][k][()], equal_nan=True), (g, k)
+assert a["colloid_vacf/error"][()][1] > 0  # ten blocks: a real comparison
+PY'
 done
-# A checkpoint written before the centre was stored (momentum and omega only) still restarts a
-# held disc.
-cp=$tmp/crs-lgca_colloid_held/checkpoint-0000000600.h5
-/usr/bin/python3 - "$cp" <<PY
+# A checkpoint written before the centre and the averages were stored (momentum and omega
+# only) still restarts a held disc; its averages start afresh.
+mkdir -p "$tmp/oldfmt"
+old=$tmp/oldfmt/checkpoint-0000000600.h5
+cp "$tmp/crs-lgca_colloid_held/checkpoint-0000000600.h5" "$old"
+/usr/bin/python3 - "$old" <<PY
 import sys, h5py
 f = h5py.File(sys.argv[1], "r+")
-del f["colloid/position"]
-del f["colloid/angle"]
+for k in ("position", "angle", "correlations"):
+    del f["colloid"][k]
 PY
-"$narrows" run "$tmp/lgca_colloid_held-small.toml" --set run.steps=700 --restart "$cp" \
+"$narrows" run "$tmp/lgca_colloid_held-small.toml" --set run.steps=700 --restart "$old" \
   --out "$tmp/old-ckpt" > /dev/null 2> "$tmp/old-ckpt.err"
 check "held colloid restarts from a checkpoint without /colloid/position" '[ $? -eq 0 ]'
+check "... and its averages start afresh" \
+  'grep -q "start afresh" "$tmp/old-ckpt/log-0000000600.txt"'
 
 # Bad input: exit 2, one line naming the key.
 bad() {

@@ -47,6 +47,18 @@ public:
   Curve diffusion(double plateau = 0.0) const;
   double mean_square_velocity() const; // <(U - V)^2>
 
+  // Everything add() has accumulated, for a checkpoint: `layout` = {max_lag, displacement_lag,
+  // every, blocks, block_steps, t}, `values` = reference, displacement, the two ring buffers
+  // and the block sums and counts, flattened. restore() takes them back (a continued run then
+  // averages as if it had not stopped) and returns false, changing nothing, if the layout's
+  // lags and blocks are not this object's.
+  struct State {
+    std::vector<std::int64_t> layout;
+    std::vector<double> values;
+  };
+  State state() const;
+  bool restore(const State &s);
+
 private:
   Curve finish(const std::vector<std::vector<double>> &sums,
                const std::vector<std::vector<double>> &counts, const std::vector<double> &lags,
