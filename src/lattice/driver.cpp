@@ -647,10 +647,17 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, const std:
         static_cast<int>(scene.colloid->max_lag), static_cast<int>(scene.colloid->displacement_lag),
         static_cast<int>(scene.colloid->displacement_every), scene.run.steps - lattice.time(),
         closed ? colloid->centre_of_mass_velocity(lattice) : std::array<double, 2>{0.0, 0.0});
-  // A restart continues the colloid averages of the checkpoint (the same as one long run),
-  // unless the checkpoint has none or the scene changed their lags.
+  // A restart with the checkpoint's run.steps continues the colloid averages of the checkpoint
+  // (the same as one long run); another run.steps starts a new averaging run (e.g. after an
+  // equilibration job), as does a checkpoint without averages or of other lags.
   if (colloid_stats && restarting) {
-    if (colloid_stats->restore(read_colloid_correlations(restart_file)))
+    const std::int64_t stored_steps =
+        scene::parse_scene(restart_info.scene_text, restart_file + ":/parameters/scene").run.steps;
+    if (stored_steps != scene.run.steps)
+      log.line(
+          "colloid VACF and D(t) start afresh (run.steps = " + std::to_string(scene.run.steps) +
+          ", the checkpoint's run had " + std::to_string(stored_steps) + ": a new averaging run)");
+    else if (colloid_stats->restore(read_colloid_correlations(restart_file)))
       log.line("colloid VACF and D(t) continue the averages of the checkpoint");
     else
       log.line("colloid VACF and D(t) start afresh (the checkpoint has no averages of these "

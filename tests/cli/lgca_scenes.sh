@@ -144,6 +144,13 @@ for g in ("colloid_vacf", "colloid_diffusion"):
 assert a["colloid_vacf/error"][()][1] > 0  # ten blocks: a real comparison
 PY'
 done
+# Another run.steps on the restart is a new averaging run (e.g. after an equilibration job).
+"$narrows" run "$tmp/lgca_colloid_moving-small.toml" --set run.steps=500 \
+  --restart "$tmp/cstraight-lgca_colloid_moving/checkpoint-0000000300.h5" --out "$tmp/crs-new" \
+  > /dev/null 2>&1
+check "restart with another run.steps: colloid averages start afresh" \
+  '[ $? -eq 0 ] && grep -q "start afresh (run.steps = 500" "$tmp/crs-new/log-0000000300.txt"'
+
 # A checkpoint written before the centre and the averages were stored (momentum and omega
 # only) still restarts a held disc; its averages start afresh.
 mkdir -p "$tmp/oldfmt"
