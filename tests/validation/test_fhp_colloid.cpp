@@ -1,6 +1,6 @@
-// The Ladd-Frenkel colloid in the FHP lattice gas (seed 002 §4.2-4.3, issue 6 point 4): total
-// momentum of fluid + colloid conserved exactly, and the moving-boundary rule handing the
-// colloid's momentum to the fluid.
+// The Ladd-Frenkel colloid in the FHP lattice gas (seed 002 §4.2-4.3, issue 6 point 4), held and
+// moving: total momentum of fluid + colloid conserved exactly, the moving-boundary rule handing
+// the colloid's momentum to the fluid, the moving disc's geometry and drift.
 #include "narrows/core/error.hpp"
 #include "narrows/lattice/colloid_correlations.hpp"
 #include "narrows/lattice/fhp_colloid.hpp"

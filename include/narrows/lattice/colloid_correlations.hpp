@@ -1,4 +1,4 @@
-// Time-origin averages of a held colloid's velocity (seed 002 §4.3, eq 5 and 29): the VACF
+// Time-origin averages of a colloid's velocity (seed 002 §4.3, eq 5 and 29): the VACF
 // <U(0).U(t)> for lags 0..max_lag and the virtual displacement X(t) = sum of U (one step per
 // unit time), its mean square <|X(t0 + t) - X(t0)|^2> and D(t) = msd / (4 t) at lags that are
 // multiples of `every`. Every step is a time origin. Errors: the run is cut into `blocks` equal
