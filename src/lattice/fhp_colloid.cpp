@@ -61,6 +61,12 @@ FhpColloid::FhpColloid(const ColloidParams &params, const FhpLattice &lattice)
     throw input_error("colloid.held = false with lattice walls or obstacles is not available "
                       "(the disc has no contact rule with solids); allowed: held = true, or no "
                       "walls and obstacles");
+  // 1/sqrt(3) is the covering radius of the triangular lattice: a smaller moving disc would
+  // cover no site at some positions and coast through the gas untouched.
+  if (!params.held && params.radius < 0.5774)
+    throw input_error("colloid.radius = " + std::to_string(params.radius) +
+                      " with colloid.held = false covers no site at some positions; allowed: "
+                      "radius >= 0.5774 (1/sqrt(3)) for a moving disc");
   x_ = wrap(params.x, lx_);
   y_ = wrap(params.y, ly_);
   update_geometry(true);

@@ -220,6 +220,12 @@ LgcaColloid parse_colloid(const toml::value &sec, const Lgca &lattice, const Sec
                    "true (held in place, seed 002 §4.3) or false (a moving disc)");
     out.held = v->as_boolean();
   }
+  // 1/sqrt(3), the covering radius of the lattice: a smaller moving disc covers no site at
+  // some positions.
+  if (!out.held && out.radius < 0.5774)
+    c.fail("colloid.radius", "colloid.radius = " + float_text(out.radius) +
+                                 " with colloid.held = false covers no site at some positions; "
+                                 "allowed: radius >= 0.5774 (1/sqrt(3)) for a moving disc");
   // A moving disc has no contact rule with solid sites: it would sail into them.
   if (!out.held && (lattice.walls || !lattice.obstacles.empty()))
     c.fail("colloid.held", "colloid.held = false with lattice.walls = true or lattice.obstacles "

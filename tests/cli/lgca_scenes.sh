@@ -190,6 +190,8 @@ bad "dhumieres-1d without [tagged]" "[tagged]" --set lattice.model=dhumieres-1d 
 bad "zero-momentum on FHP" "lattice.initial" --set lattice.initial=zero-momentum
 bad "moving colloid with walls" "colloid.held" --set 'colloid.position=[10.0,10.0]' \
   --set colloid.held=false --set lattice.walls=true
+bad "moving colloid smaller than 1/sqrt(3)" "colloid.radius" \
+  --set 'colloid.position=[10.0,10.0]' --set colloid.held=false --set colloid.radius=0.55
 bad "colloid.held not a boolean" "colloid.held" --set 'colloid.position=[10.0,10.0]' \
   --set colloid.held=3
 bad "colloid without position" "colloid.position" --set colloid.radius=2.5

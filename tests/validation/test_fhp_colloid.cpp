@@ -429,8 +429,9 @@ TEST(FhpColloid, MovingDiscDriftsWithTheCentreOfMassVelocity) {
   EXPECT_GT(mx, 0.5 * v[0]);
 }
 
-// Refused geometry: a disc as wide as the box, and a moving disc with solids.
-TEST(FhpColloid, RefusesADiscWiderThanTheBoxAndAMovingDiscWithSolids) {
+// Refused geometry: a disc as wide as the box, a moving disc with solids, a moving disc that
+// can cover no site.
+TEST(FhpColloid, RefusesDiscsItCannotRun) {
   FhpLattice l(params(), MPI_COMM_SELF);
   const auto make = [](const ColloidParams &p, const FhpLattice &lattice) {
     const FhpColloid c(p, lattice);
@@ -451,4 +452,10 @@ TEST(FhpColloid, RefusesADiscWiderThanTheBoxAndAMovingDiscWithSolids) {
   EXPECT_THROW(make(cp, walled), narrows::Error);
   cp.held = true;
   EXPECT_NO_THROW(make(cp, walled));
+  // a moving disc must cover a site wherever it is: radius >= 1/sqrt(3)
+  cp.held = false;
+  cp.radius = 0.55;
+  EXPECT_THROW(make(cp, l), narrows::Error);
+  cp.radius = 0.58;
+  EXPECT_NO_THROW(make(cp, l));
 }
