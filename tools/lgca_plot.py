@@ -11,14 +11,18 @@
   error, the power-law fit Z ~ t^-a over [--tail-first, --tail-last] (weighted by the error;
   prints a and its error) and eq 19 at t = 1; the 1D model on linear axes with the plateau
   -(1 - d)/N of eq 22 (seed 002 fig 1);
-- held colloid (/observables/colloid_vacf, colloid_diffusion; seed 002 fig 3): the canonical
+- colloid, held or moving (/observables/colloid_vacf, colloid_diffusion; seed 002 fig 3): the canonical
   VACF Z(t) (of U - V, V the conserved centre-of-mass velocity, + M/M_tot: the eq 22 analogue)
   on log-log axes with the unsteady-Stokes theory of a disc in a 2D fluid (held_disc_vacf) and
   its asymptote M/(8 pi rho nu t); prints local exponents over --colloid-windows (Z averaged
   over +-10 % in t, jackknife errors over the blocks of all files); D(t) against ln t with the
   straight-line fit over [--colloid-first, --colloid-last], R^2, the curvature d2D/d(ln t)^2
-  (jackknife errors) and the theory's slope. Several files (the segments of a chained run,
-  observables-<step>.h5) are averaged with equal weights.
+  (jackknife errors) and the theory's slope. The theory is that of a free disc without the
+  2D renormalisation (D(t) in D + nu, seed 002 §4.3): the held disc's, and for a moving disc
+  a reference it departs from at late times. A chained run continues its averages (they are in
+  the checkpoint): give the last segment's observables-<step>.h5 only. Several files (e.g.
+  runs with other seeds, or segments written before the averages were checkpointed) are
+  averaged with equal weights.
 
 Usage: tools/lgca_plot.py OUT/observables.h5 [MORE.h5 ...] [--png FILE] [--first T0] [--last T1]
                           [--tail-first T0] [--tail-last T1] [--colloid-first T0] [--colloid-last T1]
@@ -198,6 +202,8 @@ def colloid_panel(ax, name, groups, args, scene, f0):
     m, m_tot, rho, nu0 = colloid_theory(scene, f0)
     nu = args.colloid_nu if args.colloid_nu is not None else nu0
     a = args.colloid_a if args.colloid_a is not None else scene["colloid"]["radius"]
+    held = scene["colloid"].get("held", True)
+    what = "held colloid" if held else "moving colloid"
     u2 = np.mean([g["mean_square_velocity"][()][0] for g in groups]) if name == "colloid_vacf" \
         else np.mean([f["observables/colloid_vacf/mean_square_velocity"][()][0]
                       for f in [g.file for g in groups]])
@@ -210,7 +216,7 @@ def colloid_panel(ax, name, groups, args, scene, f0):
         theory = held_disc_vacf(tt, m, a, rho, nu)
         err = blocks.std(axis=0, ddof=1) / math.sqrt(len(blocks)) if blocks is not None else None
         ax.errorbar(tt, v[lags > 0], yerr=None if err is None else err[lags > 0], fmt=".", ms=2,
-                    lw=0.3, label=f"Z(t), held colloid, {tag}")
+                    lw=0.3, label=f"Z(t), {what}, {tag}")
         ax.loglog(tt, theory, "-", color="C2", lw=1,
                   label=f"unsteady Stokes disc, M = {m:.0f}, a = {a:g}, nu = {nu:.4f}")
         ta = tt[tt >= 100]
@@ -241,7 +247,7 @@ def colloid_panel(ax, name, groups, args, scene, f0):
         ax.set_yscale("log")
         ax.set_xlabel("t")
         ax.set_ylabel("Z(t) = <dU(0).dU(t)> / <dU^2> (+ M/M_tot)")
-        ax.set_title("held colloid: velocity autocorrelation")
+        ax.set_title(f"{what}: velocity autocorrelation")
     else:
         ok = sel & (lags > 0)
         x = np.log(lags[ok])
@@ -273,7 +279,8 @@ def colloid_panel(ax, name, groups, args, scene, f0):
             ax.plot(x, dt, "--", color="C2", label="unsteady Stokes disc")
         ax.set_xlabel("ln t")
         ax.set_ylabel("D(t)")
-        ax.set_title("held colloid: virtual diffusion coefficient")
+        ax.set_title("held colloid: virtual diffusion coefficient" if held
+                     else "moving colloid: diffusion coefficient")
     ax.legend(fontsize=7)
 
 

@@ -111,4 +111,47 @@ ColloidCorrelations::Curve ColloidCorrelations::diffusion(double plateau) const 
   return c;
 }
 
+ColloidCorrelations::State ColloidCorrelations::state() const {
+  State s;
+  s.layout = {max_lag_, dlag_, every_, blocks_, block_steps_, t_};
+  const auto put = [&s](const double *p, std::size_t n) {
+    s.values.insert(s.values.end(), p, p + n);
+  };
+  put(reference_.data(), 2);
+  put(x_.data(), 2);
+  for (const auto &v : u_hist_)
+    put(v.data(), 2);
+  for (const auto &v : x_hist_)
+    put(v.data(), 2);
+  for (const auto *table : {&vacf_sum_, &vacf_n_, &msd_sum_, &msd_n_})
+    for (const auto &row : *table)
+      put(row.data(), row.size());
+  return s;
+}
+
+bool ColloidCorrelations::restore(const State &s) {
+  if (s.layout.size() != 6 || s.layout[0] != max_lag_ || s.layout[1] != dlag_ ||
+      s.layout[2] != every_ || s.layout[3] != blocks_ || s.layout[4] < 1 || s.layout[5] < 0 ||
+      s.values.size() != state().values.size())
+    return false;
+  block_steps_ = s.layout[4];
+  t_ = s.layout[5];
+  std::size_t at = 0;
+  const auto take = [&](double *p, std::size_t n) {
+    std::copy(s.values.begin() + static_cast<std::ptrdiff_t>(at),
+              s.values.begin() + static_cast<std::ptrdiff_t>(at + n), p);
+    at += n;
+  };
+  take(reference_.data(), 2);
+  take(x_.data(), 2);
+  for (auto &v : u_hist_)
+    take(v.data(), 2);
+  for (auto &v : x_hist_)
+    take(v.data(), 2);
+  for (auto *table : {&vacf_sum_, &vacf_n_, &msd_sum_, &msd_n_})
+    for (auto &row : *table)
+      take(row.data(), row.size());
+  return true;
+}
+
 } // namespace narrows::lattice

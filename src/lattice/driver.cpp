@@ -94,6 +94,9 @@ void check_restart_lattice(const scene::Scene &given, const io::CheckpointInfo &
     differ("colloid.position[1]", g.y, s.y);
     differ("colloid.radius", g.radius, s.radius);
     differ("colloid.mass", g.mass, s.mass);
+    differ("colloid.held", g.held, s.held);
+    differ("colloid.velocity[0]", g.vx, s.vx);
+    differ("colloid.velocity[1]", g.vy, s.vy);
   }
   diff.refuse(given.file + ": ", checkpoint);
 }
@@ -218,35 +221,89 @@ ColloidParams colloid_params(const scene::Scene &scene) {
   return p;
 }
 
-// The colloid state in the checkpoint file beside the lattice: /colloid/{momentum, omega}.
-void write_colloid_state(const std::string &path, const FhpColloid &c) {
+// The colloid state in the checkpoint file beside the lattice: /colloid/{momentum, omega,
+// position, angle} (the centre moves with a moving disc; checkpoints of held discs written
+// before position and angle were stored have only the first two, and the scene's position).
+// With the colloid's averages, also /colloid/correlations/{layout, values}
+// (ColloidCorrelations::State), so a restarted run continues them.
+void write_colloid_state(const std::string &path, const FhpColloid &c,
+                         const ColloidCorrelations *stats) {
   const io::h5::File f = io::h5::open_file(path, H5F_ACC_RDWR);
   const io::h5::Group g = io::h5::create_group(f.get(), "colloid", path);
   const MomentumUnits p = c.momentum();
   io::h5::write_dataset<std::int64_t>(g.get(), "momentum", std::span<const std::int64_t>(p), path);
   io::h5::write_scalar<double>(g.get(), "omega", c.omega(), path);
+  const std::array<double, 2> x = c.position();
+  io::h5::write_dataset<double>(g.get(), "position", std::span<const double>(x), path);
+  io::h5::write_scalar<double>(g.get(), "angle", c.angle(), path);
+  if (stats != nullptr) {
+    const ColloidCorrelations::State st = stats->state();
+    const io::h5::Group h = io::h5::create_group(g.get(), "correlations", path);
+    io::h5::write_dataset<std::int64_t>(h.get(), "layout", std::span<const std::int64_t>(st.layout),
+                                        path);
+    io::h5::write_dataset<double>(h.get(), "values", std::span<const double>(st.values), path);
+  }
+}
+
+// The colloid averages of a checkpoint, if it has them (empty layout otherwise).
+ColloidCorrelations::State read_colloid_correlations(const std::string &path) {
+  const io::h5::File f = io::h5::open_file(path);
+  ColloidCorrelations::State st;
+  const auto read = [&](const char *name, hid_t type, auto &out) {
+    if (H5Lexists(f.get(), "/colloid", H5P_DEFAULT) <= 0 ||
+        H5Lexists(f.get(), "/colloid/correlations", H5P_DEFAULT) <= 0 ||
+        H5Lexists(f.get(), name, H5P_DEFAULT) <= 0)
+      return false;
+    const hid_t d = H5Dopen2(f.get(), name, H5P_DEFAULT);
+    if (d < 0)
+      return false;
+    const hid_t space = H5Dget_space(d);
+    const hssize_t n = H5Sget_simple_extent_npoints(space);
+    H5Sclose(space);
+    out.resize(n > 0 ? static_cast<std::size_t>(n) : 0);
+    const bool ok = n > 0 && H5Dread(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) >= 0;
+    H5Dclose(d);
+    return ok;
+  };
+  if (!read("/colloid/correlations/layout", H5T_NATIVE_INT64, st.layout) ||
+      !read("/colloid/correlations/values", H5T_NATIVE_DOUBLE, st.values))
+    return {};
+  return st;
+}
+
+// Reads the dataset `name` of n values of `type` into `out`; false if it is missing.
+bool read_values(hid_t file, const char *name, hid_t type, void *out) {
+  if (H5Lexists(file, name, H5P_DEFAULT) <= 0)
+    return false;
+  const hid_t d = H5Dopen2(file, name, H5P_DEFAULT);
+  if (d < 0)
+    return false;
+  const bool ok = H5Dread(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out) >= 0;
+  H5Dclose(d);
+  return ok;
 }
 
 void read_colloid_state(const std::string &path, FhpColloid &c) {
   const io::h5::File f = io::h5::open_file(path);
   MomentumUnits p{};
-  double omega = 0.0;
-  const hid_t dp = H5Dopen2(f.get(), "/colloid/momentum", H5P_DEFAULT);
-  const hid_t dw = dp < 0 ? -1 : H5Dopen2(f.get(), "/colloid/omega", H5P_DEFAULT);
-  const bool ok = dp >= 0 && dw >= 0 &&
-                  H5Dread(dp, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, p.data()) >= 0 &&
-                  H5Dread(dw, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &omega) >= 0;
-  if (dp >= 0)
-    H5Dclose(dp);
-  if (dw >= 0)
-    H5Dclose(dw);
+  double omega = 0.0, angle = 0.0;
+  std::array<double, 2> x{c.params().x, c.params().y};
+  const bool ok = H5Lexists(f.get(), "/colloid", H5P_DEFAULT) > 0 &&
+                  read_values(f.get(), "/colloid/momentum", H5T_NATIVE_INT64, p.data()) &&
+                  read_values(f.get(), "/colloid/omega", H5T_NATIVE_DOUBLE, &omega);
   if (!ok)
     throw input_error(path + ": no readable /colloid/{momentum, omega}; allowed: a checkpoint "
                              "of a run with [colloid]");
-  c.set_state(p, omega);
+  const bool has_position = read_values(f.get(), "/colloid/position", H5T_NATIVE_DOUBLE, x.data());
+  if (!has_position && !c.params().held)
+    throw input_error(path + ": no /colloid/position (a checkpoint of a held disc) for a scene "
+                             "with colloid.held = false; allowed: a checkpoint of this scene");
+  read_values(f.get(), "/colloid/angle", H5T_NATIVE_DOUBLE, &angle);
+  c.set_state(p, omega, x, angle);
 }
 
-// The held colloid's VACF and virtual D(t): log lines and /observables/colloid_* (rank 0).
+// The colloid's VACF and (virtual, for a held disc) D(t): log lines and /observables/colloid_*
+// (rank 0).
 void finish_colloid(const FhpColloid &colloid, const ColloidCorrelations &stats,
                     const FhpLattice &lattice, bool closed, engine::Log &log,
                     io::ObservablesWriter *writer) {
@@ -256,15 +313,17 @@ void finish_colloid(const FhpColloid &colloid, const ColloidCorrelations &stats,
   const auto z = stats.vacf(), d = stats.diffusion();
   const auto zc = stats.vacf(plateau), dc = stats.diffusion(plateau);
   const auto v = colloid.centre_of_mass_velocity(lattice);
-  char line[600];
+  char line[700];
   const auto u = colloid.velocity();
+  const auto x = colloid.position();
   std::snprintf(line, sizeof line,
                 "colloid (velocity U of disc + gas inside, about the centre-of-mass velocity V "
-                "= (%.3g, %.3g)): <(U - V)^2> = %.4g; final U = (%.4g, %.4g), omega %.4g; %s; "
+                "= (%.3g, %.3g)): <(U - V)^2> = %.4g; final U = (%.4g, %.4g), omega %.4g, "
+                "centre (%.6g, %.6g); %s; "
                 "Z(%d) = %.4g +- %.2g (%.4g with the eq 22 analogue M/M_tot = %.4g); D(%d) = "
                 "%.4g +- %.2g (%.4g)",
                 closed ? v[0] : 0.0, closed ? v[1] : 0.0, stats.mean_square_velocity(), u[0], u[1],
-                colloid.omega(),
+                colloid.omega(), x[0], x[1],
                 closed ? "fluid + colloid momentum conserved exactly (checked at every sample)"
                        : "momentum not closed (walls, obstacles or force), V taken as 0",
                 static_cast<int>(z.lags.back()), z.value.back(), z.error.back(), zc.value.back(),
@@ -382,10 +441,13 @@ std::vector<std::string> describe(const scene::Scene &scene, MPI_Comm comm) {
   }
   if (scene.colloid) {
     const scene::LgcaColloid &c = *scene.colloid;
-    out.push_back("colloid (held in place, Ladd-Frenkel moving-boundary rules eq 23-27, 1 rank): "
+    out.push_back(std::string("colloid (") +
+                  (c.held ? "held in place" : "moving, centre advanced by U every step") +
+                  ", Ladd-Frenkel moving-boundary rules eq 23-27, replicated on every rank): "
                   "disc of radius " +
                   fmt("%.4g", c.radius) + " at (" + fmt("%.6g", c.x) + ", " + fmt("%.6g", c.y) +
-                  "), mass " + fmt("%.6g", c.mass) + "; velocity VACF lags 0.." +
+                  "), mass " + fmt("%.6g", c.mass) + ", initial velocity (" + fmt("%.4g", c.vx) +
+                  ", " + fmt("%.4g", c.vy) + "); velocity VACF lags 0.." +
                   std::to_string(c.max_lag) + ", virtual displacement D(t) every " +
                   std::to_string(c.displacement_every) + " up to " +
                   std::to_string(c.displacement_lag));
@@ -585,13 +647,29 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, const std:
         static_cast<int>(scene.colloid->max_lag), static_cast<int>(scene.colloid->displacement_lag),
         static_cast<int>(scene.colloid->displacement_every), scene.run.steps - lattice.time(),
         closed ? colloid->centre_of_mass_velocity(lattice) : std::array<double, 2>{0.0, 0.0});
+  // A restart with the checkpoint's run.steps continues the colloid averages of the checkpoint
+  // (the same as one long run); another run.steps starts a new averaging run (e.g. after an
+  // equilibration job), as does a checkpoint without averages or of other lags.
+  if (colloid_stats && restarting) {
+    const std::int64_t stored_steps =
+        scene::parse_scene(restart_info.scene_text, restart_file + ":/parameters/scene").run.steps;
+    if (stored_steps != scene.run.steps)
+      log.line(
+          "colloid VACF and D(t) start afresh (run.steps = " + std::to_string(scene.run.steps) +
+          ", the checkpoint's run had " + std::to_string(stored_steps) + ": a new averaging run)");
+    else if (colloid_stats->restore(read_colloid_correlations(restart_file)))
+      log.line("colloid VACF and D(t) continue the averages of the checkpoint");
+    else
+      log.line("colloid VACF and D(t) start afresh (the checkpoint has no averages of these "
+               "lags)");
+  }
   const std::int64_t sites = static_cast<std::int64_t>(lattice.size_x()) * lattice.size_y();
   auto save_checkpoint = [&] {
     Stopwatch watch;
     const std::string path = io::checkpoint_path(dir, lattice.time());
     const double bytes = write_lattice_checkpoint(path, lattice, scene.text);
     if (colloid && rank == 0)
-      write_colloid_state(path, *colloid);
+      write_colloid_state(path, *colloid, colloid_stats.get());
     if (rank == 0)
       io::prune_checkpoints(dir, scene.output.checkpoint_keep);
     char line[300];

@@ -215,11 +215,22 @@ LgcaColloid parse_colloid(const toml::value &sec, const Lgca &lattice, const Sec
   if (const toml::value *v = find(&sec, "mass"))
     out.mass = c.number(*v, "colloid.mass", "a number > 0", [](double m) { return m > 0.0; });
   if (const toml::value *v = find(&sec, "held")) {
-    if (!v->is_boolean() || !v->as_boolean())
-      c.fail("colloid.held", "colloid.held = " + repr(*v) +
-                                 " is not available in this version (a moving disc); allowed: "
-                                 "true (the held colloid of seed 002 §4.3)");
+    if (!v->is_boolean())
+      c.wrong_type("colloid.held", *v,
+                   "true (held in place, seed 002 §4.3) or false (a moving disc)");
+    out.held = v->as_boolean();
   }
+  // 1/sqrt(3), the covering radius of the lattice: a smaller moving disc covers no site at
+  // some positions.
+  if (!out.held && out.radius < 0.5774)
+    c.fail("colloid.radius", "colloid.radius = " + float_text(out.radius) +
+                                 " with colloid.held = false covers no site at some positions; "
+                                 "allowed: radius >= 0.5774 (1/sqrt(3)) for a moving disc");
+  // A moving disc has no contact rule with solid sites: it would sail into them.
+  if (!out.held && (lattice.walls || !lattice.obstacles.empty()))
+    c.fail("colloid.held", "colloid.held = false with lattice.walls = true or lattice.obstacles "
+                           "is not available (no disc-solid contact); allowed: held = true, or "
+                           "a moving disc without walls and obstacles");
   const auto lag = [&](const char *key, std::int64_t &slot) {
     if (const toml::value *v = find(&sec, key))
       slot = c.integer(*v, std::string("colloid.") + key, "an integer from 1 to 10000000",

@@ -1,6 +1,7 @@
-// The Ladd-Frenkel colloid in the FHP lattice gas (seed 002 §4.2-4.3, issue 6 point 4): total
-// momentum of fluid + colloid conserved exactly, and the moving-boundary rule handing the
-// colloid's momentum to the fluid.
+// The Ladd-Frenkel colloid in the FHP lattice gas (seed 002 §4.2-4.3, issue 6 point 4), held and
+// moving: total momentum of fluid + colloid conserved exactly, the moving-boundary rule handing
+// the colloid's momentum to the fluid, the moving disc's geometry and drift.
+#include "narrows/core/error.hpp"
 #include "narrows/lattice/colloid_correlations.hpp"
 #include "narrows/lattice/fhp_colloid.hpp"
 #include "narrows/lattice/fhp_lattice.hpp"
@@ -9,6 +10,7 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -220,4 +222,240 @@ TEST(FhpColloid, HeldDiscVacfTailGoesAsInverseTime) {
               smooth(z.value.data(), t2), t1, t2, n, sigma, b);
   EXPECT_LT(sigma, 0.15); // the test must be able to tell t^-1 from the old t^-0.5
   EXPECT_NEAR(n, 1.0, 3.0 * sigma + 0.05);
+}
+
+namespace {
+
+// Brute force over the whole lattice: sites within R of the centre and the links with one end
+// inside (what the colloid builds from its bounding box only).
+std::array<int, 2> covered_and_links(const FhpLattice &l, std::array<double, 2> c, double r) {
+  const int X = l.size_x(), Y = l.size_y();
+  const double s = 0.8660254037844386, lx = X, ly = Y * s;
+  const auto in = [&](int x, int y) {
+    const double dx = std::remainder(x + 0.5 * (y % 2) - c[0], lx);
+    const double dy = std::remainder(y * s - c[1], ly);
+    return dx * dx + dy * dy <= r * r;
+  };
+  int sites = 0, links = 0;
+  for (int y = 0; y < Y; ++y)
+    for (int x = 0; x < X; ++x) {
+      const int o = y % 2;
+      sites += in(x, y);
+      const int nx[3] = {x + 1, x + o, x - 1 + o};
+      for (int k = 0; k < 3; ++k)
+        links += in(x, y) != in((nx[k] + X) % X, (y + (k > 0)) % Y);
+    }
+  return {sites, links};
+}
+
+} // namespace
+
+// A moving disc (held = false) started at U = (0.3, 0.1) next to the corner of the periodic
+// box: it crosses both edges. At every step of 3000: fluid + colloid momentum is conserved
+// exactly (covering and uncovering sites moves nothing: the gas fills both sides), the centre
+// is the start plus the sum of the velocities after each step (wrapped), and the covered sites
+// and boundary links built from the bounding box are those of a brute-force pass over the
+// whole lattice.
+TEST(FhpColloid, MovingDiscConservesMomentumAcrossThePeriodicEdges) {
+  FhpLattice l(params(), MPI_COMM_SELF);
+  l.initialise(0.5, 0.0);
+  const double lx = l.size_x(), ly = l.size_y() * 0.8660254037844386;
+  ColloidParams cp;
+  cp.x = 62.7;
+  cp.y = ly - 1.3;
+  cp.radius = 2.5;
+  cp.mass = 200.0;
+  cp.vx = 0.3;
+  cp.vy = 0.1;
+  cp.held = false;
+  cp.seed_for_rules = 21;
+  FhpColloid c(cp, l);
+  const auto f0 = fluid_momentum(l);
+  const auto c0 = c.momentum();
+  double ux = cp.x, uy = cp.y; // unwrapped: start + sum of velocities
+  int wraps_x = 0, wraps_y = 0, geometry_mismatch = 0;
+  auto last = c.position();
+  for (int i = 0; i < 3000; ++i) {
+    c.apply(l);
+    const auto v = c.velocity();
+    ux += v[0];
+    uy += v[1];
+    const auto x = c.position();
+    wraps_x += std::abs(x[0] - last[0]) > 0.5 * lx;
+    wraps_y += std::abs(x[1] - last[1]) > 0.5 * ly;
+    last = x;
+    ASSERT_NEAR(std::remainder(ux - x[0], lx), 0.0, 1e-9) << "step " << i;
+    ASSERT_NEAR(std::remainder(uy - x[1], ly), 0.0, 1e-9) << "step " << i;
+    ASSERT_TRUE(x[0] >= 0.0 && x[0] < lx && x[1] >= 0.0 && x[1] < ly) << "step " << i;
+    const auto brute = covered_and_links(l, x, cp.radius);
+    geometry_mismatch += brute[0] != c.inside_sites() || brute[1] != c.boundary_links();
+    l.step();
+    const auto f = fluid_momentum(l);
+    const auto m = c.momentum();
+    ASSERT_EQ(f[0] + m[0], f0[0] + c0[0]) << "step " << i;
+    ASSERT_EQ(f[1] + m[1], f0[1] + c0[1]) << "step " << i;
+  }
+  std::printf("moving disc, M = 200, U0 = (0.3, 0.1): %d + %d crossings of the x and y edges, "
+              "travelled (%.2f, %.2f), covered set checked %lld times, changed %lld times in "
+              "3000 steps, final U = (%.4f, %.4f)\n",
+              wraps_x, wraps_y, ux - cp.x, uy - cp.y, static_cast<long long>(c.geometry_checks()),
+              static_cast<long long>(c.geometry_rebuilds()), c.velocity()[0], c.velocity()[1]);
+  EXPECT_EQ(geometry_mismatch, 0);
+  EXPECT_GE(wraps_x, 1);
+  EXPECT_GE(wraps_y, 1);
+  EXPECT_GT(c.geometry_rebuilds(), 100); // the disc moved through many site sets
+}
+
+// The covered sites and boundary links of a moving disc, built from its bounding box and only
+// when the centre has moved farther than the smallest distance of a site from the circle,
+// are those of a brute-force pass over the whole lattice at every step, for small to
+// box-sized discs (R = 27.5: the box of the disc wraps onto itself) moving steadily (M = 1e6)
+// across the periodic edges.
+TEST(FhpColloid, MovingDiscGeometryMatchesABruteForcePass) {
+  FhpLattice l(params(), MPI_COMM_SELF);
+  l.initialise(0.5, 0.0);
+  for (const double r : {0.7, 4.2, 12.0, 27.5}) {
+    ColloidParams cp;
+    cp.x = 60.1;
+    cp.y = 3.3;
+    cp.radius = r;
+    cp.mass = 1e6;
+    cp.vx = 0.23;
+    cp.vy = -0.17;
+    cp.held = false;
+    cp.seed_for_rules = 21;
+    FhpColloid c(cp, l);
+    int mismatch = 0;
+    for (int i = 0; i < 200; ++i) {
+      c.apply(l);
+      const auto brute = covered_and_links(l, c.position(), r);
+      mismatch += brute[0] != c.inside_sites() || brute[1] != c.boundary_links();
+    }
+    std::printf("R = %.1f: %d sites, %d links at the end; covered set checked %lld times, "
+                "changed %lld times in 200 steps\n",
+                r, c.inside_sites(), c.boundary_links(),
+                static_cast<long long>(c.geometry_checks()),
+                static_cast<long long>(c.geometry_rebuilds()));
+    EXPECT_EQ(mismatch, 0) << "R = " << r;
+    EXPECT_GT(c.geometry_rebuilds(), 20) << "R = " << r;
+  }
+}
+
+// The moving disc's counterpart of HeldDiscHandsItsMomentumToTheFluid: started at U_x = 0.1
+// (M = 40) it is slowed by the fluid; averaged over 8 runs the mean U_x over steps 1500..2000
+// must be below half of U_0 (V_x = 3e-4 here).
+TEST(FhpColloid, MovingDiscHandsItsMomentumToTheFluid) {
+  double late = 0.0;
+  const double u0 = 0.1;
+  for (int run = 0; run < 8; ++run) {
+    auto p = params();
+    p.seed = 100 + run;
+    FhpLattice l(p, MPI_COMM_SELF);
+    l.initialise(0.5, 0.0);
+    ColloidParams cp;
+    cp.x = 32.0;
+    cp.y = 27.0;
+    cp.mass = 40.0;
+    cp.vx = u0;
+    cp.held = false;
+    cp.seed_for_rules = p.seed;
+    FhpColloid c(cp, l);
+    for (int i = 0; i < 2000; ++i) {
+      c.apply(l);
+      l.step();
+      if (i >= 1500)
+        late += c.velocity()[0] / (500.0 * 8);
+    }
+  }
+  std::printf("moving disc, M = 40, U0 = %.2f: mean U_x over steps 1500..2000 = %.4f\n", u0, late);
+  EXPECT_LT(std::abs(late), 0.5 * u0);
+}
+
+// A free disc shares the box's momentum: started at U_x = 0.3 (M = 680, V_x = 0.0157) it
+// relaxes to the centre-of-mass velocity V and then drifts with it. Over 12 blocks of 5000
+// steps after 5000 steps of relaxation (the relaxation time M / xi is a few hundred steps),
+// the mean composite velocity and the centre's displacement per step (the disc's own velocity
+// summed: what moves the centre) both equal V_x within 4 standard errors of the block means,
+// and are not about zero.
+TEST(FhpColloid, MovingDiscDriftsWithTheCentreOfMassVelocity) {
+  FhpLattice l(params(), MPI_COMM_SELF);
+  l.initialise(0.5, 0.0);
+  const double lx = l.size_x();
+  ColloidParams cp;
+  cp.x = 32.0;
+  cp.y = 27.0;
+  cp.mass = 680.0;
+  cp.vx = 0.3;
+  cp.held = false;
+  cp.seed_for_rules = 21;
+  FhpColloid c(cp, l);
+  const auto v = c.centre_of_mass_velocity(l);
+  EXPECT_GT(v[0], 0.01);
+  for (int i = 0; i < 5000; ++i) {
+    c.apply(l);
+    l.step();
+  }
+  const int blocks = 12, block = 5000;
+  double su = 0.0, su2 = 0.0, sx = 0.0, sx2 = 0.0;
+  for (int b = 0; b < blocks; ++b) {
+    double m = 0.0;
+    const double x0 = c.position()[0];
+    double travelled = 0.0, last = x0;
+    for (int i = 0; i < block; ++i) {
+      c.apply(l);
+      l.step();
+      m += c.composite_velocity(l)[0] / block;
+      travelled += std::remainder(c.position()[0] - last, lx);
+      last = c.position()[0];
+    }
+    const auto now = c.centre_of_mass_velocity(l);
+    ASSERT_EQ(now[0], v[0]);
+    ASSERT_EQ(now[1], v[1]);
+    su += m;
+    su2 += m * m;
+    sx += travelled / block;
+    sx2 += (travelled / block) * (travelled / block);
+  }
+  const double mu = su / blocks, mx = sx / blocks;
+  const double eu = std::sqrt((su2 / blocks - mu * mu) / (blocks - 1));
+  const double ex = std::sqrt((sx2 / blocks - mx * mx) / (blocks - 1));
+  std::printf("moving disc, M = 680, U0 = 0.3: V_x = %.5f, mean composite U_x = %.5f +- %.5f, "
+              "centre drift %.5f +- %.5f per step; covered set changed %lld times in %d steps\n",
+              v[0], mu, eu, mx, ex, static_cast<long long>(c.geometry_rebuilds()),
+              5000 + blocks * block);
+  EXPECT_NEAR(mu, v[0], 4.0 * eu);
+  EXPECT_NEAR(mx, v[0], 4.0 * ex);
+  EXPECT_GT(mu, 0.5 * v[0]); // not about zero
+  EXPECT_GT(mx, 0.5 * v[0]);
+}
+
+// Refused geometry: a disc as wide as the box, a moving disc with solids, a moving disc that
+// can cover no site.
+TEST(FhpColloid, RefusesDiscsItCannotRun) {
+  FhpLattice l(params(), MPI_COMM_SELF);
+  const auto make = [](const ColloidParams &p, const FhpLattice &lattice) {
+    const FhpColloid c(p, lattice);
+    return c.inside_sites();
+  };
+  ColloidParams cp;
+  cp.x = 32.0;
+  cp.y = 27.0;
+  cp.radius = 27.8; // 2 R = 55.6 > L_y = 55.4
+  EXPECT_THROW(make(cp, l), narrows::Error);
+  cp.radius = 27.5;
+  EXPECT_NO_THROW(make(cp, l));
+  auto p = params();
+  p.walls = true;
+  FhpLattice walled(p, MPI_COMM_SELF);
+  cp.radius = 2.5;
+  cp.held = false;
+  EXPECT_THROW(make(cp, walled), narrows::Error);
+  cp.held = true;
+  EXPECT_NO_THROW(make(cp, walled));
+  // a moving disc must cover a site wherever it is: radius >= 1/sqrt(3)
+  cp.held = false;
+  cp.radius = 0.55;
+  EXPECT_THROW(make(cp, l), narrows::Error);
+  cp.radius = 0.58;
+  EXPECT_NO_THROW(make(cp, l));
 }

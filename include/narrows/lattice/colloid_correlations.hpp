@@ -1,4 +1,4 @@
-// Time-origin averages of a held colloid's velocity (seed 002 §4.3, eq 5 and 29): the VACF
+// Time-origin averages of a colloid's velocity (seed 002 §4.3, eq 5 and 29): the VACF
 // <U(0).U(t)> for lags 0..max_lag and the virtual displacement X(t) = sum of U (one step per
 // unit time), its mean square <|X(t0 + t) - X(t0)|^2> and D(t) = msd / (4 t) at lags that are
 // multiples of `every`. Every step is a time origin. Errors: the run is cut into `blocks` equal
@@ -46,6 +46,18 @@ public:
   // D(t) = msd / (4 t) of the displacement of U - V; plus plateau <(U - V)^2> t / 4.
   Curve diffusion(double plateau = 0.0) const;
   double mean_square_velocity() const; // <(U - V)^2>
+
+  // Everything add() has accumulated, for a checkpoint: `layout` = {max_lag, displacement_lag,
+  // every, blocks, block_steps, t}, `values` = reference, displacement, the two ring buffers
+  // and the block sums and counts, flattened. restore() takes them back (a continued run then
+  // averages as if it had not stopped) and returns false, changing nothing, if the layout's
+  // lags and blocks are not this object's.
+  struct State {
+    std::vector<std::int64_t> layout;
+    std::vector<double> values;
+  };
+  State state() const;
+  bool restore(const State &s);
 
 private:
   Curve finish(const std::vector<std::vector<double>> &sums,

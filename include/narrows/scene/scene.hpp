@@ -172,9 +172,10 @@ struct Tagged {
   std::int64_t replicas = 1; // 1D model: independent runs (spread over the ranks)
 };
 
-// A held colloidal disc with the Ladd-Frenkel rules (optional section [colloid], FHP models).
+// A colloidal disc with the Ladd-Frenkel rules, held in place or moving (optional section
+// [colloid], FHP models; held = false not with walls or obstacles).
 struct LgcaColloid {
-  double x = 0.0, y = 0.0; // centre in lattice coordinates (row y at y sqrt(3)/2)
+  double x = 0.0, y = 0.0; // initial centre, Cartesian (row y of sites is at y sqrt(3)/2)
   double radius = 2.5, mass = 680.0;
   double vx = 0.0, vy = 0.0;
   bool held = true;
