@@ -25,6 +25,10 @@ for name in f:
     assert v.shape[0] == 2 and np.all(np.isfinite(v)), (name, v)
 PY'
 done
+# The density-wake tool on the wake scene's 100 steps (3 frames of every fluid particle).
+check "sedimentation.py --wake reads the trajectory" '$py "$src/tools/sedimentation.py" \
+  "$tmp/seed000_random_solvent_wake" --skip 0 --blocks 3 --wake "$tmp/wake.png" > "$tmp/wake.txt" \
+  && grep -q "lane, ahead" "$tmp/wake.txt" && [ -s "$tmp/wake.png" ]'
 
 cat > "$tmp/c.toml" <<'TOML'
 [run]
