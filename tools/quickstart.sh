@@ -1,12 +1,20 @@
 #!/usr/bin/env bash
 # One command for a newcomer: install what is missing, build Release, run the default scene,
 # plot the measured profile against theory.
+#
+# The build folder is build/ (NARROWS_BUILD_DIR overrides it); it is shared with
+# tools/run_tests.sh, so the two commands work in either order. --configure-only stops after
+# the configure step (tests/cli/readme_commands.sh checks the two steps together).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+build=${NARROWS_BUILD_DIR:-build}
 bash tools/install-deps.sh
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DNARROWS_TESTS=OFF >/dev/null
-cmake --build build -j"$(nproc)" --target narrows
-./build/narrows run run/quickstart.toml --out out/quickstart
+# NARROWS_TESTS is left as it is (default ON): switching it off here would drop the tests from
+# the build folder that tools/run_tests.sh uses.
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+[ "${1:-}" = "--configure-only" ] && exit 0
+cmake --build "$build" -j"$(nproc)" --target narrows
+"$build"/narrows run run/quickstart.toml --out out/quickstart
 /usr/bin/python3 tools/plot_profile.py out/quickstart --png out/quickstart/profile.png
 cat <<'TEXT'
 
