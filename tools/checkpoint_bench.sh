@@ -48,19 +48,19 @@ sync
 start=$(date +%s.%N)
 "${mpi[@]}" -n "$ranks" "$narrows" run "$dir/scene.toml" --restart "$dir" --out "$dir" \
   > "$dir/read.log"
-total=$(echo "$(date +%s.%N) - $start" | bc -l)
+total=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { print b - a }')
 
 dd_line=$(dd if=/dev/zero of="$dir/dd.bin" bs=1M count=2000 oflag=direct 2>&1 | tail -1)
 rm -f "$dir/dd.bin"
 dd_bytes=$(echo "$dd_line" | awk '{print $1}')
 dd_seconds=$(echo "$dd_line" | sed -n 's/.* copied, \([0-9.]*\) s,.*/\1/p')
-dd_mbs=$(echo "$dd_bytes / $dd_seconds / 1000000" | bc -l)
+dd_mbs=$(awk -v b="$dd_bytes" -v s="$dd_seconds" 'BEGIN { print b / s / 1e6 }')
 
 printf 'particles          %s on %s ranks, checkpoint file %.1f MB\n' \
   "$(grep -o 'with [0-9]* particles' "$dir/write.log" | awk '{print $2}')" "$ranks" \
-  "$(echo "$bytes / 1000000" | bc -l)"
+  "$(awk -v b="$bytes" 'BEGIN { print b / 1e6 }')"
 printf 'checkpoint write   %.0f MB/s   (%s)\n' "$write_mbs" "$write_line"
 printf 'restart (read + write again, incl. start-up) %.2f s\n' "$total"
 printf 'dd oflag=direct    %.0f MB/s   (%s)\n' "$dd_mbs" "$dd_line"
 printf 'ratio              %.0f %% of the disk figure (goal >= 50 %%)\n' \
-  "$(echo "100 * $write_mbs / $dd_mbs" | bc -l)"
+  "$(awk -v w="$write_mbs" -v d="$dd_mbs" 'BEGIN { print 100 * w / d }')"

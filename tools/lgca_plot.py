@@ -30,6 +30,7 @@ Usage: tools/lgca_plot.py OUT/observables.h5 [MORE.h5 ...] [--png FILE] [--first
 """
 import argparse
 import math
+import os
 import tomllib
 
 import h5py
@@ -287,7 +288,8 @@ def colloid_panel(ax, name, groups, args, scene, f0):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("files", nargs="+")
-    ap.add_argument("--png", default="lgca.png")
+    ap.add_argument("--png", default=None,
+                    help="output PNG (default: lgca.png next to the first file)")
     ap.add_argument("--first", type=float, default=20.0, help="first step of the fit window")
     ap.add_argument("--last", type=float, default=None,
                     help="last step of the fit window (default: A fallen by e^-1.5, Boltzmann)")
@@ -371,8 +373,9 @@ def main():
             ax.set_xlabel("block along x")
             ax.set_ylabel("block along y (rows)")
     fig.tight_layout()
-    fig.savefig(args.png, dpi=120)
-    print(f"wrote {args.png}")
+    png = args.png or os.path.join(os.path.dirname(os.path.abspath(args.files[0])), "lgca.png")
+    fig.savefig(png, dpi=120)
+    print(f"wrote {png}")
 
 
 if __name__ == "__main__":
