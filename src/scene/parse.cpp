@@ -90,6 +90,24 @@ const char *const all_observables[] = {"temperature",       "momentum",         
                                        "density_profile",   "viscosity",        "energy",
                                        "settling_velocity", "colloid_positions"};
 
+// The names output.observables accepts with each engine.
+std::vector<std::string> engine_observables(Engine engine) {
+  if (engine == Engine::kmc)
+    return {"current", "density_profile", "pair_correlation", "shock_position", "charge_profile"};
+  if (engine == Engine::lgca)
+    return {"shear_wave", "density", "velocity", "vacf", "colloid_vacf", "colloid_diffusion"};
+  return std::vector<std::string>(std::begin(all_observables), std::end(all_observables));
+}
+
+// The sections each engine reads (parse_scene refuses the others, naming their engine).
+std::vector<std::string> engine_sections(Engine engine) {
+  if (engine == Engine::kmc)
+    return {"run", "kmc", "output"};
+  if (engine == Engine::lgca)
+    return {"run", "lattice", "tagged", "colloid", "output"};
+  return {"run", "domain", "fluid", "body_force", "walls", "thermostat", "colloids", "output"};
+}
+
 // ---- small text helpers -----------------------------------------------------------------------
 
 std::string join(const std::vector<std::string> &items, const char *sep = ", ") {
@@ -459,11 +477,12 @@ void parse_run(const Ctx &c, const value *run, Run &out) {
     out.seed = static_cast<std::uint64_t>(
         as_integer(c, *v, "run.seed", seed_allowed, [](std::int64_t n) { return n >= 0; }));
 
+  // kmc runs kmc.time per replica and has no steps: there run.steps is optional (and unused).
   const std::string steps_allowed = "an integer >= 0 (the step at which the run ends)";
   if (const value *v = find(run, "steps"))
     out.steps =
         as_integer(c, *v, "run.steps", steps_allowed, [](std::int64_t n) { return n >= 0; });
-  else
+  else if (out.engine != Engine::kmc)
     c.missing("run.steps", steps_allowed);
 }
 
@@ -889,14 +908,7 @@ void parse_output(const Ctx &c, const value *o, Engine engine, Output &out) {
     out.every = as_integer(c, *v, "output.every", "an integer >= 1 (steps)",
                            [](std::int64_t n) { return n >= 1; });
   if (const value *v = find(o, "observables")) {
-    const std::vector<std::string> names =
-        engine == Engine::kmc
-            ? std::vector<std::string>{"current", "density_profile", "pair_correlation",
-                                       "shock_position", "charge_profile"}
-        : engine == Engine::lgca
-            ? std::vector<std::string>{"shear_wave", "density",      "velocity",
-                                       "vacf",       "colloid_vacf", "colloid_diffusion"}
-            : std::vector<std::string>(std::begin(all_observables), std::end(all_observables));
+    const std::vector<std::string> names = engine_observables(engine);
     const std::string allowed = "an array of strings from: " + join(names);
     if (!v->is_array())
       c.wrong_type("output.observables", *v, allowed);
@@ -1034,6 +1046,15 @@ std::string read_file(const std::string &path) {
 }
 
 } // namespace
+
+AcceptedKeys accepted_keys(Engine engine) {
+  AcceptedKeys out;
+  for (const auto &name : engine_sections(engine))
+    for (const char *key : find_section(name)->keys)
+      out.keys.push_back(name + "." + key);
+  out.observables = engine_observables(engine);
+  return out;
+}
 
 Scene load_scene(const std::string &path, const std::vector<std::string> &overrides) {
   return parse_scene(read_file(path), path, overrides);

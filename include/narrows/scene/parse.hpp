@@ -14,6 +14,15 @@ namespace narrows::scene {
 // the key, what was found and what is allowed.
 Scene load_scene(const std::string &path, const std::vector<std::string> &overrides = {});
 
+// The keys the validator accepts with an engine ("section.key", in the order of
+// its sections) and the names output.observables accepts with it. docs/scenes.md is checked against
+// these both ways (tests/unit/test_scene_docs.cpp).
+struct AcceptedKeys {
+  std::vector<std::string> keys;
+  std::vector<std::string> observables;
+};
+AcceptedKeys accepted_keys(Engine engine);
+
 // Same, from text already in memory; `file` is only used in messages.
 Scene parse_scene(const std::string &text, const std::string &file,
                   const std::vector<std::string> &overrides = {});
