@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Hard case: NaN or Inf in a checkpoint's fluid positions or velocities is refused on restart
+# with one line naming the file, the dataset and the particle (exit 2), on 1 and 3 ranks, and
+# the refused restart writes nothing.
+source "$(dirname "$0")/common.bash"
+
+scene=$src/run/quickstart.toml
+small=(--set 'domain.size=[12.0, 6.0]' --set fluid.density=5 --set output.progress=false)
+"$narrows" run "$scene" "${small[@]}" --set run.steps=10 --out "$tmp/good" > /dev/null 2>&1
+code=$?
+check "first run exits 0 (got $code)" '[ "$code" -eq 0 ]'
+
+# inject DIR FIELD ROW COMPONENT VALUE: copy the good run to DIR and poison one entry.
+inject() {
+  rm -rf "$1" && cp -r "$tmp/good" "$1" &&
+    /usr/bin/python3 -c '
+import sys, h5py
+d, field, row, k, value = sys.argv[1:]
+with h5py.File(d + "/checkpoint-0000000010.h5", "r+") as f:
+    f["particles/fluid/" + field + "/value"][int(row), int(k)] = float(value)' "$@"
+}
+
+for ranks in 1 3; do
+  for poison in "position 7 0 nan" "velocity 200 1 inf" "velocity 3 0 -inf"; do
+    read -r field row k value <<< "$poison"
+    d=$tmp/bad_${ranks}_${field}_${value}
+    inject "$d" "$field" "$row" "$k" "$value"
+    check "$poison: injected" '[ $? -eq 0 ]'
+    refused "$ranks ranks, $value in $field" "checkpoint-0000000010.h5: /particles/fluid/$field/value holds NaN or Inf" \
+      "${mpi[@]}" -n "$ranks" "$narrows" run "$scene" "${small[@]}" --set run.steps=20 \
+      --restart "$d" --out "$d"
+    check "$ranks ranks, $value in $field: nothing written" \
+      '[ -z "$(ls "$d" | grep -e "^log-" -e "^observables-" -e "^trajectory-" -e "checkpoint-0000000020")" ]'
+  done
+done
+
+# The untouched checkpoint still restarts.
+"${mpi[@]}" -n 3 "$narrows" run "$scene" "${small[@]}" --set run.steps=20 --restart "$tmp/good" \
+  --out "$tmp/good" > /dev/null 2>&1
+code=$?
+check "clean checkpoint restarts on 3 ranks (got $code)" '[ "$code" -eq 0 ]'
+finish hard_checkpoint_nan
