@@ -99,7 +99,7 @@ TEST_P(HardCaseLongRun, InvariantsHoldEvery100StepsFor1e5Steps) {
               sim.fluid().size(), seconds);
 }
 
-const std::vector<std::string> tiny2d{"domain.size=[16.0, 8.0]", "fluid.density=4"};
+const std::vector<std::string> tiny2d{"domain.size=[8.0, 6.0]", "fluid.density=3"};
 
 INSTANTIATE_TEST_SUITE_P(
     RunScenes, HardCaseLongRun,
@@ -109,15 +109,15 @@ INSTANTIATE_TEST_SUITE_P(
         SceneClass{"seed000_fig3_7.toml", tiny2d}, // SRD channel of seed 000 ch.3
         SceneClass{"seed001_ata_2d.toml", tiny2d}, // MPC-AT+a channel
         SceneClass{"seed001_ata_3d.toml",
-                   {"domain.size=[8.0, 6.0, 4.0]", "fluid.density=3"}}, // 3D AT+a slit
+                   {"domain.size=[4.0, 4.0, 4.0]", "fluid.density=2"}}, // 3D AT+a slit
         SceneClass{"colloids_conservation.toml",
-                   {"domain.size=[16.0, 8.0]", "fluid.density=4", "colloids.count=2",
+                   {"domain.size=[16.0, 8.0]", "fluid.density=3", "colloids.count=2",
                     "colloids.md_substeps=5"}}, // colloids, periodic, no force
         SceneClass{"seed000_fig4_10.toml",
-                   {"domain.size=[12.0, 10.0]", "fluid.density=4", "colloids.count=1",
+                   {"domain.size=[12.0, 10.0]", "fluid.density=3", "colloids.count=1",
                     "colloids.md_substeps=5"}}, // colloids sedimenting in a channel
         SceneClass{"seed000_random_solvent_wake.toml",
-                   {"domain.size=[12.0, 10.0]", "fluid.density=4", "colloids.md_substeps=5",
+                   {"domain.size=[12.0, 10.0]", "fluid.density=3", "colloids.md_substeps=5",
                     "output.trajectory_every=0"}}), // random solvent + colloid
     [](const auto &info) {
       std::string name = info.param.file;
