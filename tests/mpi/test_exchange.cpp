@@ -4,6 +4,8 @@
 #include "narrows/core/error.hpp"
 #include "narrows/parallel/exchange.hpp"
 
+#include "../common/world.hpp"
+
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -26,16 +28,8 @@ struct Toy {
   }
 };
 
-int rank() {
-  int r = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  return r;
-}
-int ranks() {
-  int n = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &n);
-  return n;
-}
+int rank() { return narrows::testing::world_rank(); }
+int ranks() { return narrows::testing::world_size(); }
 // Periodic neighbours: on 2 ranks both are the other rank; on 3 or more they are distinct
 // (left, self and right), so a left/right mix-up shows.
 int left_of(int r) { return (r + ranks() - 1) % ranks(); }

@@ -8,6 +8,8 @@
 #include "narrows/engine/invariants.hpp"
 #include "narrows/engine/mpcd_simulation.hpp"
 
+#include "../common/world.hpp"
+
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -20,16 +22,8 @@ using namespace narrows;
 
 namespace {
 
-int world_rank() {
-  int r = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  return r;
-}
-int world_size() {
-  int n = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &n);
-  return n;
-}
+using narrows::testing::world_rank;
+using narrows::testing::world_size;
 
 scene::Scene periodic_scene() {
   scene::Scene s;

@@ -6,6 +6,8 @@
 #include "narrows/engine/mpcd_simulation.hpp"
 #include "narrows/mpcd/cell_grid.hpp"
 
+#include "../common/world.hpp"
+
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -18,16 +20,8 @@ using namespace narrows;
 
 namespace {
 
-int rank() {
-  int r = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  return r;
-}
-int size() {
-  int s = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &s);
-  return s;
-}
+int rank() { return narrows::testing::world_rank(); }
+int size() { return narrows::testing::world_size(); }
 
 scene::Scene small_scene(int dim) {
   scene::Scene s;

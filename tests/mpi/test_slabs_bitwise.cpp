@@ -5,6 +5,7 @@
 #include "narrows/engine/mpcd_simulation.hpp"
 
 #include "../common/state_by_id.hpp"
+#include "../common/world.hpp"
 
 #include <gtest/gtest.h>
 #include <mpi.h>
@@ -19,16 +20,8 @@ using namespace narrows;
 
 namespace {
 
-int world_rank() {
-  int r = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  return r;
-}
-int world_size() {
-  int n = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &n);
-  return n;
-}
+using narrows::testing::world_rank;
+using narrows::testing::world_size;
 
 // The slab that owns x (cells of size 1).
 int owner(const parallel::Slabs &slabs, double x) {
