@@ -8,15 +8,12 @@ source "$(dirname "$0")/common.bash"
 for scene in "$src"/run/*.toml; do
   grep -q 'engine = "\(kmc\|lgca\)"' "$scene" && continue
   name=$(basename "$scene" .toml)
-  "$narrows" check "$scene" > "$tmp/$name.check" 2>&1
-  check "$name: check exits 0" '[ $? -eq 0 ]'
+  runs "$name: check" "$narrows" check "$scene" > "$tmp/$name.check" 2>&1
   grep -q '^\[walls\]' "$scene" || continue
   grep -q '^\[colloids\]' "$scene" && continue # run by colloid_scenes.sh
   short=(--set domain.size=$(grep -q 'dimensions = 3' "$scene" && echo '[8,6,4]' || echo '[8,6]')
          --set run.steps=200 --set output.every=50 --set output.progress=false)
-  "$narrows" run "$scene" "${short[@]}" --out "$tmp/$name" > /dev/null 2>&1
-  code=$?
-  check "$name: run exits 0 (got $code)" '[ "$code" -eq 0 ]'
+  runs "$name: run" "$narrows" run "$scene" "${short[@]}" --out "$tmp/$name" > /dev/null 2>&1
   check "$name: Poiseuille line in the log" 'grep -q "Poiseuille channel: u0 = \|viscosity: no kinetic" "$tmp/$name/log.txt"'
   check "$name: viscosity series" '/usr/bin/python3 - "$tmp/$name/observables.h5" <<PY
 import sys, h5py, numpy as np
@@ -25,8 +22,11 @@ v = f["viscosity/value"][()]
 assert v.shape == (4,), v.shape
 assert np.all(np.isfinite(v)), v
 PY'
-  check "$name: plot" '/usr/bin/python3 "$src/tools/plot_profile.py" "$tmp/$name" > "$tmp/$name.plot" 2>&1 && [ -s "$tmp/$name/profile.png" ]'
-  "${mpi[@]}" -n 2 "$narrows" run "$scene" "${short[@]}" --out "$tmp/$name-2" > /dev/null 2>&1
+  runs "$name: plot_profile.py" /usr/bin/python3 "$src/tools/plot_profile.py" "$tmp/$name" \
+    > "$tmp/$name.plot" 2>&1
+  check "$name: plot" '[ -s "$tmp/$name/profile.png" ]'
+  runs "$name: 2 ranks run" "${mpi[@]}" -n 2 "$narrows" run "$scene" "${short[@]}" \
+    --out "$tmp/$name-2" > /dev/null 2>&1
   check "$name: 2 ranks give the 1-rank viscosity series" '/usr/bin/python3 - "$tmp/$name/observables.h5" "$tmp/$name-2/observables.h5" <<PY
 import sys, h5py, numpy as np
 a = h5py.File(sys.argv[1], "r")["observables/viscosity/value"][()]

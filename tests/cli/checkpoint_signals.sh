@@ -4,14 +4,9 @@
 # the checkpoint restarts. kill -9 while a checkpoint is being written leaves the previous
 # checkpoint intact: a restart from the directory uses it.
 set -u
-narrows=$1
-tmp=$(mktemp -d)
+source "$(dirname "$0")/common.bash"
 pids=()
 trap 'for p in "${pids[@]}"; do kill -9 "$p" 2> /dev/null; done; rm -rf "$tmp"' EXIT
-mpi=(mpirun --quiet --oversubscribe) # --quiet: only narrows speaks on stderr
-[ "$(id -u)" -eq 0 ] && mpi+=(--allow-run-as-root)
-pass=0 fail=0
-check() { if eval "$2"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $1"; fi; }
 
 # Waits (up to $2 s) until the file pattern $1 matches something.
 wait_for() {
@@ -58,9 +53,9 @@ stop_test() { # name, signal, launcher...
   local step
   step=$(sed -n "s/.*stopped after step \([0-9]*\).*/\1/p" "$out/log.txt")
   check "$name: checkpoint of that step exists" '[ -s "$out/$(printf "checkpoint-%010d.h5" "$step")" ]'
-  "$@" "$narrows" run "$tmp/long.toml" --restart "$out" --set run.steps=$((step + 3)) --out "$out" \
-    > "$tmp/$name.re" 2>&1
-  check "$name: the checkpoint restarts (exit $?)" '[ $? -eq 0 ] && grep -q "restarted from .* at step $step" "$tmp/$name.re"'
+  runs "$name: restart from the checkpoint" "$@" "$narrows" run "$tmp/long.toml" --restart "$out" \
+    --set run.steps=$((step + 3)) --out "$out" > "$tmp/$name.re" 2>&1
+  check "$name: the checkpoint restarts" 'grep -q "restarted from .* at step $step" "$tmp/$name.re"'
 }
 stop_test sigterm_1rank TERM
 stop_test sigusr1_2ranks USR1 "${mpi[@]}" -n 2
@@ -91,12 +86,14 @@ sleep 0.2
 wait_for "$tmp/big/checkpoint-*.h5.tmp" 60
 kill -9 "$pid"
 wait "$pid" 2> /dev/null
+code=$?
+check "kill -9 ends the run (status 137, got $code)" '[ "$code" -eq 137 ]'
 check "the killed run left a temporary file (killed mid-write)" 'compgen -G "$tmp/big/checkpoint-*.h5.tmp" > /dev/null'
 newest=$(cd "$tmp/big" && ls checkpoint-*.h5 | tail -1)
 step=$((10#$(echo "$newest" | sed "s/checkpoint-\([0-9]*\).h5/\1/")))
-"$narrows" run "$tmp/big.toml" --restart "$tmp/big" --set run.steps=$((step + 1)) \
-  --set output.checkpoint_every=0 --out "$tmp/big" > "$tmp/big.re" 2>&1
-check "restart from the directory after kill -9 (exit $?)" '[ $? -eq 0 ] && grep -q "restarted from .*$newest at step $step" "$tmp/big.re"'
+runs "restart from the directory after kill -9" "$narrows" run "$tmp/big.toml" --restart "$tmp/big" \
+  --set run.steps=$((step + 1)) --set output.checkpoint_every=0 --out "$tmp/big" > "$tmp/big.re" 2>&1
+check "restart after kill -9 uses the newest complete checkpoint" \
+  'grep -q "restarted from .*$newest at step $step" "$tmp/big.re"'
 check "the restart cleaned the temporary file up" '! compgen -G "$tmp/big/checkpoint-*.h5.tmp" > /dev/null'
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish "checkpoint signals"

@@ -13,10 +13,8 @@ py=/usr/bin/python3
 for scene in "$src"/run/*.toml; do
   grep -q '^\[colloids\]' "$scene" || continue
   name=$(basename "$scene" .toml)
-  "$narrows" run "$scene" --set run.steps=100 --set output.every=50 --set output.progress=false \
-    --out "$tmp/$name" > /dev/null 2> "$tmp/$name.err"
-  code=$?
-  check "$name: run exits 0 (got $code): $(head -c 300 "$tmp/$name.err")" '[ "$code" -eq 0 ]'
+  runs --err "$tmp/$name.err" "$name: run" "$narrows" run "$scene" --set run.steps=100 \
+    --set output.every=50 --set output.progress=false --out "$tmp/$name" > /dev/null
   check "$name: observables finite" '$py - "$tmp/$name/observables.h5" <<PY
 import sys, h5py, numpy as np
 f = h5py.File(sys.argv[1], "r")["observables"]
@@ -26,9 +24,10 @@ for name in f:
 PY'
 done
 # The density-wake tool on the wake scene's 100 steps (3 frames of every fluid particle).
-check "sedimentation.py --wake reads the trajectory" '$py "$src/tools/sedimentation.py" \
-  "$tmp/seed000_random_solvent_wake" --skip 0 --blocks 3 --wake "$tmp/wake.png" > "$tmp/wake.txt" \
-  && grep -q "lane, ahead" "$tmp/wake.txt" && [ -s "$tmp/wake.png" ]'
+runs "sedimentation.py --wake" $py "$src/tools/sedimentation.py" "$tmp/seed000_random_solvent_wake" \
+  --skip 0 --blocks 3 --wake "$tmp/wake.png" > "$tmp/wake.txt"
+check "sedimentation.py --wake reads the trajectory" \
+  'grep -q "lane, ahead" "$tmp/wake.txt" && [ -s "$tmp/wake.png" ]'
 
 cat > "$tmp/c.toml" <<'TOML'
 [run]
@@ -64,31 +63,23 @@ for species in ("fluid", "colloids"):
     if not all(np.array_equal(x.view(np.uint64), y.view(np.uint64)) for x, y in zip(a, b)):
         sys.exit(1)
 PY
-"$narrows" run "$tmp/c.toml" --out "$tmp/one" > /dev/null 2>&1
-check "1 rank exits 0" '[ $? -eq 0 ]'
-"${mpi[@]}" -n 2 "$narrows" run "$tmp/c.toml" --out "$tmp/two" > /dev/null 2>&1
-check "2 ranks exit 0" '[ $? -eq 0 ]'
+runs "1 rank" "$narrows" run "$tmp/c.toml" --out "$tmp/one" > /dev/null 2>&1
+runs "2 ranks" "${mpi[@]}" -n 2 "$narrows" run "$tmp/c.toml" --out "$tmp/two" > /dev/null 2>&1
 check "colloids stored in the checkpoint" '$py -c "import h5py,sys; f=h5py.File(sys.argv[1]); assert f[\"/particles/colloids/position/value\"].shape == (3, 2)" "$tmp/one/checkpoint-0000000060.h5"'
 check "2 ranks bitwise equal to 1 rank (fluid and colloids)" \
   '$py "$tmp/compare.py" "$tmp/one/checkpoint-0000000060.h5" "$tmp/two/checkpoint-0000000060.h5"'
-"${mpi[@]}" -n 2 "$narrows" run "$tmp/c.toml" --set run.steps=30 --out "$tmp/part" > /dev/null 2>&1
-check "first part exits 0" '[ $? -eq 0 ]'
-"$narrows" run "$tmp/c.toml" --restart "$tmp/part" --out "$tmp/part" > /dev/null 2> "$tmp/err"
-check "restart exits 0: $(head -c 300 "$tmp/err")" '[ $? -eq 0 ]'
+runs "first part" "${mpi[@]}" -n 2 "$narrows" run "$tmp/c.toml" --set run.steps=30 --out "$tmp/part" > /dev/null 2>&1
+runs --err "$tmp/err" "restart" "$narrows" run "$tmp/c.toml" --restart "$tmp/part" --out "$tmp/part" > /dev/null
 check "restart (2 ranks to 30, 1 rank to 60) bitwise equal to the uninterrupted run" \
   '$py "$tmp/compare.py" "$tmp/one/checkpoint-0000000060.h5" "$tmp/part/checkpoint-0000000060.h5"'
 sed 's/count = 3/count = 2/' "$tmp/c.toml" > "$tmp/c2.toml"
-"$narrows" run "$tmp/c2.toml" --restart "$tmp/part/checkpoint-0000000030.h5" --out "$tmp/bad2" \
-  > /dev/null 2> "$tmp/err2"
-code=$?
-check "a scene with another colloid count is refused (exit 2, got $code)" \
-  '[ "$code" -eq 2 ] && grep -q "colloids.count" "$tmp/err2"'
+refused "a scene with another colloid count" "colloids.count" \
+  "$narrows" run "$tmp/c2.toml" --restart "$tmp/part/checkpoint-0000000030.h5" --out "$tmp/bad2"
 # Positions from a file (relative to the scene file; comments, blank lines and commas-free
 # whitespace-separated numbers).
 sed -e 's/^count = 3/placement = "file"\npositions_file = "pos.txt"/' "$tmp/c.toml" > "$tmp/f.toml"
 printf '# x y\n4.5 5.0\n\n12.0 4.0   # second\n19.5 6.0\n' > "$tmp/pos.txt"
-"$narrows" run "$tmp/f.toml" --set run.steps=0 --out "$tmp/file" > /dev/null 2> "$tmp/errf"
-check "placement = file runs: $(head -c 300 "$tmp/errf")" '[ $? -eq 0 ]'
+runs --err "$tmp/errf" "placement = file" "$narrows" run "$tmp/f.toml" --set run.steps=0 --out "$tmp/file" > /dev/null
 check "placement = file puts the colloids at the file's positions" '$py -c "
 import h5py, sys, numpy as np
 p = h5py.File(sys.argv[1])[\"/particles/colloids/position/value\"][()]
@@ -103,13 +94,11 @@ refused "a missing position file" 'colloids.positions_file = "pos.txt": cannot o
   "$narrows" check "$tmp/f.toml"
 # Unequal radii: radius 1.5, sd 0.2 (largest 2.1: the wall cut-off 1.0631 * 4.2 fits in 5).
 sed 's/^radius = 1.5/radius = 1.5\nradius_sd = 0.2/' "$tmp/c.toml" > "$tmp/sd.toml"
-"$narrows" info "$tmp/sd.toml" > "$tmp/sd_info" 2>&1
+runs "radius_sd: info" "$narrows" info "$tmp/sd.toml" > "$tmp/sd_info" 2>&1
 check "info names the radius spread: $(grep MD: "$tmp/sd_info" | head -c 300)" \
   'grep -q "MD: 3 colloids (r 1.5 sd 0.2 truncated at 3 sd, drawn .* to .*, M .* to .*LJ wall (sigma_w 2 r_a" "$tmp/sd_info"'
-"$narrows" run "$tmp/sd.toml" --out "$tmp/sd_one" > /dev/null 2>&1
-check "radius_sd: 1 rank exits 0" '[ $? -eq 0 ]'
-"${mpi[@]}" -n 2 "$narrows" run "$tmp/sd.toml" --set run.steps=30 --out "$tmp/sd_part" > /dev/null 2>&1
-check "radius_sd: first part on 2 ranks exits 0" '[ $? -eq 0 ]'
+runs "radius_sd: 1 rank" "$narrows" run "$tmp/sd.toml" --out "$tmp/sd_one" > /dev/null 2>&1
+runs "radius_sd: first part on 2 ranks" "${mpi[@]}" -n 2 "$narrows" run "$tmp/sd.toml" --set run.steps=30 --out "$tmp/sd_part" > /dev/null 2>&1
 check "radius_sd: radius and mass stored per colloid (unequal, M = n pi r^2)" '$py - "$tmp/sd_part/checkpoint-0000000030.h5" <<PY
 import sys, h5py, numpy as np
 c = h5py.File(sys.argv[1], "r")["particles/colloids"]
@@ -119,8 +108,7 @@ assert len(set(r)) == 3 and np.all(np.abs(r - 1.5) <= 0.6), r
 assert np.allclose(m, 5 * np.pi * r**2, rtol=1e-14), (m, r)
 PY'
 cp "$tmp/sd_part/checkpoint-0000000030.h5" "$tmp/sd_old.h5"
-"$narrows" run "$tmp/sd.toml" --restart "$tmp/sd_part" --out "$tmp/sd_part" > /dev/null 2> "$tmp/err"
-check "radius_sd: restart exits 0: $(head -c 300 "$tmp/err")" '[ $? -eq 0 ]'
+runs --err "$tmp/err" "radius_sd: restart" "$narrows" run "$tmp/sd.toml" --restart "$tmp/sd_part" --out "$tmp/sd_part" > /dev/null
 check "radius_sd: restart (2 ranks to 30, 1 rank to 60) bitwise equal to the uninterrupted run" \
   '$py "$tmp/compare.py" "$tmp/sd_one/checkpoint-0000000060.h5" "$tmp/sd_part/checkpoint-0000000060.h5"'
 check "radius_sd: restart keeps radius and mass bitwise" '$py - "$tmp/sd_one/checkpoint-0000000060.h5" "$tmp/sd_part/checkpoint-0000000060.h5" <<PY
@@ -130,11 +118,11 @@ oa, ob = np.argsort(a["id/value"][()]), np.argsort(b["id/value"][()])
 for f in ("radius", "mass"):
     assert np.array_equal(a[f + "/value"][()][oa].view(np.uint64), b[f + "/value"][()][ob].view(np.uint64)), f
 PY'
-$py -c "import h5py, sys
+runs "radius_sd: strip radius and mass from the checkpoint" $py -c "import h5py, sys
 f = h5py.File(sys.argv[1], 'r+')
 del f['particles/colloids/radius'], f['particles/colloids/mass']" "$tmp/sd_old.h5"
-"$narrows" run "$tmp/sd.toml" --restart "$tmp/sd_old.h5" --out "$tmp/sd_old" > /dev/null 2> "$tmp/err"
-check "radius_sd: restart from a checkpoint without radius and mass exits 0: $(head -c 300 "$tmp/err")" '[ $? -eq 0 ]'
+runs --err "$tmp/err" "radius_sd: restart from a checkpoint without radius and mass" \
+  "$narrows" run "$tmp/sd.toml" --restart "$tmp/sd_old.h5" --out "$tmp/sd_old" > /dev/null
 check "radius_sd: ... and is bitwise equal to the uninterrupted run" \
   '$py "$tmp/compare.py" "$tmp/sd_one/checkpoint-0000000060.h5" "$tmp/sd_old/checkpoint-0000000060.h5"'
 sed 's/^radius_sd = 0.2/radius_sd = 0.1/' "$tmp/sd.toml" > "$tmp/sd2.toml"

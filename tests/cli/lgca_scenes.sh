@@ -17,11 +17,8 @@ for scene in "$src"/run/lgca*.toml; do
   grep -q 'dhumieres-1d' "$scene" && one_d=1
   colloid=0
   grep -q '^\[colloid\]' "$scene" && colloid=1
-  "$narrows" check "$scene" > "$tmp/$name.check" 2>&1
-  check "$name: check exits 0" '[ $? -eq 0 ]'
-  "$narrows" run "$scene" "${small[@]}" --out "$tmp/$name" > "$tmp/$name.out" 2>&1
-  code=$?
-  check "$name: run exits 0 (got $code)" '[ "$code" -eq 0 ]'
+  runs "$name: check" "$narrows" check "$scene" > "$tmp/$name.check" 2>&1
+  runs "$name: run" "$narrows" run "$scene" "${small[@]}" --out "$tmp/$name" > "$tmp/$name.out" 2>&1
   check "$name: Loop time line" \
     'grep -q "^Loop time of .* on 1 ranks for 40 steps with .* sites (.* site-updates/s)$" "$tmp/$name/log.txt"'
   if [ "$one_d" -eq 0 ]; then
@@ -30,8 +27,7 @@ for scene in "$src"/run/lgca*.toml; do
   if [ "$colloid" -eq 1 ]; then
     check "$name: colloid momentum line" 'grep -q "momentum conserved exactly" "$tmp/$name/log.txt"'
   fi
-  "${mpi[@]}" -n 2 "$narrows" run "$scene" "${small[@]}" --out "$tmp/$name-2" > /dev/null 2>&1
-  check "$name: 2 ranks exit 0" '[ $? -eq 0 ]'
+  runs "$name: 2 ranks" "${mpi[@]}" -n 2 "$narrows" run "$scene" "${small[@]}" --out "$tmp/$name-2" > /dev/null 2>&1
   check "$name: 2 ranks write the 1-rank observables and lattice" '/usr/bin/python3 - "$tmp/$name" "$tmp/$name-2" <<PY
 import sys, h5py, numpy as np
 a = h5py.File(sys.argv[1] + "/observables.h5", "r")["observables"]
@@ -64,20 +60,19 @@ done
 # The plot tool draws both kinds of output.
 for name in lgca_shear_wave lgca_channel lgca_vacf_tail lgca_dhumieres_fig1 lgca_colloid_held \
   lgca_colloid_held_light lgca_colloid_moving; do
-  /usr/bin/python3 "$src/tools/lgca_plot.py" "$tmp/$name/observables.h5" --first 5 \
-    --png "$tmp/$name.png" > "$tmp/$name.plot" 2>&1
-  check "$name: tools/lgca_plot.py writes a PNG" '[ $? -eq 0 ] && [ -s "$tmp/$name.png" ]'
+  runs "$name: tools/lgca_plot.py" /usr/bin/python3 "$src/tools/lgca_plot.py" \
+    "$tmp/$name/observables.h5" --first 5 --png "$tmp/$name.png" > "$tmp/$name.plot" 2>&1
+  check "$name: tools/lgca_plot.py writes a PNG" '[ -s "$tmp/$name.png" ]'
 done
 
 # Restart: 20 steps on 2 ranks, then on to 40 on 1 rank = 40 steps straight on 1 rank.
 scene=$src/run/lgca_shear_wave.toml
-"${mpi[@]}" -n 2 "$narrows" run "$scene" --set run.steps=20 --out "$tmp/rs" > /dev/null 2>&1
-check "restart: first part exits 0" '[ $? -eq 0 ]'
-"$narrows" run "$scene" --set run.steps=40 --restart "$tmp/rs" --out "$tmp/rs" > /dev/null 2>&1
-check "restart: continuation exits 0" '[ $? -eq 0 ]'
+runs "restart: first part" "${mpi[@]}" -n 2 "$narrows" run "$scene" --set run.steps=20 --out "$tmp/rs" > /dev/null 2>&1
+runs "restart: continuation" "$narrows" run "$scene" --set run.steps=40 --restart "$tmp/rs" --out "$tmp/rs" > /dev/null 2>&1
 check "restart: log and observables of the continuation carry its first step" \
   '[ -f "$tmp/rs/log-0000000020.txt" ] && [ -f "$tmp/rs/observables-0000000020.h5" ]'
-"$narrows" run "$scene" --set run.steps=40 --out "$tmp/straight" > /dev/null 2>&1
+runs "restart: straight run" "$narrows" run "$scene" --set run.steps=40 --out "$tmp/straight" \
+  > /dev/null 2>&1
 check "restart: bitwise the uninterrupted lattice and shear wave" '/usr/bin/python3 - "$tmp" <<PY
 import sys, h5py, numpy as np
 t = sys.argv[1]
@@ -89,15 +84,11 @@ r1 = h5py.File(t + "/rs/observables.h5", "r")["observables/shear_wave/value"][()
 r2 = h5py.File(t + "/rs/observables-0000000020.h5", "r")["observables/shear_wave/value"][()]
 assert np.array_equal(np.concatenate([r1, r2]), s), (len(r1), len(r2), len(s))
 PY'
-"$narrows" run "$scene" --set run.steps=60 --set lattice.density=0.4 --restart "$tmp/rs" \
-  --out "$tmp/rs" > /dev/null 2> "$tmp/mismatch.err"
-code=$?
-check "restart with another density exits 2 (got $code)" '[ "$code" -eq 2 ]'
-"$narrows" run "$src/run/lgca_channel.toml" --set run.steps=60 --restart "$tmp/rs" \
-  --out "$tmp/rs2" > /dev/null 2> "$tmp/mismatch2.err"
-code=$?
-check "restart with another scene exits 2 with one line (got $code)" \
-  '[ "$code" -eq 2 ] && [ "$(grep -c . "$tmp/mismatch2.err")" -eq 1 ]'
+exits 2 "restart with another density" "$narrows" run "$scene" --set run.steps=60 \
+  --set lattice.density=0.4 --restart "$tmp/rs" --out "$tmp/rs" > /dev/null 2> "$tmp/mismatch.err"
+exits 2 "restart with another scene" "$narrows" run "$src/run/lgca_channel.toml" \
+  --set run.steps=60 --restart "$tmp/rs" --out "$tmp/rs2" > /dev/null 2> "$tmp/mismatch2.err"
+check "restart with another scene: one line" '[ "$(grep -c . "$tmp/mismatch2.err")" -eq 1 ]'
 
 # Restart of the colloid: its momentum, angular velocity, centre, angle and averages come back
 # from the checkpoint. A 600-step run on 2 ranks writes a checkpoint at step 300; continued from
@@ -111,13 +102,11 @@ for cname in lgca_colloid_held lgca_colloid_moving; do
     -e 's/^displacement_every = .*/displacement_every = 10/' \
     -e 's/^position = .*/position = [60.0, 30.0]\nvelocity = [0.3, 0.1]/' \
     "$src/run/$cname.toml" > "$cscene"
-  "${mpi[@]}" -n 2 "$narrows" run "$cscene" --set run.steps=600 \
+  runs "$cname restart: straight run on 2 ranks" "${mpi[@]}" -n 2 "$narrows" run "$cscene" --set run.steps=600 \
     --set output.checkpoint_every=300 --out "$tmp/cstraight-$cname" > /dev/null 2>&1
-  check "$cname restart: straight run on 2 ranks exits 0" '[ $? -eq 0 ]'
-  "$narrows" run "$cscene" --set run.steps=600 \
+  runs "$cname restart: continuation on 1 rank" "$narrows" run "$cscene" --set run.steps=600 \
     --restart "$tmp/cstraight-$cname/checkpoint-0000000300.h5" --out "$tmp/crs-$cname" \
     > /dev/null 2>&1
-  check "$cname restart: continuation on 1 rank exits 0" '[ $? -eq 0 ]'
   check "$cname restart: bitwise the uninterrupted lattice and colloid" '/usr/bin/python3 - "$tmp" "$cname" <<PY
 import sys, h5py, numpy as np
 t, n = sys.argv[1], sys.argv[2]
@@ -145,26 +134,25 @@ assert a["colloid_vacf/error"][()][1] > 0  # ten blocks: a real comparison
 PY'
 done
 # Another run.steps on the restart is a new averaging run (e.g. after an equilibration job).
-"$narrows" run "$tmp/lgca_colloid_moving-small.toml" --set run.steps=500 \
-  --restart "$tmp/cstraight-lgca_colloid_moving/checkpoint-0000000300.h5" --out "$tmp/crs-new" \
-  > /dev/null 2>&1
+runs "restart with another run.steps" "$narrows" run "$tmp/lgca_colloid_moving-small.toml" \
+  --set run.steps=500 --restart "$tmp/cstraight-lgca_colloid_moving/checkpoint-0000000300.h5" \
+  --out "$tmp/crs-new" > /dev/null 2>&1
 check "restart with another run.steps: colloid averages start afresh" \
-  '[ $? -eq 0 ] && grep -q "start afresh (run.steps = 500" "$tmp/crs-new/log-0000000300.txt"'
+  'grep -q "start afresh (run.steps = 500" "$tmp/crs-new/log-0000000300.txt"'
 
 # A checkpoint written before the centre and the averages were stored (momentum and omega
 # only) still restarts a held disc; its averages start afresh.
 mkdir -p "$tmp/oldfmt"
 old=$tmp/oldfmt/checkpoint-0000000600.h5
 cp "$tmp/crs-lgca_colloid_held/checkpoint-0000000600.h5" "$old"
-/usr/bin/python3 - "$old" <<PY
+runs "strip the centre and averages from a checkpoint" /usr/bin/python3 - "$old" <<PY
 import sys, h5py
 f = h5py.File(sys.argv[1], "r+")
 for k in ("position", "angle", "correlations"):
     del f["colloid"][k]
 PY
-"$narrows" run "$tmp/lgca_colloid_held-small.toml" --set run.steps=700 --restart "$old" \
+runs "held colloid restarts from a checkpoint without /colloid/position" "$narrows" run "$tmp/lgca_colloid_held-small.toml" --set run.steps=700 --restart "$old" \
   --out "$tmp/old-ckpt" > /dev/null 2> "$tmp/old-ckpt.err"
-check "held colloid restarts from a checkpoint without /colloid/position" '[ $? -eq 0 ]'
 check "... and its averages start afresh" \
   'grep -q "start afresh" "$tmp/old-ckpt/log-0000000600.txt"'
 
@@ -172,9 +160,7 @@ check "... and its averages start afresh" \
 bad() {
   local label=$1 want=$2
   shift 2
-  "$narrows" check "$scene" "$@" > /dev/null 2> "$tmp/bad.err"
-  local code=$?
-  check "$label: exit 2 (got $code)" '[ "$code" -eq 2 ]'
+  exits 2 "$label" "$narrows" check "$scene" "$@" > /dev/null 2> "$tmp/bad.err"
   check "$label: one line naming $want" \
     '[ "$(grep -c . "$tmp/bad.err")" -eq 1 ] && grep -qF "$want" "$tmp/bad.err"'
 }

@@ -1,4 +1,4 @@
-// kmc replicas over 2 ranks give bitwise the numbers of 1 rank: replica r is seeded from
+// kmc replicas over 2, 3 or 4 ranks give bitwise the numbers of 1 rank: replica r is seeded from
 // (seed, r) wherever it runs, and rank 0 reduces in replica order.
 #include "narrows/kmc/driver.hpp"
 #include "narrows/kmc/rates.hpp"
@@ -8,7 +8,7 @@
 
 using namespace narrows;
 
-TEST(KmcReplicas, TwoRanksEqualOneRankBitwise) {
+TEST(KmcReplicas, RanksEqualOneRankBitwise) {
   scene::Kmc m;
   m.length = 40;
   using kmc::pair_code;
@@ -23,12 +23,12 @@ TEST(KmcReplicas, TwoRanksEqualOneRankBitwise) {
   m.initial = {0.5, 0.3, 0.2};
   m.time = 200.0;
   m.warmup = 20.0;
-  m.replicas = 5; // uneven on 2 ranks on purpose
+  m.replicas = 5; // uneven on 2, 3 and 4 ranks on purpose
 
   int rank = 0, ranks = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);
-  ASSERT_EQ(ranks, 2);
+  ASSERT_GE(ranks, 2);
   const auto both = kmc::run_replicas(m, 9, MPI_COMM_WORLD);
   const auto one = kmc::run_replicas(m, 9, MPI_COMM_SELF);
   EXPECT_EQ(both.events, one.events); // every rank knows the total

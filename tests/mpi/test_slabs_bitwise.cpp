@@ -1,8 +1,11 @@
-// The sharpest test of the slab decomposition: the state after N steps on 2 ranks is bitwise
-// identical to the state on 1 rank (all particles compared by id).
+// The sharpest test of the slab decomposition: the state after N steps on 2, 3 or 4 ranks is
+// bitwise identical to the state on 1 rank (all particles compared by id, and every rank's
+// copy of the colloids). The box is 25 (2D) or 13 (3D) cells long, so the slabs are uneven
+// on 2, 3 and 4 ranks; on 3 or more ranks each slab has two distinct neighbours.
 #include "narrows/engine/mpcd_simulation.hpp"
 
 #include "../common/state_by_id.hpp"
+#include "../common/world.hpp"
 
 #include <gtest/gtest.h>
 #include <mpi.h>
@@ -11,15 +14,36 @@
 #include <cstring>
 #include <numeric>
 #include <string>
+#include <vector>
 
 using namespace narrows;
 
 namespace {
 
-int world_rank() {
+using narrows::testing::world_rank;
+using narrows::testing::world_size;
+
+// The slab that owns x (cells of size 1).
+int owner(const parallel::Slabs &slabs, double x) {
   int r = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  while (r + 1 < slabs.ranks() && slabs.first_column_of(r + 1) <= static_cast<int>(x))
+    ++r;
   return r;
+}
+
+// How many numbers of this rank's copy of the colloids differ bitwise from rank 0's copy.
+std::size_t differ_from_rank0(const colloids::Colloids &c, int dim) {
+  std::vector<double> mine;
+  for (int k = 0; k < dim; ++k) {
+    mine.insert(mine.end(), c.x[k].begin(), c.x[k].end());
+    mine.insert(mine.end(), c.v[k].begin(), c.v[k].end());
+  }
+  mine.insert(mine.end(), c.radius.begin(), c.radius.end());
+  mine.insert(mine.end(), c.mass.begin(), c.mass.end());
+  std::vector<double> root = mine;
+  MPI_Bcast(root.data(), static_cast<int>(root.size()), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  return static_cast<std::size_t>(
+      std::memcmp(mine.data(), root.data(), mine.size() * sizeof(double)) != 0);
 }
 
 using narrows::testing::state_by_id;
@@ -40,12 +64,12 @@ class Bitwise : public ::testing::TestWithParam<Case> {};
 
 } // namespace
 
-TEST_P(Bitwise, TwoRanksEqualOneRank) {
+TEST_P(Bitwise, RanksEqualOneRank) {
   const Case c = GetParam();
   scene::Scene s;
   s.run.dimensions = c.dim;
   s.run.seed = 31;
-  s.domain.size = c.dim == 2 ? std::array<double, 3>{24, 10, 0} : std::array<double, 3>{12, 6, 6};
+  s.domain.size = c.dim == 2 ? std::array<double, 3>{25, 10, 0} : std::array<double, 3>{13, 6, 6};
   s.fluid.collision = c.rule;
   s.fluid.density = 6.0;
   s.fluid.dt = 0.5;
@@ -71,22 +95,42 @@ TEST_P(Bitwise, TwoRanksEqualOneRank) {
     col.radius_sd = c.radius_sd;
     s.colloids = col;
   }
-  // 2000 steps in CI (~4 s); longer by hand: NARROWS_BITWISE_STEPS=20000 mpirun -n 2 mpi_tests
+  // 2000 steps in CI on 2 ranks (~4 s), 500 on 3 and 4 (oversubscribed on 2 cores); longer by
+  // hand: NARROWS_BITWISE_STEPS=20000 mpirun -n 3 mpi_tests
   const char *env = std::getenv("NARROWS_BITWISE_STEPS");
-  // (colloid cases: 1000 steps of 50 MD sub-steps, 2-6 s each)
-  const int steps = env ? std::atoi(env) : (c.colloids ? 1000 : 2000);
+  // (colloid cases: 1000 steps of 50 MD sub-steps, 2-6 s each; 250 on 3 and 4 ranks)
+  const int quarter = world_size() > 2 ? 4 : 1;
+  const int steps = env ? std::atoi(env) : (c.colloids ? 1000 : 2000) / quarter;
   engine::MpcdSimulation par(s, MPI_COMM_WORLD);
-  for (int i = 0; i < steps; ++i)
+  // Colloid cases must move colloids from slab to slab, else the comparison is empty for them.
+  const auto &pc = par.colloids();
+  std::vector<int> slab_of(pc.size());
+  int slab_changes = 0;
+  for (std::size_t a = 0; a < pc.size(); ++a)
+    slab_of[a] = owner(par.slabs(), pc.x[0][a]);
+  for (int i = 0; i < steps; ++i) {
     par.advance();
+    for (std::size_t a = 0; a < pc.size(); ++a) {
+      const int now = owner(par.slabs(), pc.x[0][a]);
+      slab_changes += now != slab_of[a];
+      slab_of[a] = now;
+    }
+  }
+  if (c.colloids && world_size() > 1)
+    EXPECT_GT(slab_changes, 0) << "no colloid crossed a slab edge in " << steps << " steps";
   const auto total = engine::particle_count(s);
   const auto two = state_by_id(par.fluid(), total, MPI_COMM_WORLD);
+  // Every rank holds all colloids: each rank's copy must be rank 0's, bit for bit.
+  std::size_t copies_differ = differ_from_rank0(par.colloids(), c.dim), ranks_differ = 0;
+  MPI_Reduce(&copies_differ, &ranks_differ, 1, MPI_UNSIGNED_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
   if (world_rank() != 0)
     return;
+  EXPECT_EQ(ranks_differ, 0u) << "ranks whose copy of the colloids differs from rank 0's";
   engine::MpcdSimulation ser(s, MPI_COMM_SELF);
   for (int i = 0; i < steps; ++i)
     ser.advance();
   const auto one = state_by_id(ser.fluid(), total, MPI_COMM_SELF);
-  // Colloids: every rank holds all of them; compare rank 0's copy with the serial run's.
+  // Colloids: rank 0's copy (equal to every other rank's, above) against the serial run's.
   const auto &ca = par.colloids(), &cb = ser.colloids();
   ASSERT_EQ(ca.size(), cb.size());
   std::size_t colloid_differ = 0;
@@ -102,7 +146,7 @@ TEST_P(Bitwise, TwoRanksEqualOneRank) {
   for (std::size_t j = 0; j < one.size(); ++j)
     differ += std::memcmp(&one[j], &two[j], sizeof(double)) != 0;
   EXPECT_EQ(differ, 0u) << differ << " of " << one.size() << " numbers differ after " << steps
-                        << " steps";
+                        << " steps on " << world_size() << " ranks";
 }
 
 INSTANTIATE_TEST_SUITE_P(

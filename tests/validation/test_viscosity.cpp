@@ -34,6 +34,9 @@ struct Case {
   double amplitude;
   int warmup, blocks, block_steps;
   double tolerance; // relative; 0 = report only
+  // An expected deviation from theory (if hi > lo): nu / theory - 1 must lie in [lo, hi]
+  // widened by 3 standard errors of the measurement.
+  double expected_lo = 0.0, expected_hi = 0.0;
 };
 
 class Viscosity : public ::testing::TestWithParam<Case> {};
@@ -61,7 +64,13 @@ TEST_P(Viscosity, KolmogorovFlowMatchesTheory) {
               "(%.1f sigma), u0 %.3f\n",
               c.name, r.nu, r.nu_error, theory->total(), r.kT, 100.0 * dev,
               std::abs(r.nu - theory->total()) / r.nu_error, u0);
-  if (c.tolerance > 0.0) {
+  if (c.expected_hi > c.expected_lo) {
+    // the error bar must be small against the window, else the window cannot see a change
+    const double sigma = r.nu_error / theory->total();
+    EXPECT_LT(sigma, 0.5 * (c.expected_hi - c.expected_lo));
+    EXPECT_GE(dev, c.expected_lo - 3.0 * sigma) << "the known deviation from theory moved";
+    EXPECT_LE(dev, c.expected_hi + 3.0 * sigma) << "the known deviation from theory moved";
+  } else if (c.tolerance > 0.0) {
     EXPECT_LT(r.nu_error / r.nu, 0.5 * c.tolerance) << "run too short to test the tolerance";
     EXPECT_LT(std::abs(dev), c.tolerance);
   } else {
@@ -100,10 +109,12 @@ INSTANTIATE_TEST_SUITE_P(
              40,
              60,
              0.03},
-        // SRD 2D, lambda = 0.5, two angles. Measured by hand at this size: alpha = 120 ->
-        // +3.8 %, 130 -> +2.2 %, 140 -> within 1 %, 150 -> -3.9 %, 90 -> +22 % (also +24 % at
-        // lambda = 1, for L_y = 12 and 24 alike): the 2D formula is not within 3 % at every
-        // angle; see the issue note.
+        // SRD 2D, lambda = 0.5: the molecular-chaos formula holds within 3 % at 130 and 140 deg
+        // (asserted). Measured by hand at this size: alpha = 120 -> +3.8 %, 130 -> +2.2 %,
+        // 140 -> within 1 %, 150 -> -3.9 %, 90 -> +22 % (also +24 % at lambda = 1, for L_y = 12
+        // and 24 alike): in 2D the formula is not within 3 % at every angle. 120 and 150 deg
+        // are not run (each costs a minute, and there is no theory of their deviation); 90 deg,
+        // the known failure, is an expected-deviation test below.
         Case{"srd2d_a130_dt0.5",
              2,
              Collision::srd,
@@ -128,7 +139,13 @@ INSTANTIATE_TEST_SUITE_P(
              20,
              310,
              0.03},
-        Case{"srd2d_a90_dt1_report",
+        // The known failure of the 2D molecular-chaos formula at alpha = 90 deg: two independent
+        // codes measure nu +12 % to +23 % above it (issue 17; this code +22 to +24 %, lambda 0.5
+        // and 1), from correlations between collisions that the formula leaves out. Asserted as
+        // an expected deviation: inside the independent codes' range [+12 %, +23 %] widened by
+        // 3 standard errors of this run (measured +23.6 +- 2.6 %, so about [+4 %, +31 %]), so
+        // a change that moves nu towards the formula or farther from it is seen.
+        Case{"srd2d_a90_dt1_expected_deviation",
              2,
              Collision::srd,
              10,
@@ -139,7 +156,9 @@ INSTANTIATE_TEST_SUITE_P(
              280,
              20,
              100,
-             0.0},
+             0.0,
+             0.12,
+             0.23},
         // MPC-AT, thermostatted: larger u0 allowed (no heating), Re_k ~ 0.8.
         Case{
             "at2d_dt0.5", 2, Collision::at, 10, 0.5, 90, {100, 24, 0}, 0.00297, 640, 20, 320, 0.05},
