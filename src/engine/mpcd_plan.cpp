@@ -185,8 +185,7 @@ std::vector<std::string> describe_pipeline(const scene::Scene &s, const MpcdPlan
     break;
   }
   if (p.collision == scene::Collision::random_permute)
-    out.push_back(p.slabs ? "permute velocities within each rank (random solvent)"
-                          : "permute all velocities (random solvent)");
+    out.push_back("permute all velocities (random solvent)"); // one rank only (check_ranks)
   if (p.thermostat == MpcdPlan::Thermostat::layers)
     out.push_back("thermostat: rescale velocities relative to the cell means per layer of "
                   "cells to kT " +

@@ -2,6 +2,7 @@
 #include "narrows/engine/mpcd_simulation.hpp"
 
 #include "narrows/colloids/placement.hpp"
+#include "narrows/core/error.hpp"
 #include "narrows/mpcd/cell_sort.hpp"
 #include "narrows/mpcd/collision.hpp"
 #include "narrows/mpcd/streaming.hpp"
@@ -75,8 +76,23 @@ std::size_t estimate_memory(const scene::Scene &scene) {
          make_box(scene).num_cells() * bytes_per_cell(scene);
 }
 
+parallel::Slabs check_ranks(const scene::Scene &scene, MPI_Comm comm) {
+  parallel::Slabs slabs(comm, make_box(scene).cells[0]);
+  // The seed's random solvent (a) interchanges the velocities of all fluid particles; here
+  // they are permuted within the array of each rank, which on several ranks would be another
+  // stream than on one (and not a permutation of all).
+  if (scene.fluid.collision == scene::Collision::random_permute && slabs.ranks() > 1)
+    throw input_error((scene.file.empty() ? "" : scene.file + ": ") +
+                      "fluid.collision = \"random-permute\" permutes the velocities of all "
+                      "particles only on one rank; found " +
+                      std::to_string(slabs.ranks()) +
+                      " ranks; allowed: 1 rank, or fluid.collision = \"random-maxwell\" (the "
+                      "other random solvent, the same on any number of ranks)");
+  return slabs;
+}
+
 MpcdSimulation::MpcdSimulation(const scene::Scene &scene, MPI_Comm comm, bool allocate)
-    : scene_(scene), comm_(comm), box_(make_box(scene)), slabs_(comm, box_.cells[0]),
+    : scene_(scene), comm_(comm), box_(make_box(scene)), slabs_(check_ranks(scene, comm)),
       exchange_(comm), plan_(make_plan(scene, box_, slabs_.ranks())) {
   for (auto &line : describe_pipeline(scene, plan_, box_))
     stages_.push_back({std::move(line)});
@@ -84,21 +100,22 @@ MpcdSimulation::MpcdSimulation(const scene::Scene &scene, MPI_Comm comm, bool al
     md_.emplace(plan_.md, plan_.forces, box_);
   if (allocate) {
     grid_ = mpcd::CellGrid(box_, slabs_.first_column(), slabs_.local_columns());
-    // Ids in contiguous blocks per rank; the first migration sends each to its owner.
+    // Each rank creates the particles of its own cells (ids by a global order of the cells),
+    // so nothing migrates at the start and the state is the same on any number of ranks.
     const std::uint64_t total = particle_count(scene);
-    const auto r = static_cast<std::uint64_t>(slabs_.rank());
-    const auto p = static_cast<std::uint64_t>(slabs_.ranks());
-    const std::uint64_t first = total * r / p, last = total * (r + 1) / p;
-    mpcd::Excluded excluded;
     if (scene.colloids) {
       colloids_ =
           colloids::place_colloids(*scene.colloids, box_, scene.fluid.density, scene.run.seed);
-      excluded = [this](const std::array<double, 3> &p) {
-        return colloids::inside_any(colloids_, box_, p);
-      };
+      const colloids::ColloidCover cover(colloids_, box_);
+      const mpcd::Exclusion exclusion{
+          [&](std::size_t cell) { return cover.touches(cell); },
+          [&](const std::array<double, 3> &p) { return cover.inside(p); }};
+      mpcd::init_fluid(fluid_, box_, scene.fluid.kT, scene.run.seed, total, slabs_.first_column(),
+                       slabs_.local_columns(), comm, &exclusion);
+    } else {
+      mpcd::init_fluid(fluid_, box_, scene.fluid.kT, scene.run.seed, total, slabs_.first_column(),
+                       slabs_.local_columns(), comm);
     }
-    mpcd::init_fluid(fluid_, box_, scene.fluid.kT, scene.run.seed, first, last - first, total, comm,
-                     excluded);
   }
 }
 

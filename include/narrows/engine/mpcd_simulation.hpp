@@ -30,10 +30,11 @@ struct Stage {
 
 class MpcdSimulation {
 public:
-  // Builds the slabs, the pipeline and, if `allocate`, the fluid (ids 0..N-1 in blocks over
-  // the ranks, zero total momentum) and this rank's cell grid. Without it only the pipeline
-  // exists (for `narrows info` and `check`). Throws bad_input if comm has more ranks than
-  // the box has slabs.
+  // Builds the slabs, the plan and, if `allocate`, this rank's cell grid and its part of the
+  // initial state: the particles of its own cells (mpcd::init_fluid: ids 0..N-1 by a global
+  // order of the cells, the same state on any number of ranks, zero total momentum) and all
+  // colloids. Without it only the plan exists (for `narrows info` and `check`). Throws
+  // bad_input if the scene cannot run on the ranks of comm (check_ranks).
   MpcdSimulation(const scene::Scene &scene, MPI_Comm comm, bool allocate = true);
   MpcdSimulation(const MpcdSimulation &) = delete;
   MpcdSimulation &operator=(const MpcdSimulation &) = delete;
@@ -68,6 +69,8 @@ public:
   const mpcd::CellGrid &grid() const { return grid_; }
   MPI_Comm comm() const { return comm_; }
   const parallel::Slabs &slabs() const { return slabs_; }
+  // Particles this rank sent to other ranks in the last step.
+  std::size_t migrated_last_step() const { return strays_.index.size(); }
 
 private:
   void stream(mpcd::Fluid &fluid, double t) const;
@@ -97,6 +100,10 @@ private:
 };
 
 mpcd::Box make_box(const scene::Scene &scene);
+
+// The slabs of the scene on the ranks of comm; input_error (one line) if the box has too few
+// cell columns for them or the scene cannot run on that many ranks (random-permute).
+parallel::Slabs check_ranks(const scene::Scene &scene, MPI_Comm comm);
 
 // Memory the run will need, without building it: bytes per particle times N plus cell arrays.
 std::size_t estimate_memory(const scene::Scene &scene);
