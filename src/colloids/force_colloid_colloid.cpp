@@ -92,10 +92,7 @@ double add_colloid_colloid_4824(CellList &cl, std::vector<int> &cell_of,
   template double add_colloid_colloid_4824<D, W>(                                                  \
       CellList &, std::vector<int> &, std::vector<std::uint32_t> &, const Colloids &,              \
       const mpcd::Box &, double, bool, std::vector<std::int64_t> &);
-NARROWS_INSTANTIATE(2, false)
-NARROWS_INSTANTIATE(2, true)
-NARROWS_INSTANTIATE(3, false)
-NARROWS_INSTANTIATE(3, true)
+NARROWS_FOR_EACH_DIM_AND_WALLS(NARROWS_INSTANTIATE)
 #undef NARROWS_INSTANTIATE
 
 } // namespace narrows::colloids

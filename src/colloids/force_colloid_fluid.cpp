@@ -74,10 +74,7 @@ double add_colloid_fluid_wca(const CellList &cl, const mpcd::Fluid &f, const Col
   template double add_colloid_fluid_wca<D, W>(const CellList &, const mpcd::Fluid &,               \
                                               const Colloids &, const mpcd::Box &, double, bool,   \
                                               FluidForces &, std::vector<std::int64_t> &);
-NARROWS_INSTANTIATE(2, false)
-NARROWS_INSTANTIATE(2, true)
-NARROWS_INSTANTIATE(3, false)
-NARROWS_INSTANTIATE(3, true)
+NARROWS_FOR_EACH_DIM_AND_WALLS(NARROWS_INSTANTIATE)
 #undef NARROWS_INSTANTIATE
 
 } // namespace narrows::colloids

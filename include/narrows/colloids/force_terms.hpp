@@ -9,6 +9,9 @@
 #include <cstdint>
 #include <vector>
 
+// Instantiates M(D, WallsY) for the four kernels a pair term is compiled for.
+#define NARROWS_FOR_EACH_DIM_AND_WALLS(M) M(2, false) M(2, true) M(3, false) M(3, true)
+
 namespace narrows::colloids {
 
 // Colloid-fluid WCA, phi with n = 6 and sigma_cf = r_a (seed 000 eq 3.42), over the pairs the
