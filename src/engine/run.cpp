@@ -125,7 +125,7 @@ void run_scene(const scene::Scene &scene, const RunOptions &options, MPI_Comm co
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &ranks);
   // Refuse a decomposition the box cannot take before anything is written.
-  const parallel::Slabs slabs(comm, make_box(scene).cells[0]);
+  check_ranks(scene, comm);
   // A restart is checked (file, format, scene) before anything is written.
   std::string restart_file;
   io::CheckpointInfo restart_info;

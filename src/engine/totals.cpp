@@ -27,7 +27,7 @@ double total_energy(MpcdSimulation &sim) {
     for (std::size_t a = 0; a < c.size(); ++a)
       e += 0.5 * c.mass[a] * c.v[k][a] * c.v[k][a];
   if (auto *md = sim.md())
-    e += md->compute_forces(f, c, sim.comm(), true).total();
+    e += md->forces().compute(f, c, sim.comm(), true).total();
   return e;
 }
 

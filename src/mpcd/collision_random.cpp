@@ -8,8 +8,8 @@
 namespace narrows::mpcd {
 
 void permute_velocities(Fluid &fluid, CollisionScratch &, std::uint64_t seed, std::uint64_t step) {
-  // Fisher-Yates over the local array, one counter-based draw per position. On one rank this
-  // is a permutation of all fluid velocities; with slabs it will permute within each rank.
+  // Fisher-Yates over the local array, one counter-based draw per position: a permutation of
+  // all fluid velocities on one rank (the engine refuses it on more, engine::check_ranks).
   const std::size_t n = fluid.size();
   for (std::size_t i = n; i > 1; --i) {
     const auto r = rng::draw(seed, rng::Purpose::random_permute, step, i);

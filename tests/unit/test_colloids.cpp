@@ -3,7 +3,7 @@
 // in fixed point, the colloid cell list gives bitwise the forces of a double loop, radii drawn
 // from a truncated Gaussian have its mean and spread, and the placement keeps colloids apart
 // and fluid out of them.
-#include "narrows/colloids/md_coupling.hpp"
+#include "narrows/colloids/forces.hpp"
 #include "narrows/colloids/placement.hpp"
 #include "narrows/colloids/potentials.hpp"
 #include "narrows/core/error.hpp"
@@ -90,7 +90,7 @@ struct Config {
   mpcd::Box box;
   mpcd::Fluid fluid;
   Colloids colloids;
-  MdParams params;
+  ForceParams params;
 };
 
 // Radii 2 (sigma_w = 4), or with `unequal` 2.1, 2.2, 2.0 and sigma_w = 2 r_a (the wall then
@@ -133,9 +133,7 @@ Config make_config(bool walls, unsigned seed, bool unequal = false) {
   return c;
 }
 
-MdCoupling make_md(const Config &c) {
-  return MdCoupling(c.params, c.box, [](mpcd::Fluid &, double) {});
-}
+ForceField make_md(const Config &c) { return ForceField(c.params, c.box); }
 
 } // namespace
 
@@ -144,12 +142,10 @@ TEST(ColloidForces, AreMinusGradientsOfThePotentialEnergy) {
     for (const bool walls : {true, false}) {
       Config c = make_config(walls, 5, unequal);
       c.params.gravity = {0.0, 0.0, 0.0}; // gravity has no potential in a periodic box
-      MdCoupling md = make_md(c);
-      md.compute_forces(c.fluid, c.colloids, MPI_COMM_NULL);
+      ForceField md = make_md(c);
+      md.compute(c.fluid, c.colloids, MPI_COMM_NULL);
       const double h = 1e-6;
-      auto energy = [&] {
-        return md.compute_forces(c.fluid, c.colloids, MPI_COMM_NULL, true).total();
-      };
+      auto energy = [&] { return md.compute(c.fluid, c.colloids, MPI_COMM_NULL, true).total(); };
       // -dE/dx by central differences at the coordinate x (restored afterwards).
       auto minus_gradient = [&](double &x) {
         const double x0 = x;
@@ -163,7 +159,7 @@ TEST(ColloidForces, AreMinusGradientsOfThePotentialEnergy) {
       // every colloid coordinate
       for (std::size_t a = 0; a < 3; ++a)
         for (int k = 0; k < 2; ++k) {
-          md.compute_forces(c.fluid, c.colloids, MPI_COMM_NULL);
+          md.compute(c.fluid, c.colloids, MPI_COMM_NULL);
           const double f = fixed::to_double(md.colloid_force(a, k));
           EXPECT_NEAR(f, minus_gradient(c.colloids.x[k][a]), 1e-5 * (1.0 + std::abs(f)))
               << "colloid " << a << " axis " << k << " walls " << walls << " unequal " << unequal;
@@ -171,12 +167,12 @@ TEST(ColloidForces, AreMinusGradientsOfThePotentialEnergy) {
       // fluid coordinates of the particles that feel a force
       int checked = 0;
       for (std::size_t i = 0; i < c.fluid.size(); ++i) {
-        md.compute_forces(c.fluid, c.colloids, MPI_COMM_NULL);
+        md.compute(c.fluid, c.colloids, MPI_COMM_NULL);
         if (md.fluid_force(i, 0) == 0 && md.fluid_force(i, 1) == 0)
           continue;
         ++checked;
         for (int k = 0; k < 2; ++k) {
-          md.compute_forces(c.fluid, c.colloids, MPI_COMM_NULL);
+          md.compute(c.fluid, c.colloids, MPI_COMM_NULL);
           const double f = fixed::to_double(md.fluid_force(i, k));
           EXPECT_NEAR(f, minus_gradient(c.fluid.x[k][i]), 1e-5 * (1.0 + std::abs(f)))
               << "fluid " << i << " unequal " << unequal;
@@ -184,7 +180,7 @@ TEST(ColloidForces, AreMinusGradientsOfThePotentialEnergy) {
       }
       EXPECT_GT(checked, 10);
       if (unequal) { // every interaction of the unequal sizes takes part
-        const auto e = md.compute_forces(c.fluid, c.colloids, MPI_COMM_NULL, true);
+        const auto e = md.compute(c.fluid, c.colloids, MPI_COMM_NULL, true);
         EXPECT_GT(e.colloid_colloid, 0.0);
         EXPECT_GT(e.colloid_fluid, 0.0);
         EXPECT_EQ(e.wall > 0.0, walls);
@@ -194,7 +190,7 @@ TEST(ColloidForces, AreMinusGradientsOfThePotentialEnergy) {
 
 TEST(ColloidForces, NewtonsThirdLawIsExactInFixedPoint) {
   // The fixed-point forces on all particles (fluid and colloids) along axis k.
-  auto total = [](const Config &c, const MdCoupling &md, int k) {
+  auto total = [](const Config &c, const ForceField &md, int k) {
     std::int64_t sum = 0;
     for (std::size_t i = 0; i < c.fluid.size(); ++i)
       sum += md.fluid_force(i, k);
@@ -206,8 +202,8 @@ TEST(ColloidForces, NewtonsThirdLawIsExactInFixedPoint) {
   for (const bool unequal : {false, true}) {
     Config u = make_config(false, 9, unequal);
     u.params.gravity = {0.0, 0.0, 0.0};
-    MdCoupling mu = make_md(u);
-    mu.compute_forces(u.fluid, u.colloids, MPI_COMM_NULL);
+    ForceField mu = make_md(u);
+    mu.compute(u.fluid, u.colloids, MPI_COMM_NULL);
     int nonzero = 0;
     for (int k = 0; k < 2; ++k) {
       EXPECT_EQ(total(u, mu, k), 0) << "axis " << k << " unequal " << unequal;
@@ -220,8 +216,8 @@ TEST(ColloidForces, NewtonsThirdLawIsExactInFixedPoint) {
   // With gravity (a field: force M_a g on colloid a) the sum is exactly sum_a M_a g in fixed
   // point.
   c.params.gravity = {0.3, -0.1, 0.0};
-  MdCoupling mg = make_md(c);
-  mg.compute_forces(c.fluid, c.colloids, MPI_COMM_NULL);
+  ForceField mg = make_md(c);
+  mg.compute(c.fluid, c.colloids, MPI_COMM_NULL);
   for (int k = 0; k < 2; ++k) {
     std::int64_t expected = 0;
     for (std::size_t a = 0; a < 3; ++a)
@@ -462,12 +458,12 @@ TEST(ColloidForces, CellListEqualsTheDoubleLoopBitwise) {
       c.id[a] = a;
     }
     ASSERT_EQ(static_cast<int>(c.size()), spec.count);
-    MdParams params;
+    ForceParams params;
     params.gravity = {0.0, 0.0, 0.0};
-    MdCoupling md(params, box, [](mpcd::Fluid &, double) {});
+    ForceField md(params, box);
     mpcd::Fluid none;
     none.dim = spec.dim;
-    const PotentialEnergy e = md.compute_forces(none, c, MPI_COMM_NULL, true);
+    const PotentialEnergy e = md.compute(none, c, MPI_COMM_NULL, true);
     std::vector<std::int64_t> ref;
     const auto [e_cc, e_wall] = double_loop_forces(c, box, params.epsilon, ref);
     std::size_t differ = 0, nonzero = 0;

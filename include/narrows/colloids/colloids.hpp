@@ -9,7 +9,7 @@
 
 namespace narrows::colloids {
 
-// Every rank holds every colloid (see md_coupling.hpp for why); they are kept in id order.
+// Every rank holds every colloid (see forces.hpp for why); they are kept in id order.
 struct Colloids {
   int dim = 2;
   std::array<std::vector<double>, 3> x, v, omega; // components k < dim (omega: all 3, zero)

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 namespace narrows::colloids {
 
@@ -40,5 +41,21 @@ std::uint64_t fluid_count_with_colloids(const scene::Colloids &spec, const mpcd:
 // True if p lies within distance r_a of the centre of a colloid a (minimum image along periodic
 // axes).
 bool inside_any(const Colloids &c, const mpcd::Box &box, const std::array<double, 3> &p);
+
+// The colloids that overlap each collision cell of the box (cells of size 1), for keeping the
+// initial fluid out of them in O(colloids per cell) per test.
+class ColloidCover {
+public:
+  ColloidCover(const Colloids &c, const mpcd::Box &box);
+  // Whether a colloid may overlap the cell (global index (z * cells_y + y) * cells_x + x).
+  bool touches(std::size_t cell) const { return offset_[cell + 1] > offset_[cell]; }
+  // The same as inside_any(c, box, p).
+  bool inside(const std::array<double, 3> &p) const;
+
+private:
+  const Colloids &c_;
+  mpcd::Box box_;
+  std::vector<std::uint32_t> offset_, list_; // colloids of cell g: list_[offset_[g], offset_[g+1])
+};
 
 } // namespace narrows::colloids

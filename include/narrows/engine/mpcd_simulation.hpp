@@ -1,9 +1,10 @@
-// The MPCD simulation: state plus the pipeline of stages built once from the scene. Only the
-// effects the scene asks for become stages; each stage calls a kernel chosen for its case.
+// The MPCD simulation: state, the plan resolved once from the scene (mpcd_plan.hpp), and the
+// step, one function that calls each stage the plan has (advance() in mpcd_simulation.cpp).
 #pragma once
 
 #include "narrows/colloids/colloids.hpp"
-#include "narrows/colloids/md_coupling.hpp"
+#include "narrows/colloids/md_integrator.hpp"
+#include "narrows/engine/mpcd_plan.hpp"
 #include "narrows/mpcd/cell_grid.hpp"
 #include "narrows/mpcd/cell_sort.hpp"
 #include "narrows/mpcd/collision.hpp"
@@ -16,29 +17,29 @@
 #include <mpi.h>
 
 #include <cstdint>
-#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace narrows::engine {
 
+// A stage of the step as `narrows check`/`info` print it.
 struct Stage {
   std::string name;
-  std::function<void(std::uint64_t step)> run;
 };
 
 class MpcdSimulation {
 public:
-  // Builds the slabs, the pipeline and, if `allocate`, the fluid (ids 0..N-1 in blocks over
-  // the ranks, zero total momentum) and this rank's cell grid. Without it only the pipeline
-  // exists (for `narrows info` and `check`). Throws bad_input if comm has more ranks than
-  // the box has slabs.
+  // Builds the slabs, the plan and, if `allocate`, this rank's cell grid and its part of the
+  // initial state: the particles of its own cells (mpcd::init_fluid: ids 0..N-1 by a global
+  // order of the cells, the same state on any number of ranks, zero total momentum) and all
+  // colloids. Without it only the plan exists (for `narrows info` and `check`). Throws
+  // bad_input if the scene cannot run on the ranks of comm (check_ranks).
   MpcdSimulation(const scene::Scene &scene, MPI_Comm comm, bool allocate = true);
   MpcdSimulation(const MpcdSimulation &) = delete;
   MpcdSimulation &operator=(const MpcdSimulation &) = delete;
 
-  // One MPCD step: every stage in order, then the step counter advances.
+  // One MPCD step: every stage of the plan in order, then the step counter advances.
   void advance();
 
   // Continues from a checkpoint: the fluid becomes `fluid` (any block of the particles: the
@@ -62,14 +63,20 @@ public:
   // All colloids (every rank holds all of them); empty without [colloids].
   colloids::Colloids &colloids() { return colloids_; }
   const colloids::Colloids &colloids() const { return colloids_; }
-  // The MD coupling with [colloids] (nullptr without).
-  colloids::MdCoupling *md() { return md_ ? &*md_ : nullptr; }
+  // The MD integrator with [colloids] (nullptr without).
+  colloids::MdIntegrator *md() { return md_ ? &*md_ : nullptr; }
+  const MpcdPlan &plan() const { return plan_; }
   const mpcd::CellGrid &grid() const { return grid_; }
   MPI_Comm comm() const { return comm_; }
   const parallel::Slabs &slabs() const { return slabs_; }
+  // Particles this rank sent to other ranks in the last step.
+  std::size_t migrated_last_step() const { return strays_.index.size(); }
 
 private:
-  void build_pipeline();
+  void stream(mpcd::Fluid &fluid, double t) const;
+  void bin_into_cells();
+  void collide(std::uint64_t step);
+  void thermostat(std::uint64_t step);
   void migrate_to_owners();
   void migrate_strays_and_bin_arrivals();
 
@@ -78,11 +85,12 @@ private:
   mpcd::Box box_;
   parallel::Slabs slabs_;
   parallel::Exchange exchange_;
+  MpcdPlan plan_;
   mpcd::Strays strays_;
   std::vector<int> stray_dest_;
   mpcd::Fluid fluid_;
   colloids::Colloids colloids_;
-  std::optional<colloids::MdCoupling> md_;
+  std::optional<colloids::MdIntegrator> md_;
   mpcd::CellGrid grid_;
   mpcd::CollisionScratch collision_scratch_;
   mpcd::SortScratch sort_scratch_;
@@ -92,6 +100,10 @@ private:
 };
 
 mpcd::Box make_box(const scene::Scene &scene);
+
+// The slabs of the scene on the ranks of comm; input_error (one line) if the box has too few
+// cell columns for them or the scene cannot run on that many ranks (random-permute).
+parallel::Slabs check_ranks(const scene::Scene &scene, MPI_Comm comm);
 
 // Memory the run will need, without building it: bytes per particle times N plus cell arrays.
 std::size_t estimate_memory(const scene::Scene &scene);

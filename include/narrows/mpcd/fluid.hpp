@@ -42,14 +42,25 @@ struct Fluid {
 // Number of particles of a box filled at a mean density: round(density * volume).
 std::uint64_t fluid_particle_count(const Box &box, double density);
 
-// Creates the particles with ids [first_id, first_id + count) of a fluid filling the box:
-// positions uniform, velocities Maxwell-Boltzmann at kT (mass 1), then the mean velocity of
-// all `total` particles (summed exactly over the ranks of comm) removed, so the total momentum
-// is zero. Each particle's state depends only on (seed, id), not on the rank that makes it.
-// Positions for which `excluded` (if given) is true are drawn again (the space colloids take).
-using Excluded = std::function<bool(const std::array<double, 3> &)>;
-void init_fluid(Fluid &fluid, const Box &box, double kT, std::uint64_t seed, std::uint64_t first_id,
-                std::uint64_t count, std::uint64_t total, MPI_Comm comm,
-                const Excluded &excluded = nullptr);
+// Obstacles the fluid is kept out of (the colloids): `touches(cell)` says whether one may
+// overlap the cell (global index (z * cells_y + y) * cells_x + x), `inside(p)` whether p lies in
+// one.
+struct Exclusion {
+  std::function<bool(std::size_t cell)> touches;
+  std::function<bool(const std::array<double, 3> &)> inside;
+};
+
+// Creates this rank's part of a fluid of `total` particles filling the box: the particles of
+// the cells in columns [first_column, first_column + columns), so none has to move to another
+// rank. The particles are shared out over the cells taken in a fixed global order (column by
+// column along x, then z, then y) in proportion to each cell's free space W_g (the number of
+// 64 sample points outside the obstacles; 64 for every cell without them): cell g gets the ids
+// [total * S_g / S, total * S_(g+1) / S), S_g the sum of W over the cells before g (an
+// MPI_Exscan of integers). Positions are uniform in the cell (outside the obstacles),
+// velocities Maxwell-Boltzmann at kT (mass 1), both drawn from (seed, id); then the mean
+// velocity of all particles (summed exactly) is removed, so the total momentum is zero. The
+// state does not depend on the number of ranks.
+void init_fluid(Fluid &fluid, const Box &box, double kT, std::uint64_t seed, std::uint64_t total,
+                int first_column, int columns, MPI_Comm comm, const Exclusion *exclusion = nullptr);
 
 } // namespace narrows::mpcd

@@ -1,0 +1,62 @@
+// MD of colloids and fluid (seed 000 §3.4.5): over one collision step dt, k sub-steps of
+// velocity Verlet with tau_MD = dt / k for the colloids and the fluid particles near them, with
+// the forces of forces.hpp. The MPCD step calls, in order:
+//   take_near_fluid  forces now; each colloid's largest path; a copy of the fluid that may meet
+//                    a colloid this step (near_fluid.hpp says how it is chosen)
+//   (the engine streams all fluid the whole step, exactly, with the kernel its plan chose)
+//   substeps         velocity Verlet of the colloids and the near copies (these stream by the
+//                    same kernel between the kicks)
+//   put_back_near_fluid  the near copies replace their rows of the fluid
+//   check_paths      invariant_error if a colloid went further than assumed (a missed pair)
+#pragma once
+
+#include "narrows/colloids/colloids.hpp"
+#include "narrows/colloids/forces.hpp"
+#include "narrows/mpcd/fluid.hpp"
+
+#include <mpi.h>
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace narrows::colloids {
+
+struct MdParams {
+  double tau = 0.1 / 15; // MD time step
+  int substeps = 15;
+  double fluid_accel = 0.0; // largest body-force acceleration of a fluid particle
+};
+
+// Streams fluid by tau (walls and body force exact); chosen once by the engine's plan.
+using FluidStream = std::function<void(mpcd::Fluid &, double tau)>;
+
+class MdIntegrator {
+public:
+  MdIntegrator(const MdParams &params, const ForceParams &forces, const mpcd::Box &box);
+
+  void take_near_fluid(const mpcd::Fluid &fluid, const Colloids &colloids, MPI_Comm comm);
+  void substeps(Colloids &colloids, MPI_Comm comm, const FluidStream &stream);
+  void put_back_near_fluid(mpcd::Fluid &fluid) const;
+  void check_paths(const Colloids &colloids) const;
+
+  // The forces (also for the potential energy of an observable).
+  ForceField &forces() { return forces_; }
+  const MdParams &params() const { return params_; }
+
+private:
+  void kick(mpcd::Fluid &fluid, Colloids &colloids) const;
+
+  MdParams params_;
+  mpcd::Box box_;
+  int dim_;
+  ForceField forces_;
+  std::vector<double> margin_;            // per colloid: its largest possible path this step
+  std::vector<std::uint32_t> near_index_; // local fluid particles taking part in the sub-steps
+  std::vector<std::uint8_t> near_flag_;
+  mpcd::Fluid near_;                         // their copy during the sub-steps
+  std::array<std::vector<double>, 3> start_; // colloid positions at the start of the step
+};
+
+} // namespace narrows::colloids

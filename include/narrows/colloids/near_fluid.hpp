@@ -1,0 +1,27 @@
+// The fluid particles that take part in the MD sub-steps of a step (md_integrator.hpp).
+//
+// Only fluid particles that can come within the WCA cut-off of a colloid during the step take
+// part: a particle is left out when its distance to every colloid exceeds r_cut + (its largest
+// possible path |v| dt + |a| dt^2/2) + margin[a] (the colloid's possible path |V| dt + |F|/M
+// dt^2 + 0.25: twice the constant-force value, plus an allowance for the fluid's kicks within
+// the step). Those far particles stream the whole step at once; the near ones stream between
+// the velocity-Verlet kicks.
+#pragma once
+
+#include "narrows/colloids/colloids.hpp"
+#include "narrows/colloids/forces.hpp"
+#include "narrows/mpcd/fluid.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace narrows::colloids {
+
+// Lists in `index` (flags in `flag`) the particles of f near a colloid this step, from the cell
+// list `cells` of f (built by the force evaluation just before).
+void select_near_fluid(const CellList &cells, const mpcd::Fluid &f, const Colloids &c,
+                       const mpcd::Box &box, const std::vector<double> &margin, double dt,
+                       double fluid_accel, std::vector<std::uint8_t> &flag,
+                       std::vector<std::uint32_t> &index);
+
+} // namespace narrows::colloids

@@ -1,0 +1,98 @@
+// Colloid-colloid 48-24 forces (seed 000 eq 3.43) from a cell list of the colloids.
+#include "narrows/colloids/force_terms.hpp"
+#include "narrows/colloids/pair_geometry.hpp"
+#include "narrows/colloids/potentials.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace narrows::colloids {
+
+template <int D, bool WallsY>
+double add_colloid_colloid_4824(CellList &cl, std::vector<int> &cell_of,
+                                std::vector<std::uint32_t> &partners, const Colloids &c,
+                                const mpcd::Box &box, double eps, bool want_energy,
+                                std::vector<std::int64_t> &on_colloids) {
+  // Colloid a meets the partners b > a in the cells within one of its own (along an axis of
+  // fewer than three cells, all of its cells, so no cell is visited twice and no pair counted
+  // twice; along a wall axis the range stops at the walls). The pair forces are rounded to
+  // fixed point and summed as integers, so the order of the pairs does not matter; the energy
+  // is a sum of doubles, so for it the partners of each a are taken in increasing b, the order
+  // of a double loop over a < b.
+  const std::size_t nc = c.size();
+  const auto &L = box.length;
+  const auto &cells = cl.cells;
+  std::fill(cl.head.begin(), cl.head.end(), -1);
+  cl.next.resize(nc);
+  cell_of.resize(nc * D);
+  for (std::size_t a = 0; a < nc; ++a) {
+    std::size_t cell = 0;
+    for (int k = D - 1; k >= 0; --k) {
+      const int n = cells[k];
+      const int ck = std::clamp(static_cast<int>(c.x[k][a] * cl.inv_cell[k]), 0, n - 1);
+      cell_of[a * D + k] = ck;
+      cell = cell * static_cast<std::size_t>(n) + static_cast<std::size_t>(ck);
+    }
+    cl.next[a] = cl.head[cell];
+    cl.head[cell] = static_cast<std::int32_t>(a);
+  }
+  double energy = 0.0;
+  for (std::size_t a = 0; a < nc; ++a) {
+    int lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0}, home[3] = {0, 0, 0};
+    for (int k = 0; k < D; ++k) {
+      const int n = cells[k];
+      home[k] = cell_of[a * D + k];
+      if (n < 3) {
+        lo[k] = -home[k], hi[k] = n - 1 - home[k];
+      } else if (WallsY && k == 1) {
+        lo[k] = home[k] > 0 ? -1 : 0, hi[k] = home[k] < n - 1 ? 1 : 0;
+      } else {
+        lo[k] = -1, hi[k] = 1;
+      }
+    }
+    partners.clear();
+    int off[3] = {0, 0, 0};
+    for (off[2] = lo[2]; off[2] <= hi[2]; ++off[2])
+      for (off[1] = lo[1]; off[1] <= hi[1]; ++off[1])
+        for (off[0] = lo[0]; off[0] <= hi[0]; ++off[0]) {
+          std::size_t cell = 0;
+          for (int k = D - 1; k >= 0; --k) {
+            const int n = cells[k];
+            int ck = home[k] + off[k];
+            ck = ck < 0 ? ck + n : (ck >= n ? ck - n : ck);
+            cell = cell * static_cast<std::size_t>(n) + static_cast<std::size_t>(ck);
+          }
+          for (std::int32_t b = cl.head[cell]; b >= 0; b = cl.next[b])
+            if (static_cast<std::size_t>(b) > a)
+              partners.push_back(static_cast<std::uint32_t>(b));
+        }
+    if (want_energy)
+      std::sort(partners.begin(), partners.end());
+    const double xa[3] = {c.x[0][a], c.x[1][a], D == 3 ? c.x[2][a] : 0.0};
+    for (const std::uint32_t b : partners) {
+      const double xb[3] = {c.x[0][b], c.x[1][b], D == 3 ? c.x[2][b] : 0.0};
+      double d[3];
+      const double r2 = separation<D, WallsY>(xa, xb, L, d);
+      const double scc = c.radius[a] + c.radius[b];
+      if (r2 >= std::pow(repulsive_cutoff(24, scc), 2))
+        continue;
+      const PairTerm t = repulsive_pair<24>(r2, scc * scc, eps);
+      energy += t.energy;
+      for (int k = 0; k < D; ++k) {
+        const std::int64_t q = to_fixed(t.f_over_r * d[k]);
+        on_colloids[a * D + k] += q;
+        on_colloids[static_cast<std::size_t>(b) * D + k] -= q;
+      }
+    }
+  }
+  return energy;
+}
+
+#define NARROWS_INSTANTIATE(D, W)                                                                  \
+  template double add_colloid_colloid_4824<D, W>(                                                  \
+      CellList &, std::vector<int> &, std::vector<std::uint32_t> &, const Colloids &,              \
+      const mpcd::Box &, double, bool, std::vector<std::int64_t> &);
+NARROWS_FOR_EACH_DIM_AND_WALLS(NARROWS_INSTANTIATE)
+#undef NARROWS_INSTANTIATE
+
+} // namespace narrows::colloids

@@ -1,0 +1,115 @@
+// The colloid forces as the sum of their terms, in fixed point.
+#include "narrows/colloids/forces.hpp"
+
+#include "narrows/colloids/force_terms.hpp"
+#include "narrows/colloids/potentials.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace narrows::colloids {
+
+void CellList::size_for(const mpcd::Box &box, double cut) {
+  std::size_t n = 1;
+  for (int k = 0; k < box.dim; ++k) {
+    cells[k] = std::max(1, static_cast<int>(std::floor(box.length[k] / cut)));
+    inv_cell[k] = cells[k] / box.length[k];
+    n *= static_cast<std::size_t>(cells[k]);
+  }
+  head.assign(n, -1);
+}
+
+void FluidForces::clear(int dim) {
+  for (const std::uint32_t i : touched) {
+    flag[i] = 0;
+    for (int k = 0; k < dim; ++k)
+      value[static_cast<std::size_t>(i) * dim + k] = 0;
+  }
+  touched.clear();
+}
+
+namespace {
+
+void build_fluid_cells(CellList &cl, const mpcd::Fluid &f, int dim) {
+  const std::size_t n = f.size();
+  std::fill(cl.head.begin(), cl.head.end(), -1);
+  cl.next.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::size_t cell = 0;
+    for (int k = dim - 1; k >= 0; --k) {
+      const int ck = std::min(cl.cells[k] - 1, static_cast<int>(f.x[k][i] * cl.inv_cell[k]));
+      cell = cell * static_cast<std::size_t>(cl.cells[k]) + static_cast<std::size_t>(ck);
+    }
+    cl.next[i] = cl.head[cell];
+    cl.head[cell] = static_cast<std::int32_t>(i);
+  }
+}
+
+} // namespace
+
+ForceField::ForceField(const ForceParams &params, const mpcd::Box &box)
+    : params_(params), box_(box), dim_(box.dim) {}
+
+void ForceField::size_cells(const Colloids &c) {
+  // Fluid cells at least the largest WCA cut-off wide, colloid cells at least the largest
+  // 48-24 cut-off; the radii are fixed, so this runs once.
+  double r_max = 0.0;
+  for (const double r : c.radius)
+    r_max = std::max(r_max, r);
+  if (r_max == cell_radius_)
+    return;
+  cell_radius_ = r_max;
+  fluid_cells_.size_for(box_, repulsive_cutoff(6, r_max));
+  colloid_cells_.size_for(box_, repulsive_cutoff(24, 2.0 * r_max));
+}
+
+template <int D, bool WallsY>
+PotentialEnergy ForceField::compute(const mpcd::Fluid &f, const Colloids &c, MPI_Comm comm,
+                                    bool want_energy) {
+  const std::size_t n = f.size(), nc = c.size();
+  // Forces of the previous call are cleared where they were set; arrays grow with the fluid.
+  fluid_.clear(D);
+  fluid_.value.resize(n * D, 0);
+  fluid_.flag.resize(n, 0);
+  size_cells(c);
+  build_fluid_cells(fluid_cells_, f, D);
+  const double eps = params_.epsilon;
+  PotentialEnergy energy;
+
+  // Terms between fluid and colloids: this rank's fluid on every colloid, summed over ranks.
+  colloid_local_.assign(nc * D, 0);
+  energy.colloid_fluid = add_colloid_fluid_wca<D, WallsY>(fluid_cells_, f, c, box_, eps,
+                                                          want_energy, fluid_, colloid_local_);
+  colloid_.resize(nc * D);
+  if (comm == MPI_COMM_NULL) {
+    colloid_ = colloid_local_;
+  } else {
+    MPI_Allreduce(colloid_local_.data(), colloid_.data(), static_cast<int>(nc * D), MPI_INT64_T,
+                  MPI_SUM, comm);
+  }
+  if (want_energy && comm != MPI_COMM_NULL) {
+    double sum = 0.0;
+    MPI_Allreduce(&energy.colloid_fluid, &sum, 1, MPI_DOUBLE, MPI_SUM, comm);
+    energy.colloid_fluid = sum;
+  }
+
+  // Terms among colloids and of external fields: the same on every rank (all hold all
+  // colloids). Contact forces with history would be added here.
+  energy.colloid_colloid = add_colloid_colloid_4824<D, WallsY>(
+      colloid_cells_, colloid_cell_, partners_, c, box_, eps, want_energy, colloid_);
+  if constexpr (WallsY)
+    energy.wall = add_wall_lj<D>(c, box_, eps, params_.sigma_wall, params_.wall_q, colloid_);
+  add_gravity<D>(c, params_.gravity, colloid_);
+  return energy;
+}
+
+PotentialEnergy ForceField::compute(const mpcd::Fluid &fluid, const Colloids &colloids,
+                                    MPI_Comm comm, bool want_energy) {
+  if (dim_ == 3)
+    return box_.walls_y ? compute<3, true>(fluid, colloids, comm, want_energy)
+                        : compute<3, false>(fluid, colloids, comm, want_energy);
+  return box_.walls_y ? compute<2, true>(fluid, colloids, comm, want_energy)
+                      : compute<2, false>(fluid, colloids, comm, want_energy);
+}
+
+} // namespace narrows::colloids

@@ -1,0 +1,124 @@
+// Velocity-Verlet sub-steps of the colloids and the fluid near them.
+#include "narrows/colloids/md_integrator.hpp"
+
+#include "narrows/colloids/near_fluid.hpp"
+#include "narrows/colloids/pair_geometry.hpp"
+#include "narrows/core/error.hpp"
+#include "narrows/core/fixed_point.hpp"
+#include "narrows/mpcd/streaming.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace narrows::colloids {
+
+namespace {
+
+// Added to each colloid's path over a step when choosing the fluid particles of the sub-steps.
+constexpr double path_allowance = 0.25;
+
+} // namespace
+
+MdIntegrator::MdIntegrator(const MdParams &params, const ForceParams &forces, const mpcd::Box &box)
+    : params_(params), box_(box), dim_(box.dim), forces_(forces, box) {}
+
+void MdIntegrator::take_near_fluid(const mpcd::Fluid &fluid, const Colloids &colloids,
+                                   MPI_Comm comm) {
+  // Forces depend on positions only, which the collision does not change: they are computed
+  // afresh here rather than carried across the migration of the fluid.
+  forces_.compute(fluid, colloids, comm);
+  const double dt = params_.tau * params_.substeps;
+  const std::size_t nc = colloids.size();
+  margin_.resize(nc);
+  for (int k = 0; k < dim_; ++k)
+    start_[k] = colloids.x[k];
+  for (std::size_t a = 0; a < nc; ++a) {
+    double v2 = 0.0, f2 = 0.0;
+    for (int k = 0; k < dim_; ++k) {
+      v2 += colloids.v[k][a] * colloids.v[k][a];
+      const double f = fixed::to_double(forces_.colloid_force(a, k));
+      f2 += f * f;
+    }
+    // Fluid kicks change the force within the step, so a fixed allowance is added to the path
+    // the start values give (a thermal colloid moves ~0.01 per step of 0.1).
+    margin_[a] = std::sqrt(v2) * dt + std::sqrt(f2) / colloids.mass[a] * dt * dt + path_allowance;
+  }
+  select_near_fluid(forces_.fluid_cells(), fluid, colloids, box_, margin_, dt, params_.fluid_accel,
+                    near_flag_, near_index_);
+  const std::size_t m = near_index_.size();
+  near_.dim = dim_;
+  near_.resize(m);
+  for (std::size_t j = 0; j < m; ++j) {
+    const std::uint32_t i = near_index_[j];
+    for (int k = 0; k < dim_; ++k) {
+      near_.x[k][j] = fluid.x[k][i];
+      near_.v[k][j] = fluid.v[k][i];
+    }
+    near_.id[j] = fluid.id[i];
+  }
+}
+
+void MdIntegrator::kick(mpcd::Fluid &f, Colloids &c) const {
+  // Half a step of the current forces: v += F tau / (2 m), fluid mass 1.
+  const double h = 0.5 * params_.tau;
+  const auto &on_fluid = forces_.fluid_forces().value;
+  for (const std::uint32_t i : forces_.fluid_forces().touched)
+    for (int k = 0; k < dim_; ++k)
+      f.v[k][i] += fixed::to_double(on_fluid[static_cast<std::size_t>(i) * dim_ + k]) * h;
+  for (std::size_t a = 0; a < c.size(); ++a) {
+    const double s = h / c.mass[a];
+    for (int k = 0; k < dim_; ++k)
+      c.v[k][a] += fixed::to_double(forces_.colloid_force(a, k)) * s;
+  }
+}
+
+void MdIntegrator::substeps(Colloids &colloids, MPI_Comm comm, const FluidStream &stream) {
+  const double tau = params_.tau;
+  const std::size_t nc = colloids.size();
+  forces_.compute(near_, colloids, comm); // the same colloid forces: every pair is in near_
+  for (int s = 0; s < params_.substeps; ++s) {
+    kick(near_, colloids);
+    stream(near_, tau);
+    for (std::size_t a = 0; a < nc; ++a)
+      for (int k = 0; k < dim_; ++k) {
+        double x = colloids.x[k][a] + colloids.v[k][a] * tau;
+        if (!(k == 1 && box_.walls_y))
+          x = mpcd::wrap_periodic(x, box_.length[k]);
+        colloids.x[k][a] = x;
+      }
+    forces_.compute(near_, colloids, comm);
+    kick(near_, colloids);
+  }
+}
+
+void MdIntegrator::put_back_near_fluid(mpcd::Fluid &fluid) const {
+  for (std::size_t j = 0; j < near_index_.size(); ++j) {
+    const std::uint32_t i = near_index_[j];
+    for (int k = 0; k < dim_; ++k) {
+      fluid.x[k][i] = near_.x[k][j];
+      fluid.v[k][i] = near_.v[k][j];
+    }
+  }
+}
+
+void MdIntegrator::check_paths(const Colloids &colloids) const {
+  for (std::size_t a = 0; a < colloids.size(); ++a) {
+    double d2 = 0.0;
+    for (int k = 0; k < dim_; ++k) {
+      double d = colloids.x[k][a] - start_[k][a];
+      if (!(k == 1 && box_.walls_y))
+        d = minimum_image(d, box_.length[k]);
+      d2 += d * d;
+    }
+    if (std::sqrt(d2) > margin_[a] + 1e-12) {
+      std::ostringstream os;
+      os << "colloid id " << colloids.id[a] << " moved " << std::sqrt(d2)
+         << " in one step, more than the " << margin_[a]
+         << " its velocity and force allowed (a sudden force: more colloids.md_substeps or a "
+            "smaller fluid.dt)";
+      throw invariant_error(os.str());
+    }
+  }
+}
+
+} // namespace narrows::colloids
