@@ -1,0 +1,31 @@
+// The MPCD fluid as a checkpoint species.
+#include "narrows/engine/fluid_checkpoint.hpp"
+
+#include "narrows/core/error.hpp"
+
+namespace narrows::engine {
+
+io::SpeciesFields fluid_fields(mpcd::Fluid &f) {
+  io::SpeciesFields s;
+  s.name = "fluid";
+  s.dim = f.dim;
+  s.vectors.push_back({"position", {&f.x[0], &f.x[1], &f.x[2]}});
+  s.vectors.push_back({"velocity", {&f.v[0], &f.v[1], &f.v[2]}});
+  s.words.push_back({"id", &f.id});
+  return s;
+}
+
+mpcd::Fluid read_fluid(const std::string &path, const io::CheckpointInfo &info, MPI_Comm comm) {
+  mpcd::Fluid fluid;
+  fluid.dim = info.dimensions;
+  auto fields = fluid_fields(fluid);
+  io::read_species(path, fields, comm);
+  fluid.cell.assign(fluid.id.size(), 0);
+  for (const auto id : fluid.id)
+    if (id >= info.fluid_particles)
+      throw input_error(path + ": /particles/fluid/id/value holds id " + std::to_string(id) +
+                        "; allowed: 0 to " + std::to_string(info.fluid_particles - 1));
+  return fluid;
+}
+
+} // namespace narrows::engine
