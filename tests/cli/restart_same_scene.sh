@@ -8,6 +8,9 @@
 #   (--restart DIR), but not from the scene file without the --set;
 # - a fresh run into a folder with a run's checkpoints needs --overwrite;
 # - a restart with no steps left writes nothing (exit 0 at the end, exit 2 before it);
+# - a checkpoint written before /parameters/canonical_scene existed (main 0aac96f) restarts,
+#   its /parameters/scene canonicalised, and refuses a changed key the same way;
+# - a checkpoint write that fails (zero fluid particles, an HDF5 error) leaves no .tmp;
 # - a checkpoint refused on one rank only (an out-of-range particle id) ends every rank with one
 #   line and exit 2, on 2 and 3 ranks (main hung on 2).
 set -u
@@ -142,7 +145,8 @@ while IFS='|' read -r e scene set key more; do
     > /dev/null 2> "$tmp/err"
   check "$e: restart with the same --set exits 0" '[ $? -eq 0 ] || { cat "$tmp/err"; false; }'
   more2=${more%=*}=$((${more#*=} * 2))
-  (cd "$tmp" && "$narrows" run --restart "s-$e" --set "$more2" > /dev/null 2> "$tmp/err")
+  abs=$(realpath "$narrows")
+  (cd "$tmp" && "$abs" run --restart "s-$e" --set "$more2" > /dev/null 2> "$tmp/err")
   check "$e: restart with no scene file exits 0" '[ $? -eq 0 ] || { cat "$tmp/err"; false; }'
   check "$e: ... and continued the checkpoint's scene in its folder" \
     'grep -q "^restarted from" "$tmp/s-$e/log-$(printf %010d "${more#*=}").txt"'
@@ -175,6 +179,26 @@ check "restart at run.steps: one line saying so" \
 refused "restart beyond run.steps" "at step 6 and run.steps = 5: nothing to run" \
   "$narrows" run "$tmp/lgca.toml" --set run.steps=5 --restart "$tmp/lgca" --out "$tmp/lgca"
 check "no-step restarts wrote nothing" '[ "$(ls "$tmp/lgca")" = "$before" ]'
+
+# A checkpoint of the old format: no /parameters/canonical_scene, the scene text as written.
+mkdir -p "$tmp/old"
+$py - "$tmp/lgca/checkpoint-0000000006.h5" "$tmp/old/checkpoint-0000000006.h5" <<'PY'
+import shutil, sys, h5py
+shutil.copy(sys.argv[1], sys.argv[2])
+with h5py.File(sys.argv[2], "r+") as f:
+    del f["parameters/canonical_scene"]
+PY
+refused "old-format checkpoint: a changed key" "lattice.density = 0.35 but checkpoint .* has 0.3" \
+  "$narrows" run "$tmp/lgca.toml" --set lattice.density=0.35 --set run.steps=8 --restart "$tmp/old" --out "$tmp/old"
+"$narrows" run "$tmp/lgca.toml" --set run.steps=8 --restart "$tmp/old" --out "$tmp/old" > /dev/null 2> "$tmp/err"
+code=$?
+check "old-format checkpoint restarts (exit $code)" '[ "$code" -eq 0 ] || { cat "$tmp/err"; false; }'
+
+# A failed checkpoint write (HDF5 cannot address an empty dataset) leaves no .tmp behind.
+"$narrows" run "$tmp/mpcd.toml" --set fluid.density=1e-9 --out "$tmp/empty" > /dev/null 2>&1
+code=$?
+check "no fluid particles: not exit 0 (got $code)" '[ "$code" -ne 0 ]'
+check "no fluid particles: no checkpoint .tmp left" '! ls "$tmp/empty" 2> /dev/null | grep -q "\.tmp$"'
 
 # Refusal is collective: an out-of-range id read by one rank only.
 "$narrows" run "$tmp/mpcd.toml" --set walls.slip=true --out "$tmp/ids" > /dev/null 2>&1
