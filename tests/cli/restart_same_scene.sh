@@ -159,6 +159,10 @@ kmc|kmc|kmc.time=30.0|kmc.time|kmc.replicas=4
 TABLE
 refused "run without a scene file needs --restart" "run needs a scene file, or --restart DIR" \
   "$narrows" run --out "$tmp/z"
+refused "--restart ''" "command line: --restart ''; allowed: a non-empty path" \
+  "$narrows" run "$tmp/mpcd.toml" --restart '' --out "$tmp/z"
+refused "--out ''" "command line: --out ''; allowed: a non-empty path" \
+  "$narrows" run "$tmp/mpcd.toml" --out ''
 
 # A fresh run into a folder with a run's checkpoints: refused unless --overwrite.
 sum=$(md5sum "$tmp/mpcd"/checkpoint-*.h5)
