@@ -3,9 +3,9 @@
 #include "narrows/engine/bench.hpp"
 #include "narrows/engine/info.hpp"
 #include "narrows/engine/run.hpp"
-#include "narrows/io/checkpoint.hpp"
 #include "narrows/kmc/driver.hpp"
 #include "narrows/lattice/driver.hpp"
+#include "narrows/run/shell.hpp"
 #include "narrows/scene/parse.hpp"
 
 #include <CLI/CLI.hpp>
@@ -34,13 +34,21 @@ int main_inner(int argc, char **argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string(NARROWS_VERSION));
 
-  std::string scene_file, out_dir, restart;
+  std::string scene_file;
   std::vector<std::string> sets;
+  narrows::run::Options run_opt;
   auto *run = app.add_subcommand("run", "run a scene");
-  run->add_option("scene", scene_file, "scene file (TOML)")->required();
+  run->add_option("scene", scene_file,
+                  "scene file (TOML); with --restart it may be left out: the checkpoint's own "
+                  "scene continues");
   run->add_option("--set", sets, "override a scene key: key.path=value (repeatable)");
-  run->add_option("--restart", restart, "continue from a checkpoint file or directory");
-  run->add_option("--out", out_dir, "output directory (default: output.dir of the scene)");
+  auto *restart_opt = run->add_option("--restart", run_opt.restart,
+                                      "continue from a checkpoint file or directory (the scene "
+                                      "must be the checkpoint's, but for run.steps and output.*)");
+  auto *out_opt = run->add_option("--out", run_opt.out_dir,
+                                  "output directory (default: output.dir of the scene)");
+  run->add_flag("--overwrite", run_opt.overwrite,
+                "a fresh run may replace the checkpoints of a run in the output directory");
 
   auto *check = app.add_subcommand("check", "validate a scene and print its pipeline");
   check->add_option("scene", scene_file, "scene file (TOML)")->required();
@@ -79,6 +87,10 @@ int main_inner(int argc, char **argv) {
   } catch (const CLI::ParseError &e) {
     throw narrows::input_error("command line: " + one_line(e.what()) + " (see narrows --help)");
   }
+  for (auto *given : {restart_opt, out_opt})
+    if (given->count() > 0 && given->as<std::string>().empty())
+      throw narrows::input_error("command line: " + given->get_name() +
+                                 " ''; allowed: a non-empty path (see narrows --help)");
 
   const bool root = rank_of_world() == 0;
   if (*bench && kmc_sites > 0.0) {
@@ -96,16 +108,15 @@ int main_inner(int argc, char **argv) {
       narrows::engine::run_bench(bench_opt, std::cout);
     return 0;
   }
-  const auto scene = narrows::scene::load_scene(scene_file, sets);
+  const auto scene = (*run && scene_file.empty())
+                         ? narrows::run::scene_of_checkpoint(run_opt, sets, MPI_COMM_WORLD)
+                         : narrows::scene::load_scene(scene_file, sets);
   if (scene.run.engine == narrows::scene::Engine::kmc)
     return narrows::kmc::command(scene, static_cast<bool>(*check), static_cast<bool>(*info),
-                                 restart, out_dir, MPI_COMM_WORLD);
-  if (scene.run.engine == narrows::scene::Engine::lgca) {
-    if (!restart.empty())
-      narrows::io::check_restart_overrides(sets);
+                                 run_opt, MPI_COMM_WORLD);
+  if (scene.run.engine == narrows::scene::Engine::lgca)
     return narrows::lattice::command(scene, static_cast<bool>(*check), static_cast<bool>(*info),
-                                     restart, out_dir, MPI_COMM_WORLD);
-  }
+                                     run_opt, MPI_COMM_WORLD);
   if (*check || *info) {
     narrows::engine::check_colloid_placement(scene);
     if (root) {
@@ -118,9 +129,7 @@ int main_inner(int argc, char **argv) {
     }
     return 0;
   }
-  if (!restart.empty())
-    narrows::io::check_restart_overrides(sets);
-  narrows::engine::run_scene(scene, {out_dir, restart}, MPI_COMM_WORLD);
+  narrows::engine::run_scene(scene, run_opt, MPI_COMM_WORLD);
   return 0;
 }
 

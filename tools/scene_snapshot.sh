@@ -2,13 +2,22 @@
 # Runs every scene in run/ shortened (a few output samples, one checkpoint at the end) on P
 # ranks and keeps the outputs, so that a behaviour-preserving change can be proven bitwise:
 #   bash tools/scene_snapshot.sh BUILD/narrows OUTDIR [P]    # before and after the change
-#   bash tools/scene_snapshot.sh --compare OUTDIR_A OUTDIR_B # h5diff of every HDF5 file
+#   bash tools/scene_snapshot.sh --compare OUTDIR_A OUTDIR_B [--exclude /path ...]
+#                                       # h5diff of every HDF5 file, without the objects named
+#                                       # (e.g. a dataset one side adds on purpose)
 # Timing lines of the logs differ between runs; only the HDF5 files are compared.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 
 if [[ "${1:-}" == "--compare" ]]; then
   a=$2 b=$3 same=0 differ=0
+  shift 3
+  exclude=()
+  while [[ $# -gt 0 ]]; do
+    [[ "$1" == --exclude && $# -ge 2 ]] || { echo "usage: --compare A B [--exclude /path ...]"; exit 2; }
+    exclude+=(--exclude-path "$2")
+    shift 2
+  done
   while IFS= read -r -d '' f; do
     rel=${f#"$a"/}
     if [[ ! -f "$b/$rel" ]]; then
@@ -17,7 +26,7 @@ if [[ "${1:-}" == "--compare" ]]; then
       continue
     fi
     # h5diff exits 0 when equal, 1 when different, 2 on error.
-    if h5diff -q "$f" "$b/$rel" >/dev/null 2>&1; then
+    if h5diff -q "${exclude[@]}" "$f" "$b/$rel" >/dev/null 2>&1; then
       same=$((same + 1))
     else
       echo "differs: $rel"

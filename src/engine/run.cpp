@@ -3,20 +3,25 @@
 
 #include "narrows/analysis/fluid_observables.hpp"
 #include "narrows/analysis/poiseuille.hpp"
+#include "narrows/colloids/placement.hpp"
 #include "narrows/core/error.hpp"
 #include "narrows/core/timer.hpp"
+#include "narrows/engine/fluid_checkpoint.hpp"
 #include "narrows/engine/info.hpp"
 #include "narrows/engine/invariants.hpp"
-#include "narrows/engine/log.hpp"
 #include "narrows/engine/mpcd_simulation.hpp"
 #include "narrows/engine/totals.hpp"
+#include "narrows/engine/trajectory_writer.hpp"
 #include "narrows/io/checkpoint.hpp"
 #include "narrows/io/colloid_checkpoint.hpp"
 #include "narrows/io/observables_writer.hpp"
-#include "narrows/io/trajectory_writer.hpp"
 #include "narrows/parallel/slabs.hpp"
+#include "narrows/run/collective.hpp"
+#include "narrows/run/shell.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -120,125 +125,120 @@ private:
 
 } // namespace
 
-void run_scene(const scene::Scene &scene, const RunOptions &options, MPI_Comm comm) {
-  int rank = 0, ranks = 1;
-  MPI_Comm_rank(comm, &rank);
-  MPI_Comm_size(comm, &ranks);
+// The checkpoint's data must fit the scene: the particle count the scene makes.
+void check_fluid_count(const scene::Scene &scene, const io::CheckpointInfo &info,
+                       const std::string &checkpoint) {
+  std::array<int, 3> cells{1, 1, 1};
+  for (int k = 0; k < scene.run.dimensions; ++k)
+    cells[k] = static_cast<int>(std::lround(scene.domain.size[k]));
+  const mpcd::Box box = mpcd::make_periodic_box(scene.run.dimensions, cells);
+  // The space the colloids take holds no fluid: the count the run made (radii from the seed).
+  const std::uint64_t count =
+      scene.colloids ? colloids::fluid_count_with_colloids(*scene.colloids, box,
+                                                           scene.fluid.density, scene.run.seed)
+                     : mpcd::fluid_particle_count(box, scene.fluid.density);
+  if (count != info.fluid_particles)
+    throw input_error(checkpoint + ": holds " + std::to_string(info.fluid_particles) +
+                      " fluid particles, the scene has " + std::to_string(count) +
+                      "; allowed: a checkpoint of this scene");
+}
+
+void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm comm) {
   // Refuse a decomposition the box cannot take before anything is written.
   check_ranks(scene, comm);
-  // A restart is checked (file, format, scene) before anything is written.
-  std::string restart_file;
-  io::CheckpointInfo restart_info;
-  if (!options.restart.empty()) {
-    restart_file = io::resolve_restart(options.restart);
-    restart_info = io::read_checkpoint_info(restart_file, comm);
-    io::check_restart_scene(scene, restart_info, restart_file);
-  }
-  const bool restarting = !restart_file.empty();
+  run::Shell shell(scene, options, comm, {scene.run.steps, "run.steps", {}});
+  const bool restarting = shell.restarting();
   if (!restarting)
     check_colloid_placement(scene);
 
-  const std::string dir = options.out_dir.empty() ? scene.output.dir : options.out_dir;
-  RunOutput output = open_run_output(dir, restarting ? restart_info.step : -1, scene.file, comm);
-  Log &log = output.log;
-  const std::string &from = output.suffix;
+  // The state, from the scene or the checkpoint (every rank agrees on a refusal) before
+  // anything is written.
+  MpcdSimulation sim(scene, comm, !restarting);
+  if (restarting) {
+    const std::string &file = shell.restart_file();
+    run::collectively(comm, [&] {
+      const io::CheckpointInfo info = io::read_checkpoint_info(file, comm);
+      check_fluid_count(scene, info, file);
+      sim.restore(read_fluid(file, info, comm), info.step);
+    });
+    if (scene.colloids)
+      run::collectively(comm, [&] {
+        sim.restore_colloids(io::read_colloids(file, *scene.colloids, scene.run.dimensions,
+                                               scene.fluid.density, scene.run.seed, comm));
+      });
+  }
+  run::Log &log = shell.open(restarting ? sim.step() : -1);
   for (const auto &line : describe_scene(scene, comm))
     log.line(line);
   for (const auto &w : regime_warnings(scene))
     log.warn(w);
-
-  MpcdSimulation sim(scene, comm, !restarting);
-  if (restarting) {
-    sim.restore(io::read_fluid(restart_file, restart_info, comm), restart_info.step);
-    if (scene.colloids)
-      sim.restore_colloids(io::read_colloids(restart_file, *scene.colloids, scene.run.dimensions,
-                                             scene.fluid.density, scene.run.seed, comm));
-    log.line("restarted from " + restart_file + " at step " + std::to_string(sim.step()));
-  }
+  if (restarting)
+    log.line("restarted from " + shell.restart_file() + " at step " + std::to_string(sim.step()));
   std::unique_ptr<io::ObservablesWriter> writer;
-  if (rank == 0)
-    writer =
-        std::make_unique<io::ObservablesWriter>(dir + "/observables" + from + ".h5", scene.text);
+  if (shell.rank() == 0)
+    writer = std::make_unique<io::ObservablesWriter>(shell.output_file("observables"), scene.text);
   Observer observer(sim, std::move(writer));
-  std::optional<io::TrajectoryWriter> trajectory;
+  std::optional<TrajectoryWriter> trajectory;
   const colloids::Colloids *colloids = scene.colloids ? &sim.colloids() : nullptr;
-  const std::int64_t frame_every = scene.output.trajectory_every;
-  if (frame_every > 0) {
-    trajectory.emplace(
-        dir + "/trajectory" + from + ".h5", scene.text, sim.box(), particle_count(scene),
-        static_cast<std::uint64_t>(scene.output.trajectory_subsample), comm, colloids);
+  if (scene.output.trajectory_every > 0) {
+    const std::string file = shell.output_file("trajectory");
+    trajectory.emplace(file, scene.text, sim.box(), particle_count(scene),
+                       static_cast<std::uint64_t>(scene.output.trajectory_subsample), comm,
+                       colloids);
     log.line("trajectory: " + std::to_string(trajectory->tracked()) + " fluid particles" +
              (colloids ? " and " + std::to_string(colloids->size()) + " colloids" : "") +
-             " every " + std::to_string(frame_every) + " steps to " + dir + "/trajectory" + from +
-             ".h5 (ParaView: trajectory" + from + ".xdmf)");
+             " every " + std::to_string(scene.output.trajectory_every) + " steps to " + file +
+             " (ParaView: trajectory" + shell.suffix() + ".xdmf)");
     if (!restarting)
       trajectory->write_frame(sim.step(), sim.time(), sim.fluid(), colloids);
   }
   const InvariantCheck invariants(sim);
-  const std::int64_t every = scene.output.every;
   const auto n_particles = analysis::total_momentum(sim.fluid(), comm).count;
 
   // Checkpoints: every output.checkpoint_every steps, at the end, and on SIGTERM/SIGUSR1.
   auto save_checkpoint = [&] {
-    Stopwatch watch;
-    io::CheckpointInfo info{scene.text,    sim.step(),       sim.time(), scene.run.seed,
-                            sim.box().dim, sim.box().length, false};
-    info.walls_y = sim.box().walls_y;
-    const std::string path = io::checkpoint_path(dir, sim.step());
-    std::vector<io::SpeciesFields> species{io::fluid_fields(sim.fluid())};
-    colloids::Colloids none;
-    if (scene.colloids)
-      species.push_back(io::colloid_fields(sim.colloids(), none, comm));
-    const double bytes = io::write_checkpoint(path, info, species, comm);
-    if (rank == 0)
-      io::prune_checkpoints(dir, scene.output.checkpoint_keep);
-    const double s = watch.seconds();
-    char line[300];
-    std::snprintf(line, sizeof line, "checkpoint %s: %.1f MB of particles in %.3g s (%.1f MB/s)",
-                  path.c_str(), bytes / 1e6, s, s > 0 ? bytes / 1e6 / s : 0.0);
-    log.line(line);
-    return path;
+    return shell.checkpoint(sim.step(), [&](const std::string &path) {
+      Stopwatch watch;
+      io::CheckpointInfo info = shell.checkpoint_info(sim.step(), sim.time());
+      info.dimensions = sim.box().dim;
+      info.box = sim.box().length;
+      info.walls_y = sim.box().walls_y;
+      std::vector<io::SpeciesFields> species{fluid_fields(sim.fluid())};
+      colloids::Colloids none;
+      if (scene.colloids)
+        species.push_back(io::colloid_fields(sim.colloids(), none, comm));
+      const double bytes = io::write_checkpoint(path, info, species, comm);
+      const double s = watch.seconds();
+      char text[200];
+      std::snprintf(text, sizeof text, "%.1f MB of particles in %.3g s (%.1f MB/s)", bytes / 1e6, s,
+                    s > 0 ? bytes / 1e6 / s : 0.0);
+      return std::string(text);
+    });
   };
-  const io::StopSignals signals;
-  int stop = 0;
 
-  Stopwatch clock, since_progress;
   const std::int64_t first = sim.step();
+  shell.start_loop(first);
   while (sim.step() < scene.run.steps) {
     sim.advance();
     observer.every_step();
-    if (sim.step() % every == 0 || sim.step() == scene.run.steps) {
+    if (shell.observe_due(sim.step())) {
       invariants.check(sim);
       observer.sample();
     }
-    if (trajectory && sim.step() % frame_every == 0)
+    if (trajectory && shell.trajectory_due(sim.step()))
       trajectory->write_frame(sim.step(), sim.time(), sim.fluid(), colloids);
-    if ((stop = signals.requested(comm)) != 0)
+    if (shell.stop_requested())
       break;
-    const std::int64_t cadence = scene.output.checkpoint_every;
-    if (cadence > 0 && sim.step() % cadence == 0 && sim.step() < scene.run.steps)
+    if (shell.checkpoint_due(sim.step()))
       save_checkpoint();
-    if (scene.output.progress && since_progress.seconds() > 10.0) {
-      since_progress.restart();
-      log.line(progress_line(sim.step(), first, scene.run.steps, clock.seconds(),
-                             static_cast<double>(n_particles), "particle-steps/s"));
-    }
+    shell.progress(sim.step(), static_cast<double>(n_particles), "particle-steps/s");
   }
-  const double seconds = clock.seconds();
-  const auto steps = sim.step() - first;
+  const double seconds = shell.loop_seconds();
+  const auto steps = static_cast<std::uint64_t>(sim.step() - first);
   const std::string last = save_checkpoint();
-  if (stop != 0)
-    log.line(std::string("received ") + io::signal_name(stop) + ": stopped after step " +
-             std::to_string(sim.step()) + ", checkpoint " + last +
-             " written; exit 0 (continue with --restart " + dir + ")");
-  char buf[200];
-  std::snprintf(buf, sizeof buf,
-                "Loop time of %.4g s on %d ranks for %lld steps with %llu particles (%.4g "
-                "particle-steps/s)",
-                seconds, ranks, static_cast<long long>(steps),
-                static_cast<unsigned long long>(n_particles),
-                seconds > 0 ? static_cast<double>(steps) * n_particles / seconds : 0.0);
-  log.line(buf);
+  shell.finish("step " + std::to_string(sim.step()), last);
+  shell.loop_time(seconds, steps, "steps", std::to_string(n_particles) + " particles",
+                  static_cast<double>(steps) * static_cast<double>(n_particles), "particle-steps");
 }
 
 } // namespace narrows::engine

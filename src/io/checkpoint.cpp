@@ -1,12 +1,9 @@
-// Checkpoints: collective parallel-HDF5 write and read, run-directory bookkeeping, the restart
-// checks and the stop signals.
+// Checkpoints: collective parallel-HDF5 write and read, run-directory bookkeeping.
 #include "narrows/io/checkpoint.hpp"
 
-#include "narrows/colloids/placement.hpp"
 #include "narrows/core/error.hpp"
 #include "narrows/io/direct_writer.hpp"
 #include "narrows/io/hdf5.hpp"
-#include "narrows/scene/parse.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -35,16 +32,6 @@ std::size_t SpeciesFields::rows() const {
   if (!scalars.empty())
     return scalars.front().second->size();
   return 0;
-}
-
-SpeciesFields fluid_fields(mpcd::Fluid &f) {
-  SpeciesFields s;
-  s.name = "fluid";
-  s.dim = f.dim;
-  s.vectors.push_back({"position", {&f.x[0], &f.x[1], &f.x[2]}});
-  s.vectors.push_back({"velocity", {&f.v[0], &f.v[1], &f.v[2]}});
-  s.words.push_back({"id", &f.id});
-  return s;
 }
 
 namespace {
@@ -375,9 +362,11 @@ std::string shape_text(const std::vector<hsize_t> &dims) {
 
 } // namespace
 
-double write_checkpoint(const std::string &path, const CheckpointInfo &info,
-                        const std::vector<SpeciesFields> &species, MPI_Comm comm,
-                        const std::vector<CheckpointArray> &arrays) {
+namespace {
+
+double write_checkpoint_via_tmp(const std::string &path, const CheckpointInfo &info,
+                                const std::vector<SpeciesFields> &species, MPI_Comm comm,
+                                const std::vector<CheckpointArray> &arrays) {
   h5::silence_errors();
   const std::string tmp = path + ".tmp";
   const auto fapl = mpio_fapl(comm, tmp);
@@ -398,6 +387,8 @@ double write_checkpoint(const std::string &path, const CheckpointInfo &info,
     {
       const auto params = h5::create_group(file.get(), "parameters", tmp);
       small_string(params.get(), "scene", info.scene_text, comm, tmp);
+      if (!info.canonical_scene.empty())
+        small_string(params.get(), "canonical_scene", info.canonical_scene, comm, tmp);
       small_scalar<std::int64_t>(params.get(), "step", info.step, comm, tmp);
       small_scalar<double>(params.get(), "time", info.time, comm, tmp);
       small_scalar<std::uint64_t>(params.get(), "seed", info.seed, comm, tmp);
@@ -474,6 +465,21 @@ double write_checkpoint(const std::string &path, const CheckpointInfo &info,
   return bytes;
 }
 
+} // namespace
+
+double write_checkpoint(const std::string &path, const CheckpointInfo &info,
+                        const std::vector<SpeciesFields> &species, MPI_Comm comm,
+                        const std::vector<CheckpointArray> &arrays) {
+  try {
+    return write_checkpoint_via_tmp(path, info, species, comm, arrays);
+  } catch (...) {
+    // Never leave a half-written checkpoint-*.h5.tmp behind (every failing rank tries).
+    std::error_code ignored;
+    fs::remove(path + ".tmp", ignored);
+    throw;
+  }
+}
+
 namespace {
 
 // Opens a checkpoint and reads /parameters (collective); the file stays open in `file`.
@@ -518,6 +524,8 @@ CheckpointInfo open_checkpoint(const std::string &path, MPI_Comm comm, h5::File 
                      "; allowed: " + std::to_string(checkpoint_format_version) +
                      " (the format this narrows " NARROWS_VERSION " reads)");
   info.scene_text = read_string(f, "/parameters/scene", path);
+  if (path_exists(f, "/parameters/canonical_scene"))
+    info.canonical_scene = read_string(f, "/parameters/canonical_scene", path);
   info.step = read_scalar<std::int64_t>(f, "/parameters/step", path);
   info.time = read_scalar<double>(f, "/parameters/time", path);
   info.seed = read_scalar<std::uint64_t>(f, "/parameters/seed", path);
@@ -657,45 +665,6 @@ bool has_species_field(const std::string &path, const std::string &species,
   return path_exists(file.get(), "/particles/" + species + "/" + field + "/value");
 }
 
-namespace {
-
-// A restart from NaN or Inf would only break later, far from the cause: refuse it here, on every
-// rank with the same line (collective), naming the dataset and the lowest particle id affected.
-void refuse_non_finite_fluid(const std::string &path, const mpcd::Fluid &fluid, MPI_Comm comm) {
-  constexpr std::uint64_t none = ~std::uint64_t{0};
-  std::uint64_t bad = none; // id * 6 + (velocity ? 3 : 0) + component, lowest
-  for (std::size_t i = 0; i < fluid.id.size(); ++i)
-    for (int k = 0; k < fluid.dim; ++k) {
-      if (!std::isfinite(fluid.x[k][i]))
-        bad = std::min(bad, fluid.id[i] * 6 + static_cast<std::uint64_t>(k));
-      if (!std::isfinite(fluid.v[k][i]))
-        bad = std::min(bad, fluid.id[i] * 6 + 3 + static_cast<std::uint64_t>(k));
-    }
-  MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_UINT64_T, MPI_MIN, comm);
-  if (bad == none)
-    return;
-  const bool velocity = bad % 6 >= 3;
-  refuse(path, std::string("/particles/fluid/") + (velocity ? "velocity" : "position") +
-                   "/value holds NaN or Inf (particle id " + std::to_string(bad / 6) +
-                   ", component " + std::to_string(bad % 3) + "); allowed: finite numbers");
-}
-
-} // namespace
-
-mpcd::Fluid read_fluid(const std::string &path, const CheckpointInfo &info, MPI_Comm comm) {
-  mpcd::Fluid fluid;
-  fluid.dim = info.dimensions;
-  auto fields = fluid_fields(fluid);
-  read_species(path, fields, comm);
-  refuse_non_finite_fluid(path, fluid, comm);
-  fluid.cell.assign(fluid.id.size(), 0);
-  for (const auto id : fluid.id)
-    if (id >= info.fluid_particles)
-      refuse(path, "/particles/fluid/id/value holds id " + std::to_string(id) + "; allowed: 0 to " +
-                       std::to_string(info.fluid_particles - 1));
-  return fluid;
-}
-
 // ---- files of a run directory ------------------------------------------------------------
 
 std::string checkpoint_path(const std::string &dir, std::int64_t step) {
@@ -704,24 +673,19 @@ std::string checkpoint_path(const std::string &dir, std::int64_t step) {
   return (fs::path(dir) / name).string();
 }
 
-namespace {
-
-// Checkpoints of dir (complete ones only), oldest first.
-std::vector<fs::path> list_checkpoints(const std::string &dir) {
-  std::vector<fs::path> out;
+std::vector<std::string> list_checkpoints(const std::string &dir) {
+  std::vector<std::string> out;
   std::error_code ec;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
     if (name.size() == 24 && name.rfind("checkpoint-", 0) == 0 && name.compare(21, 3, ".h5") == 0 &&
         std::all_of(name.begin() + 11, name.begin() + 21,
                     [](char c) { return c >= '0' && c <= '9'; }))
-      out.push_back(it->path());
+      out.push_back(it->path().string());
   }
   std::sort(out.begin(), out.end());
   return out;
 }
-
-} // namespace
 
 std::string resolve_restart(const std::string &arg) {
   std::error_code ec;
@@ -732,7 +696,7 @@ std::string resolve_restart(const std::string &arg) {
     throw input_error("--restart " + arg +
                       ": no checkpoint-<step>.h5 in this directory; allowed: a checkpoint file "
                       "or a directory holding one");
-  return all.back().string();
+  return all.back();
 }
 
 void prune_checkpoints(const std::string &dir, int keep) {
@@ -747,144 +711,6 @@ void prune_checkpoints(const std::string &dir, int keep) {
       std::error_code ignored;
       fs::remove(it->path(), ignored);
     }
-  }
-}
-
-// ---- restarting a scene ------------------------------------------------------------------
-
-void check_restart_overrides(const std::vector<std::string> &overrides) {
-  for (const auto &o : overrides) {
-    std::string key = o.substr(0, o.find('='));
-    key.erase(0, key.find_first_not_of(" \t"));
-    key.erase(key.find_last_not_of(" \t") + 1);
-    if (key == "run.steps" || key.rfind("output.", 0) == 0)
-      continue;
-    throw input_error("--set '" + o + "': " + key +
-                      " cannot change on a restart (the checkpoint's scene continues); "
-                      "allowed: run.steps, output.*");
-  }
-}
-
-void check_restart_scene(const scene::Scene &given, const CheckpointInfo &info,
-                         const std::string &checkpoint) {
-  const std::string head = given.file + ": ";
-  if (given.run.engine != scene::Engine::mpcd)
-    throw input_error(head + "run.engine = \"" + scene::to_string(given.run.engine) +
-                      "\" with --restart; allowed: checkpoints of the mpcd engine only");
-  if (given.run.dimensions != info.dimensions)
-    throw input_error(head + "run.dimensions = " + std::to_string(given.run.dimensions) +
-                      " but checkpoint " + checkpoint + " is from a " +
-                      std::to_string(info.dimensions) +
-                      "D run; allowed: the scene the checkpoint was written by");
-  const auto stored = scene::parse_scene(info.scene_text, checkpoint + ":/parameters/scene");
-  // Everything but run.steps and output.* must match: the continuation is that run.
-  FirstDifference diff;
-  const auto differ = [&diff](const std::string &k, auto a, auto b) { diff.compare(k, a, b); };
-  const auto &g = given, &s = stored;
-  differ("run.dimensions", g.run.dimensions, s.run.dimensions);
-  differ("run.seed", g.run.seed, s.run.seed);
-  for (int k = 0; k < g.run.dimensions; ++k)
-    differ("domain.size[" + std::to_string(k) + "]", g.domain.size[k], s.domain.size[k]);
-  differ("fluid.collision", std::string(scene::to_string(g.fluid.collision)),
-         std::string(scene::to_string(s.fluid.collision)));
-  differ("fluid.density", g.fluid.density, s.fluid.density);
-  differ("fluid.dt", g.fluid.dt, s.fluid.dt);
-  differ("fluid.angle", g.fluid.angle_deg, s.fluid.angle_deg);
-  differ("fluid.kT", g.fluid.kT, s.fluid.kT);
-  differ("fluid.sort_every", g.fluid.sort_every, s.fluid.sort_every);
-  differ("[body_force]", std::string(g.body_force ? "present" : "absent"),
-         std::string(s.body_force ? "present" : "absent"));
-  if (g.body_force && s.body_force) {
-    differ("body_force.kind", static_cast<int>(g.body_force->kind),
-           static_cast<int>(s.body_force->kind));
-    for (int k = 0; k < g.run.dimensions; ++k)
-      differ("body_force.value[" + std::to_string(k) + "]", g.body_force->value[k],
-             s.body_force->value[k]);
-    differ("body_force.amplitude", g.body_force->amplitude, s.body_force->amplitude);
-  }
-  differ("[thermostat]", std::string(g.thermostat ? "present" : "absent"),
-         std::string(s.thermostat ? "present" : "absent"));
-  if (g.thermostat && s.thermostat) {
-    differ("thermostat.kind", static_cast<int>(g.thermostat->kind),
-           static_cast<int>(s.thermostat->kind));
-    differ("thermostat.gamma", g.thermostat->gamma, s.thermostat->gamma);
-  }
-  differ("[colloids]", std::string(g.colloids ? "present" : "absent"),
-         std::string(s.colloids ? "present" : "absent"));
-  if (g.colloids && s.colloids) {
-    const auto &a = *g.colloids, &b = *s.colloids;
-    differ("colloids.radius", a.radius, b.radius);
-    differ("colloids.radius_sd", a.radius_sd, b.radius_sd);
-    differ("colloids.mass", a.mass, b.mass);
-    differ("colloids.count", a.count, b.count);
-    differ("colloids.md_substeps", a.md_substeps, b.md_substeps);
-    differ("colloids.epsilon", a.epsilon, b.epsilon);
-    differ("colloids.wall_sigma", a.wall_sigma, b.wall_sigma);
-    differ("colloids.wall_q", a.wall_q, b.wall_q);
-    for (int k = 0; k < g.run.dimensions; ++k)
-      differ("colloids.gravity[" + std::to_string(k) + "]", a.gravity[k], b.gravity[k]);
-  }
-  diff.refuse(head, checkpoint);
-  const auto scene_box = [&] {
-    std::array<int, 3> cells{1, 1, 1};
-    for (int k = 0; k < g.run.dimensions; ++k)
-      cells[k] = static_cast<int>(std::lround(g.domain.size[k]));
-    const mpcd::Box box = mpcd::make_periodic_box(g.run.dimensions, cells);
-    // The space the colloids take holds no fluid: the count the run made (radii from the seed).
-    if (g.colloids)
-      return colloids::fluid_count_with_colloids(*g.colloids, box, g.fluid.density, g.run.seed);
-    return mpcd::fluid_particle_count(box, g.fluid.density);
-  }();
-  if (scene_box != info.fluid_particles)
-    throw input_error(checkpoint + ": holds " + std::to_string(info.fluid_particles) +
-                      " fluid particles, the scene has " + std::to_string(scene_box) +
-                      "; allowed: a checkpoint of this scene");
-}
-
-void FirstDifference::refuse(const std::string &head, const std::string &checkpoint,
-                             const std::string &allowed) const {
-  if (!key_.empty())
-    throw input_error(head + key_ + " = " + found_ + " but checkpoint " + checkpoint + " has " +
-                      wanted_ + "; allowed: " + allowed);
-}
-
-// ---- stopping cleanly on a signal --------------------------------------------------------
-
-namespace {
-volatile std::sig_atomic_t stop_signal = 0;
-extern "C" void on_stop_signal(int sig) { stop_signal = sig; }
-} // namespace
-
-StopSignals::StopSignals() {
-  stop_signal = 0;
-  struct sigaction sa {};
-  sa.sa_handler = on_stop_signal;
-  sigemptyset(&sa.sa_mask);
-  sigaction(SIGTERM, &sa, &old_term_);
-  sigaction(SIGUSR1, &sa, &old_usr1_);
-}
-
-StopSignals::~StopSignals() {
-  sigaction(SIGTERM, &old_term_, nullptr);
-  sigaction(SIGUSR1, &old_usr1_, nullptr);
-}
-
-int StopSignals::requested(MPI_Comm comm) const {
-  int local = stop_signal, any = 0;
-  MPI_Allreduce(&local, &any, 1, MPI_INT, MPI_MAX, comm);
-  return any;
-}
-
-int StopSignals::received() const { return stop_signal; }
-
-const char *signal_name(int sig) {
-  switch (sig) {
-  case SIGTERM:
-    return "SIGTERM";
-  case SIGUSR1:
-    return "SIGUSR1";
-  default:
-    return "a signal";
   }
 }
 

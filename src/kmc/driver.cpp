@@ -3,13 +3,14 @@
 
 #include "narrows/core/error.hpp"
 #include "narrows/core/timer.hpp"
-#include "narrows/engine/log.hpp"
 #include "narrows/io/checkpoint.hpp"
 #include "narrows/io/observables_writer.hpp"
 #include "narrows/kmc/lattice.hpp"
 #include "narrows/kmc/preset.hpp"
 #include "narrows/kmc/rates.hpp"
 #include "narrows/kmc/shock.hpp"
+#include "narrows/run/collective.hpp"
+#include "narrows/run/shell.hpp"
 #include "narrows/scene/parse.hpp"
 
 #include <algorithm>
@@ -19,6 +20,7 @@
 #include <iostream>
 #include <memory>
 #include <time.h>
+#include <tuple>
 
 namespace narrows::kmc {
 
@@ -267,89 +269,53 @@ ReplicaOptions replica_options(const scene::Scene &scene) {
   return options;
 }
 
-// A restart continues the checkpoint's run: the same model, seed and replica observables; only
-// kmc.replicas (not below the replicas done), run.steps and output.* may change.
-void check_restart_scene(const scene::Scene &given, const scene::Scene &stored, std::int64_t done,
-                         const std::string &checkpoint) {
-  const std::string head = given.file + ": ";
-  if (stored.run.engine != scene::Engine::kmc)
-    throw input_error(head + "checkpoint " + checkpoint + " is from engine " +
-                      scene::to_string(stored.run.engine) +
-                      "; allowed: a checkpoint of a kmc run of this scene");
-  const scene::Kmc &g = *given.kmc, &s = *stored.kmc;
-  io::FirstDifference d;
-  d.compare("run.seed", given.run.seed, stored.run.seed);
-  d.compare("kmc.length", g.length, s.length);
-  d.compare("kmc.boundary", static_cast<int>(g.boundary), static_cast<int>(s.boundary));
-  for (int i = 0; i < 81; ++i)
-    d.compare("kmc rate " + pair_name(i / 9, i % 9), g.rates[i], s.rates[i]);
-  for (int i = 0; i < 9; ++i) {
-    d.compare("kmc.left " + site_name(i / 3, i % 3), g.left[i], s.left[i]);
-    d.compare("kmc.right " + site_name(i / 3, i % 3), g.right[i], s.right[i]);
-  }
-  d.compare("kmc.initial kind", static_cast<int>(g.initial_kind), static_cast<int>(s.initial_kind));
-  for (int i = 0; i < 3; ++i) {
-    d.compare("kmc.initial P(" + std::to_string(i) + ")", g.initial[i], s.initial[i]);
-    d.compare("kmc.initial right P(" + std::to_string(i) + ")", g.initial_right[i],
-              s.initial_right[i]);
-    d.compare("kmc charge C(" + std::to_string(i) + ")", g.charge[i], s.charge[i]);
-  }
-  d.compare("kmc.initial site", g.shock_site, s.shock_site);
-  d.compare("kmc.time", g.time, s.time);
-  d.compare("kmc.warmup", g.warmup, s.warmup);
-  d.compare("kmc.samples", g.samples, s.samples);
+// The running sums of a checkpoint hold the replica observables its scene asked for: a restart
+// must ask for the same ones (the rest of the scene was compared by the run shell).
+void check_replica_observables(const scene::Scene &given, const std::string &stored_text,
+                               const std::string &checkpoint) {
+  const auto stored = scene::parse_scene(stored_text, checkpoint + ":/parameters/scene");
   const ReplicaOptions og = replica_options(given), os = replica_options(stored);
-  d.compare("output.observables pair_correlation", og.pairs, os.pairs);
-  d.compare("output.observables charge_profile", og.charge, os.charge);
-  d.refuse(head, checkpoint,
-           "the checkpoint's scene (only kmc.replicas, run.steps and output.* other than the "
-           "replica observables may change)");
-  if (g.replicas < done)
-    throw input_error(head + "kmc.replicas = " + std::to_string(g.replicas) + " but checkpoint " +
-                      checkpoint + " holds " + std::to_string(done) +
-                      " finished replicas; allowed: kmc.replicas >= " + std::to_string(done));
+  for (const auto &[name, a, b] : {std::tuple{"pair_correlation", og.pairs, os.pairs},
+                                   std::tuple{"charge_profile", og.charge, os.charge}})
+    if (a != b)
+      throw input_error(given.file + ": output.observables " + (a ? "lists" : "lacks") + " \"" +
+                        name + "\" but checkpoint " + checkpoint + (b ? " holds" : " lacks") +
+                        " its running sums; allowed: the checkpoint's replica observables");
 }
 
 } // namespace
 
-void run_scene(const scene::Scene &scene, const std::string &out_dir, const std::string &restart,
-               MPI_Comm comm) {
-  int rank = 0, ranks = 1;
-  MPI_Comm_rank(comm, &rank);
-  MPI_Comm_size(comm, &ranks);
+void run_scene(const scene::Scene &scene, const run::Options &run_options, MPI_Comm comm) {
   const scene::Kmc &k = *scene.kmc;
   const ReplicaOptions options = replica_options(scene);
   const std::size_t width = replica_width(k, options);
 
-  // A restart is checked (file, format, scene) before anything is written.
+  // The step of a kmc run is the number of finished replicas.
+  run::Shell shell(scene, run_options, comm, {k.replicas, "kmc.replicas", {"kmc.replicas"}});
+  const int rank = shell.rank(), ranks = shell.ranks();
   ReplicaSums start;
-  std::string restart_file;
-  if (!restart.empty()) {
-    restart_file = io::resolve_restart(restart);
-    const io::CheckpointInfo info = io::read_checkpoint_header(restart_file, comm);
-    const auto stored = scene::parse_scene(info.scene_text, restart_file + ":/parameters/scene");
-    check_restart_scene(scene, stored, info.step, restart_file);
-    const auto counters = io::read_checkpoint_array(restart_file, "kmc/counters", 3, comm);
-    start.done = static_cast<std::int64_t>(counters[0]);
-    start.events = static_cast<std::uint64_t>(counters[1]);
-    start.tries = static_cast<std::uint64_t>(counters[2]);
-    if (start.done != info.step)
-      throw input_error(restart_file + ": /kmc/counters[0] = " + std::to_string(start.done) +
-                        " but /parameters/step = " + std::to_string(info.step) +
-                        "; allowed: the replicas done, the same in both");
-    start.mean = io::read_checkpoint_array(restart_file, "kmc/mean", width, comm);
-    start.m2 = io::read_checkpoint_array(restart_file, "kmc/m2", width, comm);
-    if (rank != 0)
-      start.mean.clear(), start.m2.clear();
-  }
-  const bool restarting = !restart_file.empty();
+  const bool restarting = shell.restarting();
+  const std::string &restart_file = shell.restart_file();
+  if (restarting)
+    run::collectively(comm, [&] {
+      const io::CheckpointInfo &info = shell.restart_info();
+      check_replica_observables(scene, info.scene_text, restart_file);
+      const auto counters = io::read_checkpoint_array(restart_file, "kmc/counters", 3, comm);
+      start.done = static_cast<std::int64_t>(counters[0]);
+      start.events = static_cast<std::uint64_t>(counters[1]);
+      start.tries = static_cast<std::uint64_t>(counters[2]);
+      start.mean = io::read_checkpoint_array(restart_file, "kmc/mean", width, comm);
+      start.m2 = io::read_checkpoint_array(restart_file, "kmc/m2", width, comm);
+      if (rank != 0)
+        start.mean.clear(), start.m2.clear();
+      if (start.done != info.step)
+        throw input_error(restart_file + ": /kmc/counters[0] = " + std::to_string(start.done) +
+                          " but /parameters/step = " + std::to_string(info.step) +
+                          "; allowed: the replicas done, the same in both");
+    });
 
-  const std::string dir = out_dir.empty() ? scene.output.dir : out_dir;
   // A continuation's files carry the replicas done before it (log-0000000008.txt, ...).
-  engine::RunOutput output =
-      engine::open_run_output(dir, restarting ? start.done : -1, scene.file, comm);
-  engine::Log &log = output.log;
-  const std::string &from = output.suffix;
+  run::Log &log = shell.open(restarting ? start.done : -1);
   for (const auto &line : describe(scene))
     log.line(line);
   for (const auto &w : analyse(k).warnings)
@@ -366,71 +332,48 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, const std:
   // Rank 0 opens the output first, so a bad directory fails before the work.
   std::unique_ptr<io::ObservablesWriter> writer;
   if (rank == 0)
-    writer =
-        std::make_unique<io::ObservablesWriter>(dir + "/observables" + from + ".h5", scene.text);
+    writer = std::make_unique<io::ObservablesWriter>(shell.output_file("observables"), scene.text);
 
   // Checkpoints hold the running sums over the finished replicas: every
   // output.checkpoint_every replicas, at the end, and on SIGTERM/SIGUSR1 (the unfinished round
   // of replicas is dropped; each rank checks about every 2^20 tries).
   const auto save_checkpoint = [&](const ReplicaSums &sums) {
-    io::CheckpointInfo info;
-    info.scene_text = scene.text;
-    info.step = sums.done;
-    info.time = k.time;
-    info.seed = scene.run.seed;
-    info.dimensions = 1;
-    info.box = {static_cast<double>(k.length), 1.0, 1.0};
-    const std::string path = io::checkpoint_path(dir, sums.done);
-    io::write_checkpoint(
-        path, info, {}, comm,
-        {{"kmc/counters", rank == 0 ? std::vector<double>{static_cast<double>(sums.done),
-                                                          static_cast<double>(sums.events),
-                                                          static_cast<double>(sums.tries)}
-                                    : std::vector<double>{}},
-         {"kmc/mean", sums.mean},
-         {"kmc/m2", sums.m2}});
-    if (rank == 0)
-      io::prune_checkpoints(dir, scene.output.checkpoint_keep);
-    log.line("checkpoint " + path + ": " + std::to_string(sums.done) + " of " +
-             std::to_string(k.replicas) + " replicas");
-    return path;
+    return shell.checkpoint(sums.done, [&](const std::string &path) {
+      io::CheckpointInfo info = shell.checkpoint_info(sums.done, k.time);
+      info.dimensions = 1;
+      info.box = {static_cast<double>(k.length), 1.0, 1.0};
+      io::write_checkpoint(
+          path, info, {}, comm,
+          {{"kmc/counters", rank == 0 ? std::vector<double>{static_cast<double>(sums.done),
+                                                            static_cast<double>(sums.events),
+                                                            static_cast<double>(sums.tries)}
+                                      : std::vector<double>{}},
+           {"kmc/mean", sums.mean},
+           {"kmc/m2", sums.m2}});
+      return std::to_string(sums.done) + " of " + std::to_string(k.replicas) + " replicas";
+    });
   };
-  const io::StopSignals signals;
-  int stop = 0;
-  Stopwatch clock, since_progress;
   std::int64_t last_checkpoint = start.done;
+  shell.start_loop(start.done);
   ReplicaHooks hooks;
-  hooks.stop = [&] { return signals.received() != 0; };
+  hooks.stop = [&] { return shell.stop_received(); };
   hooks.after_round = [&](const ReplicaSums &sums) {
-    if ((stop = signals.requested(comm)) != 0)
+    if (shell.stop_requested())
       return true;
-    const std::int64_t cadence = scene.output.checkpoint_every;
-    if (cadence > 0 && sums.done - last_checkpoint >= cadence && sums.done < k.replicas) {
+    if (shell.checkpoint_due(sums.done, last_checkpoint)) {
       save_checkpoint(sums);
       last_checkpoint = sums.done;
     }
-    if (scene.output.progress && since_progress.seconds() > 10.0) {
-      since_progress.restart();
-      const double done = static_cast<double>(sums.done - start.done);
-      const double left = static_cast<double>(k.replicas - sums.done);
-      char buf[160];
-      std::snprintf(buf, sizeof buf, "replica %lld / %lld (%.1f %%), ETA %s",
-                    static_cast<long long>(sums.done), static_cast<long long>(k.replicas),
-                    100.0 * static_cast<double>(sums.done) / static_cast<double>(k.replicas),
-                    engine::format_duration(left * clock.seconds() / done).c_str());
-      log.line(buf);
-    }
+    shell.progress(sums.done, 0.0, nullptr, "replica");
     return false;
   };
   const Summary s = run_replicas(k, scene.run.seed, comm, options, std::move(start), hooks);
-  if (stop == 0 && !s.complete)
-    stop = signals.requested(comm);
+  if (!shell.stopped() && !s.complete)
+    shell.stop_requested();
   const std::string last = save_checkpoint(s.sums);
   if (!s.complete) {
-    log.line(std::string("received ") + io::signal_name(stop) + ": stopped after " +
-             std::to_string(s.sums.done) + " of " + std::to_string(k.replicas) +
-             " replicas, checkpoint " + last + " written; exit 0 (continue with --restart " + dir +
-             ")");
+    shell.finish(std::to_string(s.sums.done) + " of " + std::to_string(k.replicas) + " replicas",
+                 last);
     return;
   }
   const auto wants = [&](const char *name) {
@@ -552,17 +495,13 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, const std:
                 static_cast<unsigned long long>(s.events),
                 s.events ? static_cast<double>(s.tries) / static_cast<double>(s.events) : 0.0);
   log.line(buf);
-  std::snprintf(buf, sizeof buf,
-                "Loop time of %.4g s on %d ranks for %llu events with %lld sites x %lld "
-                "replicas (%.4g events/s)",
-                s.seconds, ranks, static_cast<unsigned long long>(s.events),
-                static_cast<long long>(k.length), static_cast<long long>(k.replicas),
-                s.seconds > 0 ? static_cast<double>(s.events) / s.seconds : 0.0);
-  log.line(buf);
+  shell.loop_time(s.seconds, s.events, "events",
+                  std::to_string(k.length) + " sites x " + std::to_string(k.replicas) + " replicas",
+                  static_cast<double>(s.events), "events");
 }
 
-int command(const scene::Scene &scene, bool check, bool info, const std::string &restart,
-            const std::string &out_dir, MPI_Comm comm) {
+int command(const scene::Scene &scene, bool check, bool info, const run::Options &options,
+            MPI_Comm comm) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   if (check || info) {
@@ -576,7 +515,7 @@ int command(const scene::Scene &scene, bool check, bool info, const std::string 
     }
     return 0;
   }
-  run_scene(scene, out_dir, restart, comm);
+  run_scene(scene, options, comm);
   return 0;
 }
 

@@ -4,7 +4,6 @@
 
 #include "narrows/core/error.hpp"
 #include "narrows/core/timer.hpp"
-#include "narrows/engine/log.hpp"
 #include "narrows/io/checkpoint.hpp"
 #include "narrows/io/observables_writer.hpp"
 #include "narrows/lattice/colloid_correlations.hpp"
@@ -15,6 +14,8 @@
 #include "narrows/lattice/fhp_tagged.hpp"
 #include "narrows/lattice/fhp_update.hpp"
 #include "narrows/lattice/vacf_theory.hpp"
+#include "narrows/run/collective.hpp"
+#include "narrows/run/shell.hpp"
 #include "narrows/scene/parse.hpp"
 
 #include <hdf5.h>
@@ -56,49 +57,6 @@ void refuse_unavailable(const scene::Scene &scene) {
     throw input_error(scene.file +
                       ": output.observables lists \"vacf\" without a [tagged] section; allowed: "
                       "add [tagged] max_lag = ... or drop \"vacf\"");
-}
-
-// The scene given with --restart must be the checkpoint's (only run.steps and output.* may
-// differ): the continuation is that run.
-void check_restart_lattice(const scene::Scene &given, const io::CheckpointInfo &info,
-                           const std::string &checkpoint) {
-  const auto stored = scene::parse_scene(info.scene_text, checkpoint + ":/parameters/scene");
-  io::FirstDifference diff;
-  const auto differ = [&diff](const std::string &k, auto a, auto b) { diff.compare(k, a, b); };
-  differ("run.engine", std::string(scene::to_string(given.run.engine)),
-         std::string(scene::to_string(stored.run.engine)));
-  if (given.run.engine == stored.run.engine && stored.lgca) {
-    const auto &g = *given.lgca, &s = *stored.lgca;
-    differ("run.seed", given.run.seed, stored.run.seed);
-    differ("lattice.model", std::string(scene::to_string(g.model)),
-           std::string(scene::to_string(s.model)));
-    differ("lattice.size[0]", g.size.at(0), s.size.at(0));
-    differ("lattice.size[1]", g.size.at(1), s.size.at(1));
-    differ("lattice.density", g.density, s.density);
-    differ("lattice.initial", static_cast<int>(g.initial), static_cast<int>(s.initial));
-    differ("lattice.amplitude", g.amplitude, s.amplitude);
-    differ("lattice.walls", g.walls, s.walls);
-    differ("lattice.body_force", g.body_force, s.body_force);
-    differ("lattice.obstacles (count)", g.obstacles.size(), s.obstacles.size());
-    for (std::size_t i = 0; i < std::min(g.obstacles.size(), s.obstacles.size()); ++i) {
-      const std::string k = "lattice.obstacles[" + std::to_string(i) + "]";
-      differ(k + "[0]", g.obstacles[i].x, s.obstacles[i].x);
-      differ(k + "[1]", g.obstacles[i].y, s.obstacles[i].y);
-      differ(k + "[2]", g.obstacles[i].radius, s.obstacles[i].radius);
-    }
-  }
-  differ("colloid (present)", given.colloid.has_value(), stored.colloid.has_value());
-  if (given.colloid && stored.colloid) {
-    const auto &g = *given.colloid, &s = *stored.colloid;
-    differ("colloid.position[0]", g.x, s.x);
-    differ("colloid.position[1]", g.y, s.y);
-    differ("colloid.radius", g.radius, s.radius);
-    differ("colloid.mass", g.mass, s.mass);
-    differ("colloid.held", g.held, s.held);
-    differ("colloid.velocity[0]", g.vx, s.vx);
-    differ("colloid.velocity[1]", g.vy, s.vy);
-  }
-  diff.refuse(given.file + ": ", checkpoint);
 }
 
 // Everything written every output.every steps (rank 0 writes).
@@ -159,7 +117,7 @@ TaggedTheory tagged_theory(FhpModel m, double d, double sites) {
 
 // The VACF of the run: log lines and /observables/vacf (rank 0 writes).
 void finish_vacf(const scene::Scene &scene, const FhpLattice &lattice, const FhpTagged &tagged,
-                 engine::Log &log, io::ObservablesWriter *writer) {
+                 run::Log &log, io::ObservablesWriter *writer) {
   if (tagged.curves() == 0) {
     log.line("tagged VACF: no curve of " + std::to_string(tagged.max_lag()) +
              " lags completed; nothing written");
@@ -305,7 +263,7 @@ void read_colloid_state(const std::string &path, FhpColloid &c) {
 // The colloid's VACF and (virtual, for a held disc) D(t): log lines and /observables/colloid_*
 // (rank 0).
 void finish_colloid(const FhpColloid &colloid, const ColloidCorrelations &stats,
-                    const FhpLattice &lattice, bool closed, engine::Log &log,
+                    const FhpLattice &lattice, bool closed, run::Log &log,
                     io::ObservablesWriter *writer) {
   // The eq 22 analogue M / M_tot (colloid_correlations.hpp): only where V is conserved.
   const double m_total = colloid.params().mass + static_cast<double>(total_mass(lattice));
@@ -476,13 +434,12 @@ std::vector<std::string> describe(const scene::Scene &scene, MPI_Comm comm) {
 // ranks, each `steps / max_lag` successive VACF curves; rank 0 averages the normalised curves
 // in replica order (bitwise the same on any number of ranks), the error is the spread of the
 // replicas.
-void run_dhumieres(const scene::Scene &scene, const std::string &out_dir,
-                   const std::string &restart, MPI_Comm comm) {
+void run_dhumieres(const scene::Scene &scene, const run::Options &options, MPI_Comm comm) {
   int rank = 0, ranks = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &ranks);
   const scene::Lgca &g = *scene.lgca;
-  if (!restart.empty())
+  if (!options.restart.empty())
     throw input_error(scene.file + ": --restart is not available for lattice.model = "
                                    "\"dhumieres-1d\" (no checkpoints); allowed: a fresh run");
   const std::int64_t L = g.size.at(0);
@@ -493,9 +450,8 @@ void run_dhumieres(const scene::Scene &scene, const std::string &out_dir,
     throw input_error(scene.file + ": run.steps = " + std::to_string(scene.run.steps) +
                       " is shorter than tagged.max_lag = " + std::to_string(max_lag) +
                       "; allowed: run.steps >= tagged.max_lag");
-  const std::string dir = out_dir.empty() ? scene.output.dir : out_dir;
-  engine::RunOutput output = engine::open_run_output(dir, -1, scene.file, comm);
-  engine::Log &log = output.log;
+  run::Shell shell(scene, options, comm, {scene.run.steps, "run.steps", {}});
+  run::Log &log = shell.open(-1);
   for (const auto &line : describe(scene, comm))
     log.line(line);
   const auto ensemble = g.initial == scene::LgcaInitial::zero_momentum
@@ -551,7 +507,7 @@ void run_dhumieres(const scene::Scene &scene, const std::string &out_dir,
                   theory::one_step_vacf(dhumieres::link_velocities(), g.density), t1, t2, w,
                   plateau, we);
     log.line(line);
-    io::ObservablesWriter writer(dir + "/observables.h5", scene.text);
+    io::ObservablesWriter writer(shell.output_file("observables"), scene.text);
     const std::int64_t steps = static_cast<std::int64_t>(curves) * max_lag;
     writer.write_result("vacf", steps, static_cast<double>(steps), z,
                         {{"lags", lags},
@@ -564,59 +520,44 @@ void run_dhumieres(const scene::Scene &scene, const std::string &out_dir,
                          {"plateau", {w}},
                          {"window", {static_cast<double>(t1), static_cast<double>(t2)}}});
     writer.flush();
-    char buf[220];
     const double updates = static_cast<double>(steps) * static_cast<double>(L) * replicas;
-    std::snprintf(buf, sizeof buf,
-                  "Loop time of %.4g s on %d ranks for %lld steps with %lld sites (%.4g "
-                  "site-updates/s)",
-                  seconds, ranks, static_cast<long long>(steps),
-                  static_cast<long long>(L * replicas), seconds > 0 ? updates / seconds : 0.0);
-    log.line(buf);
+    shell.loop_time(seconds, static_cast<std::uint64_t>(steps), "steps",
+                    std::to_string(L * replicas) + " sites", updates, "site-updates");
   }
 }
 
-void run_scene(const scene::Scene &scene, const std::string &out_dir, const std::string &restart,
-               MPI_Comm comm) {
+void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm comm) {
   if (scene.lgca->model == scene::LgcaModel::dhumieres_1d) {
-    run_dhumieres(scene, out_dir, restart, comm);
+    run_dhumieres(scene, options, comm);
     return;
   }
-  int rank = 0, ranks = 1;
-  MPI_Comm_rank(comm, &rank);
-  MPI_Comm_size(comm, &ranks);
   // The lattice first: a decomposition the lattice cannot take is refused before any output.
   FhpLattice lattice(fhp_params(scene), comm);
   std::unique_ptr<FhpColloid> colloid;
   if (scene.colloid)
     colloid = std::make_unique<FhpColloid>(colloid_params(scene), lattice);
-  std::string restart_file;
-  io::CheckpointInfo restart_info;
-  if (!restart.empty()) {
-    restart_file = io::resolve_restart(restart);
-    restart_info = io::read_checkpoint_header(restart_file, comm);
-    check_restart_lattice(scene, restart_info, restart_file);
-  }
-  const bool restarting = !restart_file.empty();
-  const std::string dir = out_dir.empty() ? scene.output.dir : out_dir;
-  engine::RunOutput output =
-      engine::open_run_output(dir, restarting ? restart_info.step : -1, scene.file, comm);
-  engine::Log &log = output.log;
-  const std::string &from = output.suffix;
-  for (const auto &line : describe(scene, comm))
-    log.line(line);
-
+  run::Shell shell(scene, options, comm, {scene.run.steps, "run.steps", {}});
+  const bool restarting = shell.restarting();
+  const std::string &restart_file = shell.restart_file();
+  // The state, from the scene or the checkpoint (every rank agrees on a refusal) before
+  // anything is written.
   if (restarting) {
-    read_lattice_checkpoint(restart_file, restart_info, lattice);
-    if (colloid)
-      read_colloid_state(restart_file, *colloid);
-    log.line("restarted from " + restart_file + " at step " + std::to_string(lattice.time()));
+    run::collectively(comm, [&] {
+      read_lattice_checkpoint(restart_file, shell.restart_info(), lattice);
+      if (colloid)
+        read_colloid_state(restart_file, *colloid);
+    });
   } else {
     lattice.initialise(scene.lgca->density, scene.lgca->amplitude);
   }
+  run::Log &log = shell.open(restarting ? lattice.time() : -1);
+  for (const auto &line : describe(scene, comm))
+    log.line(line);
+  if (restarting)
+    log.line("restarted from " + restart_file + " at step " + std::to_string(lattice.time()));
   std::unique_ptr<io::ObservablesWriter> writer;
-  if (rank == 0)
-    writer =
-        std::make_unique<io::ObservablesWriter>(dir + "/observables" + from + ".h5", scene.text);
+  if (shell.rank() == 0)
+    writer = std::make_unique<io::ObservablesWriter>(shell.output_file("observables"), scene.text);
   io::ObservablesWriter *raw_writer = writer.get();
   Observer observer(scene, lattice, std::move(writer));
   if (!restarting)
@@ -652,7 +593,8 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, const std:
   // equilibration job), as does a checkpoint without averages or of other lags.
   if (colloid_stats && restarting) {
     const std::int64_t stored_steps =
-        scene::parse_scene(restart_info.scene_text, restart_file + ":/parameters/scene").run.steps;
+        scene::parse_scene(shell.restart_info().scene_text, restart_file + ":/parameters/scene")
+            .run.steps;
     if (stored_steps != scene.run.steps)
       log.line(
           "colloid VACF and D(t) start afresh (run.steps = " + std::to_string(scene.run.steps) +
@@ -665,24 +607,19 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, const std:
   }
   const std::int64_t sites = static_cast<std::int64_t>(lattice.size_x()) * lattice.size_y();
   auto save_checkpoint = [&] {
-    Stopwatch watch;
-    const std::string path = io::checkpoint_path(dir, lattice.time());
-    const double bytes = write_lattice_checkpoint(path, lattice, scene.text);
-    if (colloid && rank == 0)
-      write_colloid_state(path, *colloid, colloid_stats.get());
-    if (rank == 0)
-      io::prune_checkpoints(dir, scene.output.checkpoint_keep);
-    char line[300];
-    std::snprintf(line, sizeof line, "checkpoint %s: %.1f MB of lattice in %.3g s", path.c_str(),
-                  bytes / 1e6, watch.seconds());
-    log.line(line);
-    return path;
+    return shell.checkpoint(lattice.time(), [&](const std::string &path) {
+      Stopwatch watch;
+      const double bytes = write_lattice_checkpoint(path, lattice, scene.text, scene.canonical);
+      if (colloid && shell.rank() == 0)
+        write_colloid_state(path, *colloid, colloid_stats.get());
+      char text[120];
+      std::snprintf(text, sizeof text, "%.1f MB of lattice in %.3g s", bytes / 1e6,
+                    watch.seconds());
+      return std::string(text);
+    });
   };
-  const io::StopSignals signals;
-  int stop = 0;
-  const std::int64_t every = scene.output.every;
-  Stopwatch clock, since_progress;
   const std::int64_t first = lattice.time();
+  shell.start_loop(first);
   while (lattice.time() < scene.run.steps) {
     if (colloid)
       colloid->apply(lattice);
@@ -692,7 +629,7 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, const std:
     observer.every_step(lattice);
     if (tagged)
       tagged->feed(lattice);
-    if (lattice.time() % every == 0 || lattice.time() == scene.run.steps) {
+    if (shell.observe_due(lattice.time())) {
       const std::int64_t now = total_mass(lattice);
       if (now != mass)
         throw invariant_error("lattice mass changed from " + std::to_string(mass) + " to " +
@@ -702,40 +639,26 @@ void run_scene(const scene::Scene &scene, const std::string &out_dir, const std:
                               std::to_string(lattice.time()));
       observer.sample(lattice);
     }
-    if ((stop = signals.requested(comm)) != 0)
+    if (shell.stop_requested())
       break;
-    const std::int64_t cadence = scene.output.checkpoint_every;
-    if (cadence > 0 && lattice.time() % cadence == 0 && lattice.time() < scene.run.steps)
+    if (shell.checkpoint_due(lattice.time()))
       save_checkpoint();
-    if (scene.output.progress && since_progress.seconds() > 10.0) {
-      since_progress.restart();
-      log.line(engine::progress_line(lattice.time(), first, scene.run.steps, clock.seconds(),
-                                     static_cast<double>(sites), "site-updates/s"));
-    }
+    shell.progress(lattice.time(), static_cast<double>(sites), "site-updates/s");
   }
-  const double seconds = clock.seconds();
-  const std::int64_t steps = lattice.time() - first;
+  const double seconds = shell.loop_seconds();
+  const auto steps = static_cast<std::uint64_t>(lattice.time() - first);
   if (tagged)
     finish_vacf(scene, lattice, *tagged, log, raw_writer);
   if (colloid_stats)
     finish_colloid(*colloid, *colloid_stats, lattice, closed, log, raw_writer);
   const std::string last = save_checkpoint();
-  if (stop != 0)
-    log.line(std::string("received ") + io::signal_name(stop) + ": stopped after step " +
-             std::to_string(lattice.time()) + ", checkpoint " + last +
-             " written; exit 0 (continue with --restart " + dir + ")");
-  char buf[220];
-  std::snprintf(buf, sizeof buf,
-                "Loop time of %.4g s on %d ranks for %lld steps with %lld sites (%.4g "
-                "site-updates/s)",
-                seconds, ranks, static_cast<long long>(steps), static_cast<long long>(sites),
-                seconds > 0 ? static_cast<double>(steps) * static_cast<double>(sites) / seconds
-                            : 0.0);
-  log.line(buf);
+  shell.finish("step " + std::to_string(lattice.time()), last);
+  shell.loop_time(seconds, steps, "steps", std::to_string(sites) + " sites",
+                  static_cast<double>(steps) * static_cast<double>(sites), "site-updates");
 }
 
-int command(const scene::Scene &scene, bool check, bool info, const std::string &restart,
-            const std::string &out_dir, MPI_Comm comm) {
+int command(const scene::Scene &scene, bool check, bool info, const run::Options &options,
+            MPI_Comm comm) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   refuse_unavailable(scene);
@@ -752,7 +675,7 @@ int command(const scene::Scene &scene, bool check, bool info, const std::string 
     }
     return 0;
   }
-  run_scene(scene, out_dir, restart, comm);
+  run_scene(scene, options, comm);
   return 0;
 }
 

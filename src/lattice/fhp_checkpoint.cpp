@@ -22,7 +22,7 @@ io::SpeciesFields lattice_species(std::vector<std::uint64_t> &words) {
 } // namespace
 
 double write_lattice_checkpoint(const std::string &path, const FhpLattice &l,
-                                const std::string &scene_text) {
+                                const std::string &scene_text, const std::string &canonical_scene) {
   const std::size_t wpc = words_per_column(l);
   std::vector<std::uint64_t> words(wpc * static_cast<std::size_t>(l.local_columns()), 0);
   for (int y = 0; y < l.size_y(); ++y) {
@@ -33,6 +33,7 @@ double write_lattice_checkpoint(const std::string &path, const FhpLattice &l,
   }
   io::CheckpointInfo info;
   info.scene_text = scene_text;
+  info.canonical_scene = canonical_scene;
   info.step = l.time();
   info.time = static_cast<double>(l.time());
   info.seed = l.params().seed;

@@ -6,6 +6,7 @@
 // the command line.
 #include "narrows/scene/parse.hpp"
 
+#include "canonical_toml.hpp"
 #include "narrows/core/error.hpp"
 #include "parse_kmc.hpp"
 #include "parse_lgca.hpp"
@@ -1078,6 +1079,7 @@ Scene parse_scene(const std::string &text, const std::string &file,
       s.text += "# --set " + one_line(o) + "\n";
     s.text += toml::format(root);
   }
+  s.canonical = detail::canonical_text(root);
 
   // The engine decides which sections exist, so it is checked first.
   const value *run = section(c, root, "run");

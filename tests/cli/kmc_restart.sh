@@ -74,13 +74,13 @@ check "SIGTERM then restart: bitwise a 2-rank uninterrupted run" \
   'same "$tmp/nosig/observables.h5" "$tmp/sig/observables-$from.h5"'
 
 # Refused restarts: exit 2, one line naming the key.
-refused "changed rate" 'kmc.left 0->1 = 0.40000000000000002 but checkpoint .* has 0.29999999999999999' \
+refused "changed rate" 'kmc.left."0->1" = 0.4 but checkpoint .* has 0.3' \
   "$narrows" run "$scene" "${short[@]}" --set kmc.replicas=6 --set 'kmc.left={"0->1"=0.4}' \
   --restart "$tmp/full/checkpoint-0000000004.h5" --out "$tmp/r1"
-refused "fewer replicas than done" 'kmc.replicas = 3 but checkpoint .* holds 4 finished replicas' \
+refused "fewer replicas than done" 'checkpoint-0000000004.h5: at step 4 and kmc.replicas = 3: nothing to run; allowed: kmc.replicas above 4' \
   "$narrows" run "$scene" "${short[@]}" --set kmc.replicas=3 --restart "$tmp/full/checkpoint-0000000004.h5" \
   --out "$tmp/r2"
-refused "pair correlations added on restart" 'output.observables pair_correlation' \
+refused "pair correlations added on restart" 'output.observables lists "pair_correlation" but checkpoint .* lacks its running sums' \
   "$narrows" run "$scene" "${short[@]}" --set kmc.replicas=6 \
   --set 'output.observables=["current","density_profile","pair_correlation"]' \
   --restart "$tmp/full/checkpoint-0000000004.h5" --out "$tmp/r3"
@@ -98,10 +98,11 @@ dt = 0.5
 progress = false
 TOML
 runs "mpcd run" "$narrows" run "$tmp/mpcd.toml" --out "$tmp/mpcd" > /dev/null 2>&1
-refused "mpcd checkpoint for a kmc scene" 'checkpoint .* is from engine mpcd' \
+refused "mpcd checkpoint for a kmc scene" 'run.engine = "kmc" but checkpoint .* has "mpcd"' \
   "$narrows" run "$scene" "${short[@]}" --restart "$tmp/mpcd" --out "$tmp/r4"
-refused "kmc checkpoint for an mpcd scene" 'a checkpoint of a kmc run; allowed: a checkpoint of an mpcd run' \
+refused "kmc checkpoint for an mpcd scene" 'run.engine = "mpcd" but checkpoint .* has "kmc"' \
   "$narrows" run "$tmp/mpcd.toml" --restart "$tmp/full" --out "$tmp/r5"
-check "refused restarts wrote nothing" '[ ! -e "$tmp/r1" ] && [ ! -e "$tmp/r2" ] && [ ! -e "$tmp/r4" ]'
+check "refused restarts wrote nothing" \
+  '[ ! -e "$tmp/r1" ] && [ ! -e "$tmp/r2" ] && [ ! -e "$tmp/r3" ] && [ ! -e "$tmp/r4" ] && [ ! -e "$tmp/r5" ]'
 
 finish kmc_restart

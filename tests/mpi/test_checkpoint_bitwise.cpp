@@ -1,8 +1,8 @@
 // Checkpoint/restart continues bitwise: N steps straight equal N/2 steps, a checkpoint, a
 // restart and N/2 more, on 2 ranks, on 1 rank (MPI_COMM_SELF on rank 0), written on 2 ranks
 // and continued on 1, and written on 1 and continued on 2. All particles compared by id.
+#include "narrows/engine/fluid_checkpoint.hpp"
 #include "narrows/engine/mpcd_simulation.hpp"
-#include "narrows/io/checkpoint.hpp"
 
 #include "../common/state_by_id.hpp"
 
@@ -81,9 +81,14 @@ void first_half(const scene::Scene &s, MPI_Comm comm, const std::string &path) {
   engine::MpcdSimulation sim(s, comm);
   for (int i = 0; i < steps / 2; ++i)
     sim.advance();
-  const io::CheckpointInfo info{s.text,        sim.step(),       sim.time(), s.run.seed,
-                                sim.box().dim, sim.box().length, 0};
-  io::write_checkpoint(path, info, {io::fluid_fields(sim.fluid())}, comm);
+  io::CheckpointInfo info;
+  info.scene_text = s.text;
+  info.step = sim.step();
+  info.time = sim.time();
+  info.seed = s.run.seed;
+  info.dimensions = sim.box().dim;
+  info.box = sim.box().length;
+  io::write_checkpoint(path, info, {engine::fluid_fields(sim.fluid())}, comm);
 }
 
 // Reads the checkpoint on comm, runs the second half, returns the state on its rank 0.
@@ -93,7 +98,7 @@ std::vector<double> second_half(const scene::Scene &s, MPI_Comm comm, const std:
   EXPECT_EQ(info.fluid_particles, engine::particle_count(s));
   EXPECT_EQ(info.scene_text, s.text);
   engine::MpcdSimulation sim(s, comm, false);
-  sim.restore(io::read_fluid(path, info, comm), info.step);
+  sim.restore(engine::read_fluid(path, info, comm), info.step);
   for (int i = steps / 2; i < steps; ++i)
     sim.advance();
   EXPECT_EQ(sim.step(), steps);

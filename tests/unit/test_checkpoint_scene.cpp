@@ -1,12 +1,15 @@
-// The serial parts of checkpoint/restart: file names, the output.checkpoint_keep key, which
-// --set overrides a restart accepts, and the scene comparison with a checkpoint's scene.
+// The serial parts of checkpoint/restart: file names, the output.checkpoint_keep key, the
+// canonical scene text and the comparison of a restart's scene with the checkpoint's.
 #include "narrows/core/error.hpp"
 #include "narrows/io/checkpoint.hpp"
+#include "narrows/scene/canonical.hpp"
 #include "narrows/scene/parse.hpp"
 
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <string>
+#include <vector>
 
 using namespace narrows;
 
@@ -46,28 +49,46 @@ TEST(CheckpointScene, KeepDefaultsToTwoAndIsValidated) {
             ExitCode::bad_input);
 }
 
-TEST(CheckpointScene, RestartAcceptsOnlyStepsAndOutputOverrides) {
-  EXPECT_EQ(code_of([] {
-              io::check_restart_overrides({"run.steps=10", "output.every=5"});
-            }),
-            ExitCode::ok);
-  EXPECT_EQ(code_of([] { io::check_restart_overrides({"fluid.dt=0.1"}); }), ExitCode::bad_input);
-  EXPECT_EQ(code_of([] { io::check_restart_overrides({"run.seed=3"}); }), ExitCode::bad_input);
+// The canonical text does not depend on comments, layout, key order or number spelling.
+TEST(CheckpointScene, CanonicalTextIgnoresLayoutAndNumberSpelling) {
+  const char *other_layout = R"(# the same scene, written differently
+[fluid]
+dt = 5e-1
+collision = "srd"
+[domain]
+size = [8, 4.0]
+[run]
+steps = 100
+dimensions = 2
+engine = "mpcd"
+)";
+  EXPECT_EQ(scene::canonical_text(scene_text, "a"), scene::canonical_text(other_layout, "b"));
+  EXPECT_EQ(scene::parse_scene(scene_text, "a").canonical, scene::canonical_text(scene_text, "a"));
+  EXPECT_EQ(scene::canonical_text("[a]\nx = 0.1\ny = \"q\\\"\"\n", "c"),
+            "a.x = 0.1\na.y = \"q\\\"\"\n");
 }
 
-TEST(CheckpointScene, RestartSceneMustMatchTheCheckpoint) {
-  const auto stored = scene::parse_scene(scene_text, "s.toml");
-  io::CheckpointInfo info;
-  info.scene_text = scene_text;
-  info.dimensions = 2;
-  info.fluid_particles = 320;
-  const auto longer = scene::parse_scene(scene_text, "s.toml", {"run.steps=500"});
-  EXPECT_EQ(code_of([&] { io::check_restart_scene(longer, info, "c.h5"); }), ExitCode::ok);
-  const auto other = scene::parse_scene(scene_text, "s.toml", {"fluid.dt=0.25"});
-  EXPECT_EQ(code_of([&] { io::check_restart_scene(other, info, "c.h5"); }), ExitCode::bad_input);
-  info.dimensions = 3;
-  EXPECT_EQ(code_of([&] { io::check_restart_scene(stored, info, "c.h5"); }), ExitCode::bad_input);
-  info.dimensions = 2;
-  info.fluid_particles = 319;
-  EXPECT_EQ(code_of([&] { io::check_restart_scene(stored, info, "c.h5"); }), ExitCode::bad_input);
+// run.steps and output.* may differ; anything else is named, a deleted section as the section.
+TEST(CheckpointScene, FirstDifferenceNamesTheKey) {
+  const auto canon = [](const std::vector<std::string> &sets) {
+    return scene::parse_scene(scene_text, "s.toml", sets).canonical;
+  };
+  EXPECT_FALSE(
+      scene::first_difference(canon({"run.steps=500", "output.every=7"}), scene_text, "c"));
+  const auto dt = scene::first_difference(canon({"fluid.dt=0.25"}), scene_text, "c");
+  ASSERT_TRUE(dt);
+  EXPECT_EQ(dt->key, "fluid.dt");
+  EXPECT_EQ(dt->given, "0.25");
+  EXPECT_EQ(dt->stored, "0.5");
+  const auto walls = scene::first_difference(canon({"walls.slip=true"}), scene_text, "c");
+  ASSERT_TRUE(walls);
+  EXPECT_EQ(walls->key, "[walls]");
+  const auto seed = scene::first_difference(canon({"run.seed=3"}), scene_text, "c");
+  ASSERT_TRUE(seed);
+  EXPECT_EQ(seed->key, "run.seed");
+  EXPECT_EQ(seed->given, "3");
+  EXPECT_EQ(seed->stored, "(not set)");
+  EXPECT_FALSE(scene::first_difference(canon({"run.seed=3"}), scene_text, "c", {"run.seed"}));
+  EXPECT_EQ(code_of([] { scene::first_difference(scene_text, "[broken", "c.h5"); }),
+            ExitCode::bad_input);
 }

@@ -31,7 +31,7 @@ scene::Kmc tasep(int L, double alpha, double beta, double time, double warmup, i
   return m;
 }
 
-kmc::Summary run(const scene::Kmc &m, std::uint64_t seed) {
+kmc::Summary run_model(const scene::Kmc &m, std::uint64_t seed) {
   const auto s = kmc::run_replicas(m, seed, MPI_COMM_WORLD);
   std::printf("  L = %lld: J = %.6f +- %.2g (%lld replicas, %.3g events, %.2f s)\n",
               static_cast<long long>(m.length), s.mean_current, s.mean_current_error,
@@ -47,7 +47,7 @@ kmc::Summary run(const scene::Kmc &m, std::uint64_t seed) {
 TEST(KmcTasep, AlphaPlusBetaOneIsExactForSmallL) {
   const double alpha = 0.3, beta = 0.7;
   const auto m = tasep(10, alpha, beta, 2.0e6, 100.0, 8);
-  const auto s = run(m, 101);
+  const auto s = run_model(m, 101);
   EXPECT_NEAR(s.mean_current, alpha * beta, 3.0 * s.mean_current_error);
   EXPECT_LT(s.mean_current_error, 2.0e-4); // the test has teeth
   EXPECT_NEAR(s.current_left, alpha * beta, 3.0 * s.current_left_error);
@@ -59,7 +59,7 @@ TEST(KmcTasep, AlphaPlusBetaOneIsExactForSmallL) {
 // Off the product-measure line the small system has the exact matrix-product current.
 TEST(KmcTasep, SmallLMatchesMatrixProductCurrent) {
   const auto m = tasep(10, 0.6, 0.8, 2.0e6, 100.0, 8);
-  const auto s = run(m, 102);
+  const auto s = run_model(m, 102);
   const double exact = kmc::theory::tasep_open_current(10, 0.6, 0.8);
   EXPECT_NEAR(s.mean_current, exact, 3.0 * s.mean_current_error) << "exact " << exact;
 }
@@ -79,7 +79,7 @@ TEST_P(KmcTasepPhases, CurrentMatchesPhaseDiagram) {
   const auto p = GetParam();
   const int L = 500;
   const auto m = tasep(L, p.alpha, p.beta, 1.0e5, 4.0e3, 8);
-  const auto s = run(m, 200 + static_cast<std::uint64_t>(p.alpha * 100));
+  const auto s = run_model(m, 200 + static_cast<std::uint64_t>(p.alpha * 100));
   const double exact = kmc::theory::tasep_open_current(L, p.alpha, p.beta);
   const double limit = kmc::theory::tasep_open_current_limit(p.alpha, p.beta);
   std::printf("  %s: exact J_L = %.6f, limit %.6f\n", p.name, exact, limit);

@@ -12,6 +12,8 @@
 //                              word fields (id): value [N] uint64
 //                              scalar fields (colloid radius, mass): value [N] float64
 //   /parameters/{scene, step, time, seed, format_version, dimensions}
+//   /parameters/canonical_scene   the scene as scene/canonical.hpp writes it (for restarts;
+//                              older checkpoints lack it: their scene is canonicalised)
 //   /<engine>/<name>           engine-specific small arrays (CheckpointArray), e.g. /kmc/...
 //
 // Species are generic: a species is a name plus its vector and word fields (SpeciesFields),
@@ -23,15 +25,10 @@
 // the meaning or shape of an existing dataset does.
 #pragma once
 
-#include "narrows/mpcd/fluid.hpp"
-#include "narrows/scene/scene.hpp"
-
 #include <mpi.h>
 
 #include <array>
-#include <csignal>
 #include <cstdint>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -41,7 +38,8 @@ inline constexpr std::int64_t checkpoint_format_version = 1;
 
 // What a checkpoint stores besides the particles.
 struct CheckpointInfo {
-  std::string scene_text; // the scene that ran (overrides re-serialised)
+  std::string scene_text;      // the scene that ran (overrides re-serialised)
+  std::string canonical_scene; // its canonical text (empty: not written / not in the file)
   std::int64_t step = 0;
   double time = 0.0;
   std::uint64_t seed = 0;
@@ -67,9 +65,6 @@ struct SpeciesFields {
 bool has_species_field(const std::string &path, const std::string &species,
                        const std::string &field, MPI_Comm comm);
 
-// The fluid as a species: position, velocity, id.
-SpeciesFields fluid_fields(mpcd::Fluid &fluid);
-
 // An engine's own state that is not particles (the kmc engine's running sums over replicas):
 // a float64 array at `path` (e.g. "kmc/mean"; its groups are created), shape [values.size()].
 // Only rank 0's values are written; other ranks may pass empty vectors.
@@ -80,7 +75,8 @@ struct CheckpointArray {
 
 // Writes `path` collectively on all ranks of comm: first to `path`.tmp, then (rank 0, after
 // the file is closed and synced) renamed to `path`, so a crash never leaves a partial file
-// under the final name. Returns the bytes of particle data written (all ranks).
+// under the final name; if writing fails, the temporary file is removed. Returns the bytes of
+// particle data written (all ranks).
 double write_checkpoint(const std::string &path, const CheckpointInfo &info,
                         const std::vector<SpeciesFields> &species, MPI_Comm comm,
                         const std::vector<CheckpointArray> &arrays = {});
@@ -112,10 +108,6 @@ void read_species_rows(const std::string &path, SpeciesFields &species, std::uin
 // the fluid).
 void read_species(const std::string &path, SpeciesFields &species, MPI_Comm comm);
 
-// The fluid of a checkpoint: this rank's block of rows, cell indices zero (recomputed by the
-// next step).
-mpcd::Fluid read_fluid(const std::string &path, const CheckpointInfo &info, MPI_Comm comm);
-
 // ---- files of a run directory ------------------------------------------------------------
 
 // DIR/checkpoint-<step as 10 digits>.h5
@@ -126,66 +118,11 @@ std::string checkpoint_path(const std::string &dir, std::int64_t step);
 // none.
 std::string resolve_restart(const std::string &arg);
 
+// The complete checkpoints of dir (checkpoint-<10 digits>.h5), oldest first.
+std::vector<std::string> list_checkpoints(const std::string &dir);
+
 // Removes all but the newest `keep` checkpoints of dir, and leftover temporary files of
 // checkpoints that were never completed. Rank 0 only; errors are ignored (it is cleanup).
 void prune_checkpoints(const std::string &dir, int keep);
-
-// ---- restarting a scene ------------------------------------------------------------------
-
-// --set on a restart may change only run.steps and output.*: anything else throws
-// input_error naming the override.
-void check_restart_overrides(const std::vector<std::string> &overrides);
-
-// The scene given on the command line must describe the same physics as the checkpoint's
-// stored scene (only run.steps and output.* may differ), and the checkpoint's data must fit
-// it (dimensions, particle count). Throws input_error naming the first difference.
-void check_restart_scene(const scene::Scene &given, const CheckpointInfo &info,
-                         const std::string &checkpoint);
-
-// The first scene key, of those compared in turn, whose value in the given scene differs
-// from the checkpoint's; refuse() throws the one-line input_error naming it (if any).
-class FirstDifference {
-public:
-  template <class A, class B>
-  void compare(const std::string &key, const A &given, const B &stored) {
-    if (!key_.empty() || given == stored)
-      return;
-    std::ostringstream x, y;
-    x.precision(17);
-    y.precision(17);
-    x << given;
-    y << stored;
-    key_ = key, found_ = x.str(), wanted_ = y.str();
-  }
-  // head: "<scene file>: "; allowed: what may change on a restart of this engine.
-  void refuse(const std::string &head, const std::string &checkpoint,
-              const std::string &allowed = "on a restart only run.steps and output.* may "
-                                           "change") const;
-
-private:
-  std::string key_, found_, wanted_;
-};
-
-// ---- stopping cleanly on a signal --------------------------------------------------------
-
-// Installs handlers for SIGTERM and SIGUSR1 (what SLURM sends before the time limit) while
-// alive; the previous handlers come back on destruction.
-class StopSignals {
-public:
-  StopSignals();
-  ~StopSignals();
-  StopSignals(const StopSignals &) = delete;
-  StopSignals &operator=(const StopSignals &) = delete;
-  // Collective: the signal received by any rank (0 if none), the same on every rank.
-  int requested(MPI_Comm comm) const;
-  // This rank only (not collective, cheap): the signal received here, 0 if none.
-  int received() const;
-
-private:
-  struct sigaction old_term_ {
-  }, old_usr1_{};
-};
-
-const char *signal_name(int sig);
 
 } // namespace narrows::io

@@ -2,6 +2,7 @@
 // commands for kmc scenes, and the kmc benchmark.
 #pragma once
 
+#include "narrows/run/shell.hpp"
 #include "narrows/scene/scene.hpp"
 
 #include <mpi.h>
@@ -71,14 +72,13 @@ Summary run_replicas(const scene::Kmc &model, std::uint64_t seed, MPI_Comm comm,
 std::vector<std::string> describe(const scene::Scene &scene);
 
 // `narrows run` for a kmc scene: DIR/log.txt, DIR/observables.h5, the "Loop time" line,
-// checkpoints (the running sums over finished replicas); `restart` (a checkpoint file or
-// directory, or empty) continues such a run, bitwise as if never interrupted.
-void run_scene(const scene::Scene &scene, const std::string &out_dir, const std::string &restart,
-               MPI_Comm comm);
+// checkpoints (the running sums over finished replicas), in the run shell (run/shell.hpp); a
+// restart continues such a run, bitwise as if never interrupted.
+void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm comm);
 
 // `narrows check|info|run` for a kmc scene (called by main once the scene is parsed).
-int command(const scene::Scene &scene, bool check, bool info, const std::string &restart,
-            const std::string &out_dir, MPI_Comm comm);
+int command(const scene::Scene &scene, bool check, bool info, const run::Options &options,
+            MPI_Comm comm);
 
 // `narrows bench --kmc`: events per second on one core for L = sites.
 void run_bench(std::ostream &out, double sites, bool json);

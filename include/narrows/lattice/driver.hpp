@@ -2,6 +2,7 @@
 #pragma once
 
 #include "narrows/lattice/fhp_lattice.hpp"
+#include "narrows/run/shell.hpp"
 #include "narrows/scene/scene.hpp"
 
 #include <mpi.h>
@@ -20,14 +21,13 @@ FhpModel fhp_model(scene::LgcaModel m);
 std::vector<std::string> describe(const scene::Scene &scene, MPI_Comm comm);
 
 // `narrows run` for an FHP scene: DIR/log.txt, DIR/observables.h5, checkpoints, the "Loop
-// time" line; `restart` is a checkpoint file or directory (empty: start fresh).
-void run_scene(const scene::Scene &scene, const std::string &out_dir, const std::string &restart,
-               MPI_Comm comm);
+// time" line, in the run shell (run/shell.hpp).
+void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm comm);
 
 // `narrows check|info|run` for a lattice scene (called by main once the scene is parsed).
 // Parts not available in this version ([tagged], dhumieres-1d) are refused with exit code 2.
-int command(const scene::Scene &scene, bool check, bool info, const std::string &restart,
-            const std::string &out_dir, MPI_Comm comm);
+int command(const scene::Scene &scene, bool check, bool info, const run::Options &options,
+            MPI_Comm comm);
 
 // `narrows bench --lgca N`: FHP-III site updates per second per core on an N x N lattice, on
 // one rank and on all ranks of comm (the speedup). Collective; rank 0 prints.

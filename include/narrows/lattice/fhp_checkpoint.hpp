@@ -12,9 +12,11 @@
 
 namespace narrows::lattice {
 
-// Collective; returns the bytes of lattice data written.
+// Collective; returns the bytes of lattice data written. `canonical_scene`: the scene's
+// canonical text (scene/canonical.hpp), stored for restarts if not empty.
 double write_lattice_checkpoint(const std::string &path, const FhpLattice &lattice,
-                                const std::string &scene_text);
+                                const std::string &scene_text,
+                                const std::string &canonical_scene = {});
 
 // Fills `lattice` (built from the same scene) with the checkpoint's state and step
 // (collective). input_error if the stored lattice does not have the lattice's size.

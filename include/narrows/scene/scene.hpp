@@ -185,8 +185,9 @@ struct LgcaColloid {
 };
 
 struct Scene {
-  std::string file; // where it came from, for messages
-  std::string text; // the scene as read (stored in output files)
+  std::string file;      // where it came from, for messages
+  std::string text;      // the scene as read (stored in output files)
+  std::string canonical; // its canonical text after --set (scene/canonical.hpp), for restarts
   Run run;
   Domain domain;
   Fluid fluid;

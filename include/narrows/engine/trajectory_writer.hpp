@@ -1,5 +1,6 @@
-// Trajectory output: frames of the fluid (every particle, or those whose id is a multiple of a
-// subsample stride) in an H5MD file, plus an XDMF description of the same file for ParaView.
+// Trajectory output of the mpcd engine: frames of the fluid (every particle, or those whose id
+// is a multiple of a subsample stride) in an H5MD file, plus an XDMF description of the same
+// file for ParaView.
 //
 // Layout of DIR/trajectory.h5 (H5MD 1.1 style):
 //   /h5md                               attribute version = [1, 1]; group creator
@@ -24,7 +25,7 @@
 #include <string>
 #include <vector>
 
-namespace narrows::io {
+namespace narrows::engine {
 
 class TrajectoryWriter {
 public:
@@ -51,13 +52,13 @@ private:
   MPI_Comm comm_;
   int rank_ = 0, dim_ = 2;
   std::uint64_t subsample_ = 1, rows_ = 0;
-  h5::File file_;
-  h5::Dataset step_[2], time_[2], value_[2]; // position, velocity
-  std::size_t colloid_rows_ = 0;             // 0: no colloid species
-  h5::Dataset colloid_step_[2], colloid_time_[2], colloid_value_[2];
+  io::h5::File file_;
+  io::h5::Dataset step_[2], time_[2], value_[2]; // position, velocity
+  std::size_t colloid_rows_ = 0;                 // 0: no colloid species
+  io::h5::Dataset colloid_step_[2], colloid_time_[2], colloid_value_[2];
   std::vector<double> frame_times_;
   std::vector<std::uint64_t> send_rows_, recv_rows_;
   std::vector<double> send_values_, recv_values_, position_, velocity_;
 };
 
-} // namespace narrows::io
+} // namespace narrows::engine

@@ -1,11 +1,13 @@
 // TrajectoryWriter: gathers the tracked fluid particles on rank 0 and appends H5MD frames.
-#include "narrows/io/trajectory_writer.hpp"
+#include "narrows/engine/trajectory_writer.hpp"
 
 #include <array>
 #include <cstdio>
 #include <fstream>
 
-namespace narrows::io {
+namespace narrows::engine {
+
+namespace h5 = io::h5;
 
 namespace {
 
@@ -238,4 +240,4 @@ void TrajectoryWriter::write_xdmf() const {
     throw Error(ExitCode::other, xdmf_path_ + ": cannot rename " + tmp);
 }
 
-} // namespace narrows::io
+} // namespace narrows::engine

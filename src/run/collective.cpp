@@ -1,0 +1,46 @@
+// One error for all ranks: MPI_Allreduce of who failed, then the first failure's message is
+// broadcast and thrown everywhere.
+#include "narrows/run/collective.hpp"
+
+#include "narrows/core/error.hpp"
+
+#include <new>
+#include <string>
+
+namespace narrows::run {
+
+void collectively(MPI_Comm comm, const std::function<void()> &work) {
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  int code = 0, failed = 0;
+  std::string message;
+  try {
+    work();
+  } catch (const Error &e) {
+    failed = 1; // also for ExitCode::ok: "nothing to run" ends the run without output
+    code = static_cast<int>(e.code());
+    message = e.what();
+  } catch (const std::bad_alloc &) {
+    failed = 1;
+    code = static_cast<int>(ExitCode::other);
+    message = "internal error: out of memory (std::bad_alloc)";
+  } catch (const std::exception &e) {
+    failed = 1;
+    code = static_cast<int>(ExitCode::other);
+    message = std::string("internal error: ") + e.what();
+  }
+  const int mine = failed ? rank : ranks;
+  int first = ranks;
+  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm);
+  if (first == ranks)
+    return;
+  unsigned long length = message.size();
+  MPI_Bcast(&code, 1, MPI_INT, first, comm);
+  MPI_Bcast(&length, 1, MPI_UNSIGNED_LONG, first, comm);
+  message.resize(length);
+  MPI_Bcast(message.data(), static_cast<int>(length), MPI_CHAR, first, comm);
+  throw Error(static_cast<ExitCode>(code), message);
+}
+
+} // namespace narrows::run

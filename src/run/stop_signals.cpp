@@ -1,0 +1,44 @@
+// Signal handlers that only set a flag; the run loop asks for it collectively.
+#include "narrows/run/stop_signals.hpp"
+
+namespace narrows::run {
+
+namespace {
+volatile std::sig_atomic_t stop_signal = 0;
+extern "C" void on_stop_signal(int sig) { stop_signal = sig; }
+} // namespace
+
+StopSignals::StopSignals() {
+  stop_signal = 0;
+  struct sigaction sa {};
+  sa.sa_handler = on_stop_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGTERM, &sa, &old_term_);
+  sigaction(SIGUSR1, &sa, &old_usr1_);
+}
+
+StopSignals::~StopSignals() {
+  sigaction(SIGTERM, &old_term_, nullptr);
+  sigaction(SIGUSR1, &old_usr1_, nullptr);
+}
+
+int StopSignals::requested(MPI_Comm comm) const {
+  int local = stop_signal, any = 0;
+  MPI_Allreduce(&local, &any, 1, MPI_INT, MPI_MAX, comm);
+  return any;
+}
+
+int StopSignals::received() const { return stop_signal; }
+
+const char *signal_name(int sig) {
+  switch (sig) {
+  case SIGTERM:
+    return "SIGTERM";
+  case SIGUSR1:
+    return "SIGUSR1";
+  default:
+    return "a signal";
+  }
+}
+
+} // namespace narrows::run
