@@ -4,6 +4,7 @@
 #include "narrows/colloids/potentials.hpp"
 #include "narrows/core/error.hpp"
 #include "narrows/core/fixed_point.hpp"
+#include "narrows/mpcd/cell_grid.hpp"
 #include "narrows/mpcd/streaming.hpp"
 
 #include <algorithm>
@@ -99,7 +100,8 @@ void MdCoupling::build_cell_list(const mpcd::Fluid &f) {
   for (std::size_t i = 0; i < n; ++i) {
     std::size_t cell = 0;
     for (int k = dim_ - 1; k >= 0; --k) {
-      const int ck = std::min(cells_[k] - 1, static_cast<int>(f.x[k][i] * inv_cell_[k]));
+      const int ck =
+          mpcd::clamped_cell(f.x[k][i], inv_cell_[k], cells_[k], "fluid particle", f.id[i], k);
       cell = cell * static_cast<std::size_t>(cells_[k]) + static_cast<std::size_t>(ck);
     }
     next_[i] = head_[cell];
@@ -135,7 +137,7 @@ void MdCoupling::select_near(const mpcd::Fluid &f, const Colloids &c) {
     std::array<std::vector<int>, 3> axis;
     for (int k = 0; k < D; ++k) {
       const int nk = cells_[k];
-      const int home = std::min(nk - 1, static_cast<int>(c.x[k][a] * inv_cell_[k]));
+      const int home = mpcd::clamped_cell(c.x[k][a], inv_cell_[k], nk, "colloid", c.id[a], k);
       const int w = static_cast<int>(std::ceil((range + max_reach) * inv_cell_[k]));
       if (2 * w + 1 >= nk) {
         for (int q = 0; q < nk; ++q)
@@ -193,7 +195,7 @@ void MdCoupling::colloid_pairs(const Colloids &c, PotentialEnergy &energy, bool 
     std::size_t cell = 0;
     for (int k = D - 1; k >= 0; --k) {
       const int n = cc_cells_[k];
-      const int ck = std::clamp(static_cast<int>(c.x[k][a] * cc_inv_cell_[k]), 0, n - 1);
+      const int ck = mpcd::clamped_cell(c.x[k][a], cc_inv_cell_[k], n, "colloid", c.id[a], k);
       cc_cell_[a * D + k] = ck;
       cell = cell * static_cast<std::size_t>(n) + static_cast<std::size_t>(ck);
     }
@@ -276,7 +278,7 @@ PotentialEnergy MdCoupling::forces(const mpcd::Fluid &f, const Colloids &c, MPI_
     int lo[3], hi[3], home[3];
     for (int k = 0; k < D; ++k) {
       xc[k] = c.x[k][a];
-      home[k] = std::min(cells_[k] - 1, static_cast<int>(xc[k] * inv_cell_[k]));
+      home[k] = mpcd::clamped_cell(xc[k], inv_cell_[k], cells_[k], "colloid", c.id[a], k);
       const bool periodic = !(WallsY && k == 1);
       if (cells_[k] < 3) {
         lo[k] = 0, hi[k] = cells_[k] - 1, home[k] = 0;

@@ -1,6 +1,8 @@
 // Building and stepping the MPCD pipeline.
 #include "narrows/engine/mpcd_simulation.hpp"
 
+#include "narrows/core/error.hpp"
+
 #include "narrows/colloids/placement.hpp"
 #include "narrows/colloids/potentials.hpp"
 #include "narrows/mpcd/streaming.hpp"
@@ -12,6 +14,7 @@
 #include <cmath>
 #include <numbers>
 #include <sstream>
+#include <string_view>
 
 namespace narrows::engine {
 
@@ -344,8 +347,17 @@ void MpcdSimulation::build_pipeline() {
 
 void MpcdSimulation::advance() {
   const auto s = static_cast<std::uint64_t>(step_);
-  for (const Stage &stage : stages_)
-    stage.run(s);
+  try {
+    for (const Stage &stage : stages_)
+      stage.run(s);
+  } catch (const Error &e) { // a kernel names the particle; the step and rank are added here
+    if (e.code() != ExitCode::invariant || std::string_view(e.what()).starts_with("invariant"))
+      throw;
+    int rank = 0;
+    MPI_Comm_rank(comm_, &rank);
+    throw invariant_error("invariant broken at step " + std::to_string(step_) + " on rank " +
+                          std::to_string(rank) + ": " + e.what());
+  }
   ++step_;
 }
 

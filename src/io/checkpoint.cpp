@@ -6,6 +6,7 @@
 #include "narrows/core/error.hpp"
 #include "narrows/io/direct_writer.hpp"
 #include "narrows/io/hdf5.hpp"
+#include "narrows/io/row_hash.hpp"
 #include "narrows/scene/parse.hpp"
 
 #include <fcntl.h>
@@ -21,6 +22,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <sstream>
 
 namespace narrows::io {
@@ -67,6 +69,22 @@ int size_of(MPI_Comm comm) {
   throw input_error(path + ": " + what);
 }
 
+std::string hdf5_error_text();
+
+std::string number_text(double v) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%.17g", v);
+  return b;
+}
+
+// HDF5 could not read a dataset of a checkpoint that opened: its metadata are damaged.
+[[noreturn]] void damaged(const std::string &path, const std::string &dataset) {
+  const std::string err = hdf5_error_text();
+  refuse(path, "damaged checkpoint: HDF5 cannot read " + dataset +
+                   (err.empty() ? std::string() : " (" + err + ")") +
+                   "; allowed: a checkpoint as narrows run wrote it");
+}
+
 // The file-access list of collective I/O on comm: metadata operations collective too, large
 // datasets aligned to 1 MiB (file-system blocks).
 h5::PropList mpio_fapl(MPI_Comm comm, const std::string &where) {
@@ -75,6 +93,10 @@ h5::PropList mpio_fapl(MPI_Comm comm, const std::string &where) {
   h5::check(H5Pset_all_coll_metadata_ops(fapl.get(), true), where, "set collective metadata");
   h5::check(H5Pset_coll_metadata_write(fapl.get(), true), where, "set collective metadata");
   h5::check(H5Pset_alignment(fapl.get(), 1 << 20, 1 << 20), where, "set alignment");
+  // The 1.10 format checksums all metadata (superblock, object headers, attributes), so a
+  // damaged header is refused by HDF5; the data carry our own checksums (checksum_attribute).
+  h5::check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V110, H5F_LIBVER_V110), where,
+            "set format bounds");
   return fapl;
 }
 
@@ -108,13 +130,31 @@ void string_attribute(hid_t obj, const std::string &name, const std::string &val
   h5::write_attribute(obj, name, type.get(), {}, buf.data(), where);
 }
 
-// A small dataset created by all ranks (collective) and written by rank 0 (independent).
+// Every dataset of a checkpoint carries the checksum of its data (io/row_hash.hpp) in this
+// attribute; the value must be the same on every rank (attributes are written collectively).
+constexpr const char *checksum_name = "checksum";
+
+void checksum_attribute(hid_t dset, std::uint64_t sum, const std::string &where) {
+  h5::write_attribute(dset, checksum_name, std::span<const std::uint64_t>(&sum, 1), where);
+}
+
+// A small dataset created by all ranks (collective) and written by rank 0 (independent); its
+// checksum is rank 0's (other ranks may pass no data).
 void small_dataset(hid_t loc, const std::string &name, hid_t type, std::span<const hsize_t> dims,
                    const void *data, MPI_Comm comm, const std::string &where) {
   const auto space = h5::simple_dataspace(dims, {}, where);
   const h5::Dataset d(
       H5Dcreate2(loc, name.c_str(), type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
       where, "create dataset " + name);
+  std::uint64_t sum = 0;
+  if (rank_of(comm) == 0) {
+    std::size_t bytes = H5Tget_size(type);
+    for (const hsize_t n : dims)
+      bytes *= n;
+    sum = bytes_hash(data, bytes);
+  }
+  MPI_Bcast(&sum, 1, MPI_UINT64_T, 0, comm);
+  checksum_attribute(d.get(), sum, where);
   if (rank_of(comm) == 0)
     h5::check(H5Dwrite(d.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), where,
               "write dataset " + name);
@@ -138,10 +178,13 @@ void small_string(hid_t loc, const std::string &name, const std::string &value, 
 // This rank's rows [offset, offset + n) of a [total][width] dataset, read in collective calls
 // of at most rows_per_call rows; every rank makes the same number of calls. `move(buf, first,
 // count)` drains the staging buffer into local rows [first, first + count).
+// Returns the checksum of the rows read (io/row_hash.hpp; T is 8 bytes wide).
 template <class T>
-void read_rows(hid_t dset, std::uint64_t offset, std::uint64_t n, int width, MPI_Comm comm,
-               const std::function<void(T *, std::size_t, std::size_t)> &move,
-               const std::string &where) {
+std::uint64_t read_rows(hid_t dset, std::uint64_t offset, std::uint64_t n, int width, MPI_Comm comm,
+                        const std::function<void(T *, std::size_t, std::size_t)> &move,
+                        const std::string &where, const std::string &name) {
+  static_assert(sizeof(T) == 8);
+  std::uint64_t sum = 0;
   std::uint64_t most = 0;
   MPI_Allreduce(&n, &most, 1, MPI_UINT64_T, MPI_MAX, comm);
   const std::uint64_t calls = (most + rows_per_call - 1) / rows_per_call;
@@ -164,12 +207,15 @@ void read_rows(hid_t dset, std::uint64_t offset, std::uint64_t n, int width, MPI
       h5::check(H5Sselect_none(file_space.get()), where, "select none");
       h5::check(H5Sselect_none(mem.get()), where, "select none");
     }
-    h5::check(
-        H5Dread(dset, h5::native_type<T>(), mem.get(), file_space.get(), dxpl.get(), buf.data()),
-        where, "collective read");
-    if (count > 0)
+    if (H5Dread(dset, h5::native_type<T>(), mem.get(), file_space.get(), dxpl.get(), buf.data()) <
+        0)
+      damaged(where, name);
+    if (count > 0) {
+      sum += rows_hash(offset + first, buf.data(), count, width);
       move(buf.data(), first, count);
+    }
   }
+  return sum;
 }
 
 // The particle data of one dataset that this rank writes once the file's structure exists:
@@ -253,16 +299,35 @@ double create_species(hid_t particles, const SpeciesFields &s, const CheckpointI
                   info.box.data(), comm, where);
   }
   double bytes = 0;
+  RowJob pending; // the field being created: its data, before it has an address
+  // The checksum of all ranks' rows, known before the rows are written (attributes are metadata).
+  auto checksum = [&](const RowJob &job) {
+    std::uint64_t local = 0;
+    if (job.words != nullptr) {
+      local = rows_hash(offset, job.words->data(), n, 1);
+    } else {
+      std::uint64_t row[3];
+      for (std::uint64_t i = 0; i < n; ++i) {
+        for (int k = 0; k < job.width; ++k)
+          std::memcpy(&row[k], job.components[k]->data() + i, 8);
+        local += row_hash(offset + i, row, static_cast<std::size_t>(job.width));
+      }
+    }
+    std::uint64_t sum = 0;
+    MPI_Allreduce(&local, &sum, 1, MPI_UINT64_T, MPI_SUM, comm);
+    return sum;
+  };
   auto field = [&](const std::string &name, hid_t type, int width, bool vector) {
     const auto fg = h5::create_group(g.get(), name, where);
     small_scalar<std::int64_t>(fg.get(), "step", info.step, comm, where);
     small_scalar<double>(fg.get(), "time", info.time, comm, where);
     const auto dset = create_rows(fg.get(), "value", type, total, width, vector, where);
+    checksum_attribute(dset.get(), checksum(pending), where);
     const haddr_t address = H5Dget_offset(dset.get());
     if (address == HADDR_UNDEF)
       h5::fail(where, "get the file address of " + name);
     bytes += static_cast<double>(total) * width * 8;
-    RowJob job;
+    RowJob job = pending;
     job.address = address;
     job.offset = offset;
     job.n = n;
@@ -270,20 +335,21 @@ double create_species(hid_t particles, const SpeciesFields &s, const CheckpointI
     return job;
   };
   for (const auto &[name, comp] : s.vectors) {
-    RowJob job = field(name, H5T_IEEE_F64LE, s.dim, true);
+    pending = RowJob{};
+    pending.width = s.dim;
     for (int k = 0; k < s.dim; ++k)
-      job.components[k] = comp[k];
-    jobs.push_back(job);
+      pending.components[k] = comp[k];
+    jobs.push_back(field(name, H5T_IEEE_F64LE, s.dim, true));
   }
   for (const auto &[name, words] : s.words) {
-    RowJob job = field(name, H5T_STD_U64LE, 1, false);
-    job.words = words;
-    jobs.push_back(job);
+    pending = RowJob{};
+    pending.words = words;
+    jobs.push_back(field(name, H5T_STD_U64LE, 1, false));
   }
   for (const auto &[name, values] : s.scalars) {
-    RowJob job = field(name, H5T_IEEE_F64LE, 1, false);
-    job.components[0] = values;
-    jobs.push_back(job);
+    pending = RowJob{};
+    pending.components[0] = values;
+    jobs.push_back(field(name, H5T_IEEE_F64LE, 1, false));
   }
   return bytes;
 }
@@ -329,7 +395,46 @@ h5::Dataset open_required(hid_t file, const std::string &name, const std::string
   if (!path_exists(file, name))
     refuse(path, "missing dataset " + name + "; allowed: a narrows checkpoint (format version " +
                      std::to_string(checkpoint_format_version) + ", written by narrows run)");
-  return h5::Dataset(H5Dopen2(file, name.c_str(), H5P_DEFAULT), path, "open dataset " + name);
+  h5::Dataset d(H5Dopen2(file, name.c_str(), H5P_DEFAULT));
+  if (!d)
+    damaged(path, name);
+  return d;
+}
+
+// Checkpoints written before checksums existed carry none (not even on /parameters/scene).
+bool has_checksums(hid_t file) {
+  return H5Aexists_by_name(file, "/parameters/scene", checksum_name, H5P_DEFAULT) > 0;
+}
+
+// The checksum stored with dataset `name`; none for a checkpoint without checksums; refused
+// if the file has checksums but this dataset lost its own.
+std::optional<std::uint64_t> stored_checksum(hid_t file, hid_t dset, const std::string &name,
+                                             const std::string &path) {
+  const htri_t exists = H5Aexists(dset, checksum_name);
+  if (exists > 0) {
+    const h5::Attribute a(H5Aopen(dset, checksum_name, H5P_DEFAULT));
+    std::uint64_t sum = 0;
+    if (!a || H5Aread(a.get(), H5T_NATIVE_UINT64, &sum) < 0)
+      damaged(path, name + " (its checksum)");
+    return sum;
+  }
+  if (exists == 0 && !has_checksums(file))
+    return std::nullopt;
+  refuse(path, "damaged checkpoint: " + name +
+                   " has no checksum, the other datasets have; allowed: a checkpoint as narrows "
+                   "run wrote it");
+}
+
+void verify_checksum(const std::optional<std::uint64_t> &stored, std::uint64_t computed,
+                     const std::string &name, const std::string &path) {
+  if (!stored || *stored == computed)
+    return;
+  char line[160];
+  std::snprintf(line, sizeof line, " does not match its checksum (stored %016llx, data %016llx)",
+                static_cast<unsigned long long>(*stored),
+                static_cast<unsigned long long>(computed));
+  refuse(path, "damaged checkpoint: " + name + line +
+                   "; allowed: a checkpoint as narrows run wrote it, unmodified");
 }
 
 std::vector<hsize_t> shape_of(hid_t dset, const std::string &path) {
@@ -346,8 +451,10 @@ template <class T> T read_scalar(hid_t file, const std::string &name, const std:
   if (!shape_of(d.get(), path).empty())
     refuse(path, name + " is not a scalar; allowed: a narrows checkpoint");
   T value{};
-  h5::check(H5Dread(d.get(), h5::native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, &value), path,
-            "read " + name);
+  if (H5Dread(d.get(), h5::native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, &value) < 0)
+    damaged(path, name);
+  verify_checksum(stored_checksum(file, d.get(), name, path), bytes_hash(&value, sizeof value),
+                  name, path);
   return value;
 }
 
@@ -357,8 +464,10 @@ std::string read_string(hid_t file, const std::string &name, const std::string &
   if (H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) > 0)
     refuse(path, name + " is not a fixed-length string; allowed: a narrows checkpoint");
   std::string buf(H5Tget_size(type.get()), '\0');
-  h5::check(H5Dread(d.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buf.data()), path,
-            "read " + name);
+  if (H5Dread(d.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buf.data()) < 0)
+    damaged(path, name);
+  verify_checksum(stored_checksum(file, d.get(), name, path), bytes_hash(buf.data(), buf.size()),
+                  name, path);
   buf.resize(std::strlen(buf.c_str()));
   return buf;
 }
@@ -510,6 +619,11 @@ CheckpointInfo open_checkpoint(const std::string &path, MPI_Comm comm, h5::File 
            "damaged HDF5 file, HDF5 cannot open it (" + err + "); allowed: a complete checkpoint");
   }
   const hid_t f = file.get();
+  if (!has_checksums(f) && rank_of(comm) == 0)
+    std::fprintf(stderr,
+                 "warning: %s carries no checksums (written by a narrows before they existed); "
+                 "its data are accepted unverified\n",
+                 path.c_str());
 
   CheckpointInfo info;
   const auto version = read_scalar<std::int64_t>(f, "/parameters/format_version", path);
@@ -522,11 +636,15 @@ CheckpointInfo open_checkpoint(const std::string &path, MPI_Comm comm, h5::File 
   info.time = read_scalar<double>(f, "/parameters/time", path);
   info.seed = read_scalar<std::uint64_t>(f, "/parameters/seed", path);
   info.dimensions = read_scalar<std::int32_t>(f, "/parameters/dimensions", path);
-  if (info.step < 0)
-    refuse(path, "/parameters/step = " + std::to_string(info.step) + "; allowed: >= 0");
+  // Checkpoint names hold the step in 10 digits (checkpoint_path, list_checkpoints).
+  if (info.step < 0 || info.step > max_checkpoint_step)
+    refuse(path, "/parameters/step = " + std::to_string(info.step) + "; allowed: 0 to " +
+                     std::to_string(max_checkpoint_step));
   if (info.dimensions < 1 || info.dimensions > 3)
     refuse(path,
            "/parameters/dimensions = " + std::to_string(info.dimensions) + "; allowed: 1, 2 or 3");
+  if (!(std::isfinite(info.time) && info.time >= 0.0))
+    refuse(path, "/parameters/time = " + number_text(info.time) + "; allowed: a finite time >= 0");
   return info;
 }
 
@@ -566,9 +684,24 @@ CheckpointInfo read_checkpoint_info(const std::string &path, MPI_Comm comm) {
   if (shape_of(e.get(), path) != std::vector<hsize_t>{static_cast<hsize_t>(info.dimensions)})
     refuse(path, edges + " has shape " + shape_text(shape_of(e.get(), path)) + "; allowed: [" +
                      std::to_string(info.dimensions) + "]");
-  h5::check(H5Dread(e.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, info.box.data()),
-            path, "read " + edges);
+  if (H5Dread(e.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, info.box.data()) < 0)
+    damaged(path, edges);
+  verify_checksum(stored_checksum(f, e.get(), edges, path),
+                  bytes_hash(info.box.data(), 8 * static_cast<std::size_t>(info.dimensions)), edges,
+                  path);
   (void)comm;
+  // The seed and box the data were made with are the stored scene's (which the restart
+  // compares with the given scene).
+  const auto stored = scene::parse_scene(info.scene_text, path + ":/parameters/scene");
+  if (stored.run.seed != info.seed)
+    refuse(path, "/parameters/seed = " + std::to_string(info.seed) +
+                     " but /parameters/scene has run.seed = " + std::to_string(stored.run.seed) +
+                     "; allowed: the same seed");
+  for (int k = 0; k < info.dimensions; ++k)
+    if (stored.domain.size[k] != info.box[k])
+      refuse(path, edges + "[" + std::to_string(k) + "] = " + number_text(info.box[k]) +
+                       " but /parameters/scene has domain.size[" + std::to_string(k) +
+                       "] = " + number_text(stored.domain.size[k]) + "; allowed: the same box");
   return info;
 }
 
@@ -583,8 +716,14 @@ std::vector<double> read_checkpoint_array(const std::string &path, const std::st
     refuse(path, "/" + name + " has shape " + shape_text(shape) + "; allowed: [" +
                      std::to_string(size) + "] (what the scene needs)");
   std::vector<double> v(size);
-  h5::check(H5Dread(d.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), path,
-            "read /" + name);
+  if (H5Dread(d.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) < 0)
+    damaged(path, "/" + name);
+  verify_checksum(stored_checksum(file.get(), d.get(), "/" + name, path),
+                  bytes_hash(v.data(), 8 * size), "/" + name, path);
+  for (std::size_t i = 0; i < size; ++i)
+    if (!std::isfinite(v[i]))
+      refuse(path, "/" + name + " row " + std::to_string(i) + " = " + number_text(v[i]) +
+                       "; allowed: a finite number");
   return v;
 }
 
@@ -611,12 +750,23 @@ void read_species_rows(const std::string &path, SpeciesFields &s, std::uint64_t 
   const auto fapl = mpio_fapl(comm, path);
   const h5::File file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()), path, "open file");
   const std::string base = "/particles/" + s.name + "/";
+  // The checksum covers the whole dataset: verified when the ranks' rows together are all of
+  // it (every reader reads a partition of the rows), the same outcome on every rank.
+  const auto verify = [&](const h5::Dataset &d, const std::string &name, std::uint64_t local) {
+    const std::uint64_t mine[2] = {n, local};
+    std::uint64_t all[2] = {0, 0};
+    MPI_Allreduce(mine, all, 2, MPI_UINT64_T, MPI_SUM, comm);
+    const auto shape = shape_of(d.get(), path);
+    if (!shape.empty() && all[0] == shape[0])
+      verify_checksum(stored_checksum(file.get(), d.get(), name, path), all[1], name, path);
+  };
   for (auto &[name, comp] : s.vectors) {
-    const auto d = open_required(file.get(), base + name + "/value", path);
+    const std::string dname = base + name + "/value";
+    const auto d = open_required(file.get(), dname, path);
     for (int k = 0; k < s.dim; ++k)
       comp[k]->resize(n);
     const int dim = s.dim;
-    read_rows<double>(
+    const auto sum = read_rows<double>(
         d.get(), first, n, dim, comm,
         [&comp, dim](double *buf, std::size_t at, std::size_t count) {
           for (int k = 0; k < dim; ++k) {
@@ -625,27 +775,32 @@ void read_species_rows(const std::string &path, SpeciesFields &s, std::uint64_t 
               dst[i] = buf[i * dim + k];
           }
         },
-        path);
+        path, dname);
+    verify(d, dname, sum);
   }
   for (auto &[name, words] : s.words) {
-    const auto d = open_required(file.get(), base + name + "/value", path);
+    const std::string dname = base + name + "/value";
+    const auto d = open_required(file.get(), dname, path);
     words->resize(n);
-    read_rows<std::uint64_t>(
+    const auto sum = read_rows<std::uint64_t>(
         d.get(), first, n, 1, comm,
         [words](std::uint64_t *buf, std::size_t at, std::size_t count) {
           std::copy_n(buf, count, words->data() + at);
         },
-        path);
+        path, dname);
+    verify(d, dname, sum);
   }
   for (auto &[name, values] : s.scalars) {
-    const auto d = open_required(file.get(), base + name + "/value", path);
+    const std::string dname = base + name + "/value";
+    const auto d = open_required(file.get(), dname, path);
     values->resize(n);
-    read_rows<double>(
+    const auto sum = read_rows<double>(
         d.get(), first, n, 1, comm,
         [values](double *buf, std::size_t at, std::size_t count) {
           std::copy_n(buf, count, values->data() + at);
         },
-        path);
+        path, dname);
+    verify(d, dname, sum);
   }
 }
 
@@ -657,16 +812,116 @@ bool has_species_field(const std::string &path, const std::string &species,
   return path_exists(file.get(), "/particles/" + species + "/" + field + "/value");
 }
 
+namespace {
+
+constexpr std::uint64_t no_row = ~std::uint64_t{0};
+
+// One refusal on every rank: each rank offers its first bad row (no_row if none) and the line
+// that describes it; every rank throws the line of the lowest bad row (so no rank waits for
+// another that already gave up).
+void refuse_first_bad_row(std::uint64_t bad_row, const std::string &line, MPI_Comm comm) {
+  std::uint64_t first = no_row;
+  MPI_Allreduce(&bad_row, &first, 1, MPI_UINT64_T, MPI_MIN, comm);
+  if (first == no_row)
+    return;
+  const int rank = rank_of(comm);
+  int mine = bad_row == first ? rank : size_of(comm), owner = 0;
+  MPI_Allreduce(&mine, &owner, 1, MPI_INT, MPI_MIN, comm);
+  std::uint64_t length = rank == owner ? line.size() : 0;
+  MPI_Bcast(&length, 1, MPI_UINT64_T, owner, comm);
+  std::string text = rank == owner ? line : std::string(length, ' ');
+  MPI_Bcast(text.data(), static_cast<int>(length), MPI_CHAR, owner, comm);
+  throw input_error(text);
+}
+
+// Every id of [0, total) exactly once over all ranks: each (id, row) goes to the rank that
+// checks ids [ceil(d total / p), ceil((d + 1) total / p)), which keeps one row per id.
+void check_unique_ids(const std::vector<std::uint64_t> &ids, std::uint64_t first_row,
+                      std::uint64_t total, const std::string &dataset, const std::string &path,
+                      MPI_Comm comm) {
+  const int p = size_of(comm), d = rank_of(comm);
+  const auto owner = [&](std::uint64_t id) {
+    return static_cast<int>(static_cast<unsigned __int128>(id) * p / total);
+  };
+  std::vector<int> send_counts(p, 0), recv_counts(p, 0), sdispl(p, 0), rdispl(p, 0);
+  for (const auto id : ids)
+    send_counts[owner(id)] += 2;
+  MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT, comm);
+  for (int r = 1; r < p; ++r) {
+    sdispl[r] = sdispl[r - 1] + send_counts[r - 1];
+    rdispl[r] = rdispl[r - 1] + recv_counts[r - 1];
+  }
+  std::vector<std::uint64_t> send(2 * ids.size()), recv(rdispl[p - 1] + recv_counts[p - 1]);
+  std::vector<int> at = sdispl;
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    const int r = owner(ids[i]);
+    send[at[r]++] = ids[i];
+    send[at[r]++] = first_row + i;
+  }
+  MPI_Alltoallv(send.data(), send_counts.data(), sdispl.data(), MPI_UINT64_T, recv.data(),
+                recv_counts.data(), rdispl.data(), MPI_UINT64_T, comm);
+  const auto lo =
+      static_cast<std::uint64_t>((static_cast<unsigned __int128>(total) * d + p - 1) / p);
+  const auto hi =
+      static_cast<std::uint64_t>((static_cast<unsigned __int128>(total) * (d + 1) + p - 1) / p);
+  std::vector<std::uint64_t> row_of(hi - lo, no_row);
+  std::uint64_t bad = no_row;
+  std::string line;
+  for (std::size_t k = 0; k < recv.size(); k += 2) {
+    const std::uint64_t id = recv[k], row = recv[k + 1];
+    std::uint64_t &seen = row_of[id - lo];
+    if (seen == no_row) {
+      seen = row;
+      continue;
+    }
+    const std::uint64_t later = std::max(seen, row), earlier = std::min(seen, row);
+    if (later < bad) {
+      bad = later;
+      line = path + ": " + dataset + " row " + std::to_string(later) + " holds id " +
+             std::to_string(id) + ", as does row " + std::to_string(earlier) +
+             "; allowed: every id from 0 to " + std::to_string(total - 1) + " once";
+    }
+  }
+  refuse_first_bad_row(bad, line, comm);
+}
+
+} // namespace
+
 mpcd::Fluid read_fluid(const std::string &path, const CheckpointInfo &info, MPI_Comm comm) {
   mpcd::Fluid fluid;
   fluid.dim = info.dimensions;
   auto fields = fluid_fields(fluid);
   read_species(path, fields, comm);
   fluid.cell.assign(fluid.id.size(), 0);
-  for (const auto id : fluid.id)
-    if (id >= info.fluid_particles)
-      refuse(path, "/particles/fluid/id/value holds id " + std::to_string(id) + "; allowed: 0 to " +
-                       std::to_string(info.fluid_particles - 1));
+  // The state must be one the run can continue: finite, inside the box (between the walls),
+  // every id once. The first bad row (lowest over all ranks) is refused on every rank.
+  const std::uint64_t total = info.fluid_particles;
+  const auto first_row =
+      total * static_cast<std::uint64_t>(rank_of(comm)) / static_cast<std::uint64_t>(size_of(comm));
+  const std::string pos = "/particles/fluid/position/value",
+                    vel = "/particles/fluid/velocity/value", ids = "/particles/fluid/id/value";
+  std::uint64_t bad = no_row;
+  std::string line;
+  for (std::size_t i = 0; i < fluid.id.size() && bad == no_row; ++i) {
+    const std::string row = " row " + std::to_string(first_row + i);
+    if (fluid.id[i] >= total) {
+      line = path + ": " + ids + row + " holds id " + std::to_string(fluid.id[i]) +
+             "; allowed: 0 to " + std::to_string(total - 1);
+    }
+    for (int k = 0; k < fluid.dim && line.empty(); ++k) {
+      const double x = fluid.x[k][i], v = fluid.v[k][i], L = info.box[k];
+      if (!(x >= 0.0 && x <= L))
+        line = path + ": " + pos + row + " component " + std::to_string(k) + " = " +
+               number_text(x) + "; allowed: inside the box, 0 to " + number_text(L);
+      else if (!std::isfinite(v))
+        line = path + ": " + vel + row + " component " + std::to_string(k) + " = " +
+               number_text(v) + "; allowed: a finite number";
+    }
+    if (!line.empty())
+      bad = first_row + i;
+  }
+  refuse_first_bad_row(bad, line, comm);
+  check_unique_ids(fluid.id, first_row, total, ids, path, comm);
   return fluid;
 }
 

@@ -38,6 +38,8 @@
 namespace narrows::io {
 
 inline constexpr std::int64_t checkpoint_format_version = 1;
+// The largest step a checkpoint name holds (10 digits).
+inline constexpr std::int64_t max_checkpoint_step = 9999999999;
 
 // What a checkpoint stores besides the particles.
 struct CheckpointInfo {
