@@ -401,6 +401,17 @@ h5::Dataset open_required(hid_t file, const std::string &name, const std::string
   return d;
 }
 
+// A checkpoint that open_checkpoint accepted, opened again by a reader of its datasets
+// (collective); HDF5 failing now means damaged metadata.
+h5::File open_readable(const std::string &path, MPI_Comm comm) {
+  h5::silence_errors();
+  const auto fapl = mpio_fapl(comm, path);
+  h5::File file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()));
+  if (!file)
+    damaged(path, "the file's metadata");
+  return file;
+}
+
 // Checkpoints written before checksums existed carry none (not even on /parameters/scene).
 bool has_checksums(hid_t file) {
   return H5Aexists_by_name(file, "/parameters/scene", checksum_name, H5P_DEFAULT) > 0;
@@ -438,7 +449,9 @@ void verify_checksum(const std::optional<std::uint64_t> &stored, std::uint64_t c
 }
 
 std::vector<hsize_t> shape_of(hid_t dset, const std::string &path) {
-  const h5::Dataspace s(H5Dget_space(dset), path, "get dataspace");
+  const h5::Dataspace s(H5Dget_space(dset));
+  if (!s)
+    damaged(path, "a dataspace");
   const int n = H5Sget_simple_extent_ndims(s.get());
   std::vector<hsize_t> dims(std::max(n, 0));
   if (n > 0)
@@ -460,7 +473,9 @@ template <class T> T read_scalar(hid_t file, const std::string &name, const std:
 
 std::string read_string(hid_t file, const std::string &name, const std::string &path) {
   const auto d = open_required(file, name, path);
-  const h5::Datatype type(H5Dget_type(d.get()), path, "get type of " + name);
+  const h5::Datatype type(H5Dget_type(d.get()));
+  if (!type)
+    damaged(path, name);
   if (H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) > 0)
     refuse(path, name + " is not a fixed-length string; allowed: a narrows checkpoint");
   std::string buf(H5Tget_size(type.get()), '\0');
@@ -480,6 +495,42 @@ std::string shape_text(const std::vector<hsize_t> &dims) {
     s += ']';
   }
   return s.empty() ? "scalar" : s;
+}
+
+// Verifies the checksum of a small dataset the reader does not otherwise need (the step and
+// time of each particle field): read as stored, byte for byte.
+void verify_small(hid_t file, const std::string &name, const std::string &path) {
+  const auto d = open_required(file, name, path);
+  const h5::Datatype type(H5Dget_type(d.get()));
+  const h5::Dataspace space(H5Dget_space(d.get()));
+  const hssize_t count = space ? H5Sget_simple_extent_npoints(space.get()) : -1;
+  if (!type || count < 0 || count > (1 << 20))
+    damaged(path, name);
+  std::vector<char> bytes(H5Tget_size(type.get()) * static_cast<std::size_t>(count));
+  if (H5Dread(d.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data()) < 0)
+    damaged(path, name);
+  verify_checksum(stored_checksum(file, d.get(), name, path),
+                  bytes_hash(bytes.data(), bytes.size()), name, path);
+}
+
+// A box's edge lengths [dim] (checksum verified): finite and > 0.
+std::array<double, 3> read_edges(hid_t file, const std::string &name, int dim,
+                                 const std::string &path) {
+  const auto d = open_required(file, name, path);
+  const auto shape = shape_of(d.get(), path);
+  if (shape != std::vector<hsize_t>{static_cast<hsize_t>(dim)})
+    refuse(path,
+           name + " has shape " + shape_text(shape) + "; allowed: [" + std::to_string(dim) + "]");
+  std::array<double, 3> edges{1.0, 1.0, 1.0};
+  if (H5Dread(d.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, edges.data()) < 0)
+    damaged(path, name);
+  verify_checksum(stored_checksum(file, d.get(), name, path),
+                  bytes_hash(edges.data(), 8 * static_cast<std::size_t>(dim)), name, path);
+  for (int k = 0; k < dim; ++k)
+    if (!(edges[k] > 0.0 && std::isfinite(edges[k])))
+      refuse(path, name + "[" + std::to_string(k) + "] = " + number_text(edges[k]) +
+                       "; allowed: a finite length > 0");
+  return edges;
 }
 
 } // namespace
@@ -680,15 +731,7 @@ CheckpointInfo read_checkpoint_info(const std::string &path, MPI_Comm comm) {
                      pos + " has " + shape_text(p_shape) + "; allowed: one id per particle ([" +
                      std::to_string(p_shape[0]) + "])");
   info.fluid_particles = p_shape[0];
-  const auto e = open_required(f, edges, path);
-  if (shape_of(e.get(), path) != std::vector<hsize_t>{static_cast<hsize_t>(info.dimensions)})
-    refuse(path, edges + " has shape " + shape_text(shape_of(e.get(), path)) + "; allowed: [" +
-                     std::to_string(info.dimensions) + "]");
-  if (H5Dread(e.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, info.box.data()) < 0)
-    damaged(path, edges);
-  verify_checksum(stored_checksum(f, e.get(), edges, path),
-                  bytes_hash(info.box.data(), 8 * static_cast<std::size_t>(info.dimensions)), edges,
-                  path);
+  info.box = read_edges(f, edges, info.dimensions, path);
   (void)comm;
   // The seed and box the data were made with are the stored scene's (which the restart
   // compares with the given scene).
@@ -708,8 +751,7 @@ CheckpointInfo read_checkpoint_info(const std::string &path, MPI_Comm comm) {
 std::vector<double> read_checkpoint_array(const std::string &path, const std::string &name,
                                           std::size_t size, MPI_Comm comm) {
   h5::silence_errors();
-  const auto fapl = mpio_fapl(comm, path);
-  const h5::File file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()), path, "open file");
+  const h5::File file = open_readable(path, comm);
   const auto d = open_required(file.get(), "/" + name, path);
   const auto shape = shape_of(d.get(), path);
   if (shape != std::vector<hsize_t>{size})
@@ -727,10 +769,16 @@ std::vector<double> read_checkpoint_array(const std::string &path, const std::st
   return v;
 }
 
+std::array<double, 3> read_box_edges(const std::string &path, const std::string &species, int dim,
+                                     MPI_Comm comm) {
+  h5::silence_errors();
+  const h5::File file = open_readable(path, comm);
+  return read_edges(file.get(), "/particles/" + species + "/box/edges", dim, path);
+}
+
 std::uint64_t species_rows(const std::string &path, const SpeciesFields &s, MPI_Comm comm) {
   h5::silence_errors();
-  const auto fapl = mpio_fapl(comm, path);
-  const h5::File file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()), path, "open file");
+  const h5::File file = open_readable(path, comm);
   const std::string first_field =
       "/particles/" + s.name + "/" +
       (!s.vectors.empty() ? s.vectors.front().first : s.words.front().first) + "/value";
@@ -747,9 +795,10 @@ void read_species(const std::string &path, SpeciesFields &s, MPI_Comm comm) {
 void read_species_rows(const std::string &path, SpeciesFields &s, std::uint64_t first,
                        std::uint64_t n, MPI_Comm comm) {
   h5::silence_errors();
-  const auto fapl = mpio_fapl(comm, path);
-  const h5::File file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()), path, "open file");
+  const h5::File file = open_readable(path, comm);
   const std::string base = "/particles/" + s.name + "/";
+  if (path_exists(file.get(), base + "box/edges"))
+    verify_small(file.get(), base + "box/edges", path);
   // The checksum covers the whole dataset: verified when the ranks' rows together are all of
   // it (every reader reads a partition of the rows), the same outcome on every rank.
   const auto verify = [&](const h5::Dataset &d, const std::string &name, std::uint64_t local) {
@@ -759,6 +808,10 @@ void read_species_rows(const std::string &path, SpeciesFields &s, std::uint64_t 
     const auto shape = shape_of(d.get(), path);
     if (!shape.empty() && all[0] == shape[0])
       verify_checksum(stored_checksum(file.get(), d.get(), name, path), all[1], name, path);
+    const std::string group = name.substr(0, name.rfind('/'));
+    for (const char *small : {"/step", "/time"})
+      if (path_exists(file.get(), group + small))
+        verify_small(file.get(), group + small, path);
   };
   for (auto &[name, comp] : s.vectors) {
     const std::string dname = base + name + "/value";
@@ -807,8 +860,7 @@ void read_species_rows(const std::string &path, SpeciesFields &s, std::uint64_t 
 bool has_species_field(const std::string &path, const std::string &species,
                        const std::string &field, MPI_Comm comm) {
   h5::silence_errors();
-  const auto fapl = mpio_fapl(comm, path);
-  const h5::File file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()), path, "open file");
+  const h5::File file = open_readable(path, comm);
   return path_exists(file.get(), "/particles/" + species + "/" + field + "/value");
 }
 

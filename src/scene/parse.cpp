@@ -632,10 +632,12 @@ void parse_run(const Ctx &c, const value *run, Run &out) {
     out.seed = static_cast<std::uint64_t>(
         as_integer(c, *v, "run.seed", seed_allowed, [](std::int64_t n) { return n >= 0; }));
 
-  const std::string steps_allowed = "an integer >= 0 (the step at which the run ends)";
+  // Checkpoint names hold the step in 10 digits (io/checkpoint.hpp, max_checkpoint_step).
+  const std::string steps_allowed =
+      "an integer from 0 to 9999999999 (the step at which the run ends)";
   if (const value *v = find(run, "steps"))
-    out.steps =
-        as_integer(c, *v, "run.steps", steps_allowed, [](std::int64_t n) { return n >= 0; });
+    out.steps = as_integer(c, *v, "run.steps", steps_allowed,
+                           [](std::int64_t n) { return n >= 0 && n <= 9999999999; });
   else
     c.missing("run.steps", steps_allowed);
 }
@@ -1155,7 +1157,11 @@ void apply_override(Ctx &c, value &root, const std::string &text) {
   const std::string raw = trim(std::string_view(text).substr(eq + 1));
   value parsed = raw;
   try {
-    check_raw_text("v = " + raw, "--set '" + one_line(text) + "'");
+    try {
+      check_raw_text("v = " + raw, "--set '" + one_line(text) + "'");
+    } catch (const Error &e) {
+      throw input_error(std::string(e.what()) + " (overriding " + c.file() + ")");
+    }
     std::istringstream in("v = " + raw);
     const value t = toml::parse(in, "--set");
     if (t.is_table() && t.as_table().size() == 1 && t.contains("v"))

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -98,12 +99,14 @@ Lgca parse_lgca(const toml::value *sec, const SectionFail &fail) {
       links = 5; // lattice/dhumieres_1d.hpp
     for (const auto n : out.size)
       links *= static_cast<double>(n);
-    if (links * out.density < 1.0)
-      c.fail("lattice.density", "lattice.density = " + float_text(out.density) + " gives " +
-                                    float_text(links * out.density) + " particles expected on " +
-                                    float_text(links) +
-                                    " links; allowed: a density giving at least one particle (>= " +
-                                    float_text(1.0 / links) + ")");
+    if (links * out.density < 1.0) {
+      char line[300];
+      std::snprintf(line, sizeof line,
+                    "lattice.density = %g gives %.3g particles expected on %.0f links; allowed: "
+                    "a density giving at least one particle (>= %.3g)",
+                    out.density, links * out.density, links, 1.0 / links);
+      c.fail("lattice.density", line);
+    }
   }
 
   if (const toml::value *v = find(sec, "initial")) {

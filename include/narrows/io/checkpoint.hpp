@@ -101,6 +101,11 @@ std::vector<double> read_checkpoint_array(const std::string &path, const std::st
 // engines). Same refusals as read_checkpoint_info for the file and the parameters.
 CheckpointInfo read_checkpoint_header(const std::string &path, MPI_Comm comm);
 
+// The box edges stored with a species (/particles/<species>/box/edges, checksum verified;
+// collective): input_error if missing, of another shape, damaged or not finite and > 0.
+std::array<double, 3> read_box_edges(const std::string &path, const std::string &species, int dim,
+                                     MPI_Comm comm);
+
 // Rows of a species in the file (its first field).
 std::uint64_t species_rows(const std::string &path, const SpeciesFields &species, MPI_Comm comm);
 
