@@ -382,7 +382,7 @@ TEST(SceneErrors, BadOutputKeys) {
 
 TEST(SceneErrors, BadRunKeys) {
   bad(with("run", "seed = -1"), {"run.seed = -1", ">= 0"});
-  bad(with("run", "steps = -5"), {"run.steps = -5", ">= 0"});
+  bad(with("run", "steps = -5"), {"run.steps = -5", "from 0 to 9999999999"});
   bad(with("fluid", "sort_every = -1"), {"fluid.sort_every = -1"});
   bad(with("fluid", "kT = 0"), {"fluid.kT = 0"});
 }
@@ -575,4 +575,9 @@ TEST(SceneHostile, ViscosityNeedsThreeRowsAndLgcaAParticle) {
   bad("[run]\nengine = \"lgca\"\nsteps = 10\n[lattice]\nmodel = \"dhumieres-1d\"\nsize = [2]\n"
       "density = 0.5\n",
       {"lattice.size", "from 3 to"});
+}
+
+TEST(SceneHostile, RunStepsFitTheCheckpointName) {
+  bad(with("run", "steps = 10000000000"), {"run.steps = 10000000000", "from 0 to 9999999999"});
+  EXPECT_EQ(parse_scene(with("run", "steps = 9999999999"), "run/ok.toml").run.steps, 9999999999);
 }
