@@ -91,6 +91,21 @@ void check_runnable(const scene::Scene &s, MPI_Comm comm) {
                       " cells (fluid.dt = " + fmt("%.3g", s.fluid.dt) +
                       ", fluid.kT = " + fmt("%.3g", s.fluid.kT) + "); allowed: at most " +
                       fmt("%g", max_free_path) + " (beyond it positions are noise)");
+  if (s.body_force) {
+    // The flight per step the force alone gives by the end of the run (the fluid accelerates
+    // until the walls or collisions hold it): beyond the bound positions are noise, and the
+    // periodic wrap (fmod of huge numbers) takes far longer than a step should.
+    double g = std::abs(s.body_force->amplitude);
+    for (int k = 0; k < s.run.dimensions; ++k)
+      g = std::max(g, std::abs(s.body_force->value[k]));
+    const double flight =
+        g * s.fluid.dt * s.fluid.dt * std::max<double>(1.0, static_cast<double>(s.run.steps));
+    if (!(flight <= max_free_path))
+      throw input_error(head + "the body force " + fmt("%.3g", g) + " moves a particle " +
+                        fmt("%.3g", flight) + " cells per step by step " +
+                        std::to_string(s.run.steps) + " (fluid.dt = " + fmt("%.3g", s.fluid.dt) +
+                        "); allowed: at most " + fmt("%g", max_free_path));
+  }
   // Cells and particles as counted before anything is allocated (doubles: no overflow).
   double cells = 1.0;
   for (int k = 0; k < s.run.dimensions; ++k)

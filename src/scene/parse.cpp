@@ -224,6 +224,27 @@ std::string condense_syntax_error(const std::string &what, const std::string &fi
   return one_line(out);
 }
 
+// The index of the last character of the TOML string that starts at text[i] (a quote): its
+// closing quote, the newline that ends an unterminated one-line string, or the text's end.
+// Basic strings ("...", """...""") have backslash escapes; literal ones ('...') do not.
+std::size_t string_end(const std::string &text, std::size_t i) {
+  const char quote = text[i];
+  const std::string triple(3, quote);
+  const bool multi = text.compare(i, 3, triple) == 0;
+  const std::size_t n = text.size();
+  for (i += multi ? 3 : 1; i < n; ++i) {
+    if (quote == '"' && text[i] == '\\') {
+      ++i;
+      continue;
+    }
+    if (text[i] == quote && (!multi || text.compare(i, 3, triple) == 0))
+      return multi ? i + 2 : i;
+    if (!multi && text[i] == '\n')
+      return i;
+  }
+  return n - 1;
+}
+
 // Limits checked on the raw text before toml11 sees it: toml11 recurses once per nesting level
 // (bracket or dotted-key component), so a deep enough text overflows the stack.
 constexpr std::size_t max_scene_bytes = std::size_t{16} << 20;
@@ -253,24 +274,12 @@ void check_raw_text(const std::string &text, const std::string &file) {
     if (ch == '#') { // comment to the end of the line
       while (i + 1 < n && text[i + 1] != '\n')
         ++i;
-    } else if (ch == '"' || ch == '\'') { // string: basic (escapes) or literal, maybe multi-line
-      const bool triple = text.compare(i, 3, std::string(3, ch)) == 0;
-      i += triple ? 3 : 1;
-      for (; i < n; ++i) {
-        if (text[i] == '\n')
-          ++line;
-        if (ch == '"' && text[i] == '\\') {
-          ++i;
-          continue;
-        }
-        if (text[i] == ch && (!triple || text.compare(i, 3, std::string(3, ch)) == 0)) {
-          if (triple)
-            i += 2;
-          break;
-        }
-        if (!triple && text[i] == '\n')
-          break;
-      }
+    } else if (ch == '"' || ch == '\'') {
+      const std::size_t end = string_end(text, i);
+      line +=
+          static_cast<int>(std::count(text.begin() + static_cast<std::ptrdiff_t>(i),
+                                      text.begin() + static_cast<std::ptrdiff_t>(end) + 1, '\n'));
+      i = end;
     } else if ((std::isdigit(static_cast<unsigned char>(ch)) || ch == '+' || ch == '-') &&
                (i == 0 || std::strchr(" \t\r\n=,[{", text[i - 1]) != nullptr)) {
       // A number (or a bare key starting with a digit): toml11 clamps decimal integers beyond
@@ -346,29 +355,16 @@ std::string break_long_arrays(const std::string &text, std::vector<std::size_t> 
       while (i < n && text[i] != '\n')
         out += text[i++];
       --i;
-    } else if (ch == '"' || ch == '\'') { // copy a string verbatim (as check_raw_text skips it)
-      const bool triple = text.compare(i, 3, std::string(3, ch)) == 0;
-      const std::size_t start = i;
-      i += triple ? 3 : 1;
-      for (; i < n; ++i) {
-        if (text[i] == '\n') {
+    } else if (ch == '"' || ch == '\'') { // copy a string verbatim
+      const std::size_t end = string_end(text, i);
+      for (std::size_t k = i; k <= end; ++k)
+        if (text[k] == '\n') {
           newline();
           ++line;
         }
-        if (ch == '"' && text[i] == '\\') {
-          ++i;
-          continue;
-        }
-        if (text[i] == ch && (!triple || text.compare(i, 3, std::string(3, ch)) == 0)) {
-          if (triple)
-            i += 2;
-          break;
-        }
-        if (!triple && text[i] == '\n')
-          break;
-      }
-      out.append(text, start, std::min(i, n - 1) - start + 1);
+      out.append(text, i, end - i + 1);
       column += 2;
+      i = end;
       continue;
     } else if (ch == '[' || ch == '{') {
       open.push_back(ch);
