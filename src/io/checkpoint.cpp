@@ -306,12 +306,12 @@ double create_species(hid_t particles, const SpeciesFields &s, const CheckpointI
     if (job.words != nullptr) {
       local = rows_hash(offset, job.words->data(), n, 1);
     } else {
-      std::uint64_t row[3];
-      for (std::uint64_t i = 0; i < n; ++i) {
-        for (int k = 0; k < job.width; ++k)
-          std::memcpy(&row[k], job.components[k]->data() + i, 8);
-        local += row_hash(offset + i, row, static_cast<std::size_t>(job.width));
-      }
+      const double *cols[3] = {};
+      for (int k = 0; k < job.width; ++k)
+        cols[k] = job.components[k]->data();
+      local = job.width == 1   ? columns_hash<1>(offset, cols, n)
+              : job.width == 2 ? columns_hash<2>(offset, cols, n)
+                               : columns_hash<3>(offset, cols, n);
     }
     std::uint64_t sum = 0;
     MPI_Allreduce(&local, &sum, 1, MPI_UINT64_T, MPI_SUM, comm);
