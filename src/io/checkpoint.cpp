@@ -740,7 +740,13 @@ CheckpointInfo read_checkpoint_info(const std::string &path, MPI_Comm comm) {
   (void)comm;
   // The seed and box the data were made with are the stored scene's (which the restart
   // compares with the given scene).
-  const auto stored = scene::parse_scene(info.scene_text, path + ":/parameters/scene");
+  // (A stored scene that does not parse is refused by check_restart_scene, with its own line.)
+  scene::Scene stored;
+  try {
+    stored = scene::parse_scene(info.scene_text, path + ":/parameters/scene");
+  } catch (const Error &) {
+    return info;
+  }
   if (stored.run.seed != info.seed)
     refuse(path, "/parameters/seed = " + std::to_string(info.seed) +
                      " but /parameters/scene has run.seed = " + std::to_string(stored.run.seed) +
