@@ -1,5 +1,6 @@
 // Colloid-colloid 48-24 forces (seed 000 eq 3.43) from a cell list of the colloids.
 #include "narrows/colloids/force_terms.hpp"
+#include "narrows/mpcd/cell_grid.hpp"
 #include "narrows/colloids/pair_geometry.hpp"
 #include "narrows/colloids/potentials.hpp"
 
@@ -29,7 +30,7 @@ double add_colloid_colloid_4824(CellList &cl, std::vector<int> &cell_of,
     std::size_t cell = 0;
     for (int k = D - 1; k >= 0; --k) {
       const int n = cells[k];
-      const int ck = std::clamp(static_cast<int>(c.x[k][a] * cl.inv_cell[k]), 0, n - 1);
+      const int ck = mpcd::clamped_cell(c.x[k][a], cl.inv_cell[k], n, "colloid", c.id[a], k);
       cell_of[a * D + k] = ck;
       cell = cell * static_cast<std::size_t>(n) + static_cast<std::size_t>(ck);
     }

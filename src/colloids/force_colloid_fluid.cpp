@@ -1,5 +1,6 @@
 // Colloid-fluid WCA forces (seed 000 eq 3.42) from a cell list of the fluid.
 #include "narrows/colloids/force_terms.hpp"
+#include "narrows/mpcd/cell_grid.hpp"
 #include "narrows/colloids/pair_geometry.hpp"
 #include "narrows/colloids/potentials.hpp"
 
@@ -25,7 +26,7 @@ double add_colloid_fluid_wca(const CellList &cl, const mpcd::Fluid &f, const Col
     int lo[3], hi[3], home[3];
     for (int k = 0; k < D; ++k) {
       xc[k] = c.x[k][a];
-      home[k] = std::min(cells[k] - 1, static_cast<int>(xc[k] * cl.inv_cell[k]));
+      home[k] = mpcd::clamped_cell(xc[k], cl.inv_cell[k], cells[k], "colloid", c.id[a], k);
       const bool periodic = !(WallsY && k == 1);
       if (cells[k] < 3) {
         lo[k] = 0, hi[k] = cells[k] - 1, home[k] = 0;

@@ -1,5 +1,6 @@
 // The colloid forces as the sum of their terms, in fixed point.
 #include "narrows/colloids/forces.hpp"
+#include "narrows/mpcd/cell_grid.hpp"
 
 #include "narrows/colloids/force_terms.hpp"
 #include "narrows/colloids/potentials.hpp"
@@ -37,7 +38,8 @@ void build_fluid_cells(CellList &cl, const mpcd::Fluid &f, int dim) {
   for (std::size_t i = 0; i < n; ++i) {
     std::size_t cell = 0;
     for (int k = dim - 1; k >= 0; --k) {
-      const int ck = std::min(cl.cells[k] - 1, static_cast<int>(f.x[k][i] * cl.inv_cell[k]));
+      const int ck = mpcd::clamped_cell(f.x[k][i], cl.inv_cell[k], cl.cells[k], "fluid particle",
+                                        f.id[i], k);
       cell = cell * static_cast<std::size_t>(cl.cells[k]) + static_cast<std::size_t>(ck);
     }
     cl.next[i] = cl.head[cell];

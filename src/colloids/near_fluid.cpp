@@ -1,5 +1,6 @@
 // Choosing the fluid particles of the MD sub-steps from a cell list of the fluid.
 #include "narrows/colloids/near_fluid.hpp"
+#include "narrows/mpcd/cell_grid.hpp"
 
 #include "narrows/colloids/pair_geometry.hpp"
 #include "narrows/colloids/potentials.hpp"
@@ -40,7 +41,7 @@ void select(const CellList &cl, const mpcd::Fluid &f, const Colloids &c, const m
     std::array<std::vector<int>, 3> axis;
     for (int k = 0; k < D; ++k) {
       const int nk = cells[k];
-      const int home = std::min(nk - 1, static_cast<int>(c.x[k][a] * cl.inv_cell[k]));
+      const int home = mpcd::clamped_cell(c.x[k][a], cl.inv_cell[k], nk, "colloid", c.id[a], k);
       const int w = static_cast<int>(std::ceil((range + max_reach) * cl.inv_cell[k]));
       if (2 * w + 1 >= nk) {
         for (int q = 0; q < nk; ++q)

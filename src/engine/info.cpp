@@ -6,6 +6,9 @@
 #include "narrows/engine/mpcd_simulation.hpp"
 #include "narrows/mpcd/transport_theory.hpp"
 
+#include <unistd.h>
+
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -54,9 +57,90 @@ Regime regime(const scene::Scene &s) {
   return r;
 }
 
+// Bytes of memory one rank may use: the machine's physical memory shared by the ranks of comm
+// on this node.
+double memory_per_rank(MPI_Comm comm) {
+  MPI_Comm node;
+  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  int on_node = 1;
+  MPI_Comm_size(node, &on_node);
+  MPI_Comm_free(&node);
+  const double pages = static_cast<double>(sysconf(_SC_PHYS_PAGES));
+  const double page = static_cast<double>(sysconf(_SC_PAGESIZE));
+  return pages * page / on_node;
+}
+
+// Mean free path lambda = dt sqrt(kT/m) beyond which positions are noise: a particle flies a
+// million cells a step, and its wrapped position keeps fewer than 10 significant digits.
+constexpr double max_free_path = 1e6;
+
+// The memory a rank of comm needs (the estimate shared evenly over the ranks).
+double memory_of_rank(const scene::Scene &s, MPI_Comm comm) {
+  int ranks = 1;
+  MPI_Comm_size(comm, &ranks);
+  return static_cast<double>(estimate_memory(s)) / ranks;
+}
+
 } // namespace
 
+void check_runnable(const scene::Scene &s, MPI_Comm comm) {
+  const std::string head = s.file + ": ";
+  const double lambda = s.fluid.dt * std::sqrt(s.fluid.kT);
+  if (!(lambda <= max_free_path))
+    throw input_error(head + "mean free path dt sqrt(kT/m) = " + fmt("%.3g", lambda) +
+                      " cells (fluid.dt = " + fmt("%.3g", s.fluid.dt) +
+                      ", fluid.kT = " + fmt("%.3g", s.fluid.kT) + "); allowed: at most " +
+                      fmt("%g", max_free_path) + " (beyond it positions are noise)");
+  if (s.body_force) {
+    // The flight per step the force alone gives by the end of the run (the fluid accelerates
+    // until the walls or collisions hold it): beyond the bound positions are noise, and the
+    // periodic wrap (fmod of huge numbers) takes far longer than a step should.
+    double g = std::abs(s.body_force->amplitude);
+    for (int k = 0; k < s.run.dimensions; ++k)
+      g = std::max(g, std::abs(s.body_force->value[k]));
+    const double flight =
+        g * s.fluid.dt * s.fluid.dt * std::max<double>(1.0, static_cast<double>(s.run.steps));
+    if (!(flight <= max_free_path))
+      throw input_error(head + "the body force " + fmt("%.3g", g) + " moves a particle " +
+                        fmt("%.3g", flight) + " cells per step by step " +
+                        std::to_string(s.run.steps) + " (fluid.dt = " + fmt("%.3g", s.fluid.dt) +
+                        "); allowed: at most " + fmt("%g", max_free_path));
+  }
+  // Cells and particles as counted before anything is allocated (doubles: no overflow).
+  double cells = 1.0;
+  for (int k = 0; k < s.run.dimensions; ++k)
+    cells *= std::round(s.domain.size[k]);
+  const double expected = cells * s.fluid.density;
+  if (expected > 1e15)
+    throw input_error(head + "fluid.density = " + fmt("%g", s.fluid.density) + " in " +
+                      fmt("%.3g", cells) + " cells gives " + fmt("%.3g", expected) +
+                      " fluid particles; allowed: at most 1e15");
+  if (particle_count(s) == 0)
+    throw input_error(head + "fluid.density = " + fmt("%g", s.fluid.density) + " in " +
+                      fmt("%.3g", cells) +
+                      " cells gives 0 fluid particles; allowed: a density giving at least one");
+  const double need = memory_of_rank(s, comm), have = memory_per_rank(comm);
+  if (need > have)
+    throw input_error(head + "needs about " + fmt("%.3g", need / 1048576.0) +
+                      " MiB per rank, this machine has " + fmt("%.3g", have / 1048576.0) +
+                      " MiB per rank; allowed: a scene that fits (more ranks or nodes, a smaller "
+                      "box or density)");
+  if (s.colloids) {
+    // MD with a thermal colloid velocity that crosses its own radius in one sub-step cannot
+    // resolve a collision: the integrator is unstable.
+    const double m = s.colloids->mass_of(s.run.dimensions, s.fluid.density, s.colloids->radius);
+    const double step = std::sqrt(s.fluid.kT / m) * s.fluid.dt / s.colloids->md_substeps;
+    if (!(step <= s.colloids->radius))
+      throw input_error(
+          head + "a colloid's thermal velocity sqrt(kT/M) moves it " + fmt("%.3g", step) +
+          " per MD sub-step (mass " + fmt("%.3g", m) + ", fluid.dt / colloids.md_substeps = " +
+          fmt("%.3g", s.fluid.dt / s.colloids->md_substeps) + "); allowed: at most its radius " +
+          fmt("%g", s.colloids->radius) + " (raise colloids.mass or md_substeps, lower fluid.dt)");
+  }
+}
+
 std::vector<std::string> describe_scene(const scene::Scene &s, MPI_Comm comm) {
+  check_runnable(s, comm);
   std::vector<std::string> out;
   const int d = s.run.dimensions;
   std::string box = "box ";
@@ -147,6 +231,19 @@ void check_colloid_placement(const scene::Scene &s) {
 std::vector<std::string> regime_warnings(const scene::Scene &s) {
   std::vector<std::string> w;
   const Regime r = regime(s);
+  const double need = memory_of_rank(s, MPI_COMM_WORLD), have = memory_per_rank(MPI_COMM_WORLD);
+  if (need > 0.5 * have)
+    w.push_back("needs about " + fmt("%.3g", need / 1048576.0) +
+                " MiB per rank, more than half "
+                "of this machine's " +
+                fmt("%.3g", have / 1048576.0) + " MiB per rank");
+  const double lambda = s.fluid.dt * std::sqrt(s.fluid.kT);
+  double smallest = s.domain.size[0];
+  for (int k = 1; k < s.run.dimensions; ++k)
+    smallest = std::min(smallest, s.domain.size[k]);
+  if (lambda > smallest)
+    w.push_back("mean free path " + fmt("%.3g", lambda) + " exceeds the box edge " +
+                fmt("%g", smallest) + ": particles cross the box in one step");
   if (r.mach > 0.2)
     w.push_back("Ma = " + fmt("%.3g", r.mach) +
                 " > 0.2: compressibility effects are not negligible (seed 001 section 4.3)");

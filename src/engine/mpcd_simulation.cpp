@@ -1,6 +1,8 @@
 // Building and stepping the MPCD pipeline.
 #include "narrows/engine/mpcd_simulation.hpp"
 
+#include "narrows/core/error.hpp"
+
 #include "narrows/colloids/placement.hpp"
 #include "narrows/core/error.hpp"
 #include "narrows/mpcd/cell_sort.hpp"
@@ -12,6 +14,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string_view>
 
 namespace narrows::engine {
 
@@ -213,8 +217,29 @@ void MpcdSimulation::thermostat(std::uint64_t step) {
   }
 }
 
-// One MPCD step. Every stage is a call; the plan (built once from the scene) says which.
 void MpcdSimulation::advance() {
+  try {
+    step_stages();
+  } catch (const Error &e) { // a kernel named the particle; the step and rank are added here
+    if (e.code() != ExitCode::invariant || std::string_view(e.what()).starts_with("invariant"))
+      throw;
+    int rank = 0, ranks = 1;
+    MPI_Comm_rank(comm_, &rank);
+    MPI_Comm_size(comm_, &ranks);
+    const std::string what = "invariant broken at step " + std::to_string(step_) + " on rank " +
+                             std::to_string(rank) + ": " + e.what();
+    if (ranks > 1) { // only this rank knows: the others wait in the step's next message
+      std::fprintf(stderr, "narrows: %s\n", what.c_str());
+      std::fflush(stderr);
+      MPI_Abort(comm_, static_cast<int>(ExitCode::invariant));
+    }
+    throw invariant_error(what);
+  }
+  ++step_;
+}
+
+// One MPCD step. Every stage is a call; the plan (built once from the scene) says which.
+void MpcdSimulation::step_stages() {
   const MpcdPlan &p = plan_;
   const auto step = static_cast<std::uint64_t>(step_);
   if (p.colloids) // forces now; copies out the fluid that may meet a colloid this step
@@ -240,7 +265,6 @@ void MpcdSimulation::advance() {
     if (p.sort_every > 0 && (step + 1) % p.sort_every == 0) // locality: counting sort by cell
       mpcd::sort_by_cell(fluid_, grid_, sort_scratch_);
   }
-  ++step_;
 }
 
 } // namespace narrows::engine

@@ -4,6 +4,8 @@
 #include "narrows/core/error.hpp"
 #include "narrows/io/direct_writer.hpp"
 #include "narrows/io/hdf5.hpp"
+#include "narrows/io/row_hash.hpp"
+#include "narrows/scene/parse.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -18,6 +20,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <sstream>
 
 namespace narrows::io {
@@ -54,6 +57,22 @@ int size_of(MPI_Comm comm) {
   throw input_error(path + ": " + what);
 }
 
+std::string hdf5_error_text();
+
+std::string number_text(double v) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%.17g", v);
+  return b;
+}
+
+// HDF5 could not read a dataset of a checkpoint that opened: its metadata are damaged.
+[[noreturn]] void damaged(const std::string &path, const std::string &dataset) {
+  const std::string err = hdf5_error_text();
+  refuse(path, "damaged checkpoint: HDF5 cannot read " + dataset +
+                   (err.empty() ? std::string() : " (" + err + ")") +
+                   "; allowed: a checkpoint as narrows run wrote it");
+}
+
 // The file-access list of collective I/O on comm: metadata operations collective too, large
 // datasets aligned to 1 MiB (file-system blocks).
 h5::PropList mpio_fapl(MPI_Comm comm, const std::string &where) {
@@ -62,6 +81,10 @@ h5::PropList mpio_fapl(MPI_Comm comm, const std::string &where) {
   h5::check(H5Pset_all_coll_metadata_ops(fapl.get(), true), where, "set collective metadata");
   h5::check(H5Pset_coll_metadata_write(fapl.get(), true), where, "set collective metadata");
   h5::check(H5Pset_alignment(fapl.get(), 1 << 20, 1 << 20), where, "set alignment");
+  // The 1.10 format checksums all metadata (superblock, object headers, attributes), so a
+  // damaged header is refused by HDF5; the data carry our own checksums (checksum_attribute).
+  h5::check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V110, H5F_LIBVER_V110), where,
+            "set format bounds");
   return fapl;
 }
 
@@ -95,13 +118,31 @@ void string_attribute(hid_t obj, const std::string &name, const std::string &val
   h5::write_attribute(obj, name, type.get(), {}, buf.data(), where);
 }
 
-// A small dataset created by all ranks (collective) and written by rank 0 (independent).
+// Every dataset of a checkpoint carries the checksum of its data (io/row_hash.hpp) in this
+// attribute; the value must be the same on every rank (attributes are written collectively).
+constexpr const char *checksum_name = "checksum";
+
+void checksum_attribute(hid_t dset, std::uint64_t sum, const std::string &where) {
+  h5::write_attribute(dset, checksum_name, std::span<const std::uint64_t>(&sum, 1), where);
+}
+
+// A small dataset created by all ranks (collective) and written by rank 0 (independent); its
+// checksum is rank 0's (other ranks may pass no data).
 void small_dataset(hid_t loc, const std::string &name, hid_t type, std::span<const hsize_t> dims,
                    const void *data, MPI_Comm comm, const std::string &where) {
   const auto space = h5::simple_dataspace(dims, {}, where);
   const h5::Dataset d(
       H5Dcreate2(loc, name.c_str(), type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
       where, "create dataset " + name);
+  std::uint64_t sum = 0;
+  if (rank_of(comm) == 0) {
+    std::size_t bytes = H5Tget_size(type);
+    for (const hsize_t n : dims)
+      bytes *= n;
+    sum = bytes_hash(data, bytes);
+  }
+  MPI_Bcast(&sum, 1, MPI_UINT64_T, 0, comm);
+  checksum_attribute(d.get(), sum, where);
   if (rank_of(comm) == 0)
     h5::check(H5Dwrite(d.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), where,
               "write dataset " + name);
@@ -125,10 +166,13 @@ void small_string(hid_t loc, const std::string &name, const std::string &value, 
 // This rank's rows [offset, offset + n) of a [total][width] dataset, read in collective calls
 // of at most rows_per_call rows; every rank makes the same number of calls. `move(buf, first,
 // count)` drains the staging buffer into local rows [first, first + count).
+// Returns the checksum of the rows read (io/row_hash.hpp; T is 8 bytes wide).
 template <class T>
-void read_rows(hid_t dset, std::uint64_t offset, std::uint64_t n, int width, MPI_Comm comm,
-               const std::function<void(T *, std::size_t, std::size_t)> &move,
-               const std::string &where) {
+std::uint64_t read_rows(hid_t dset, std::uint64_t offset, std::uint64_t n, int width, MPI_Comm comm,
+                        const std::function<void(T *, std::size_t, std::size_t)> &move,
+                        const std::string &where, const std::string &name) {
+  static_assert(sizeof(T) == 8);
+  std::uint64_t sum = 0;
   std::uint64_t most = 0;
   MPI_Allreduce(&n, &most, 1, MPI_UINT64_T, MPI_MAX, comm);
   const std::uint64_t calls = (most + rows_per_call - 1) / rows_per_call;
@@ -151,12 +195,15 @@ void read_rows(hid_t dset, std::uint64_t offset, std::uint64_t n, int width, MPI
       h5::check(H5Sselect_none(file_space.get()), where, "select none");
       h5::check(H5Sselect_none(mem.get()), where, "select none");
     }
-    h5::check(
-        H5Dread(dset, h5::native_type<T>(), mem.get(), file_space.get(), dxpl.get(), buf.data()),
-        where, "collective read");
-    if (count > 0)
+    if (H5Dread(dset, h5::native_type<T>(), mem.get(), file_space.get(), dxpl.get(), buf.data()) <
+        0)
+      damaged(where, name);
+    if (count > 0) {
+      sum += rows_hash(offset + first, buf.data(), count, width);
       move(buf.data(), first, count);
+    }
   }
+  return sum;
 }
 
 // The particle data of one dataset that this rank writes once the file's structure exists:
@@ -240,16 +287,35 @@ double create_species(hid_t particles, const SpeciesFields &s, const CheckpointI
                   info.box.data(), comm, where);
   }
   double bytes = 0;
+  RowJob pending; // the field being created: its data, before it has an address
+  // The checksum of all ranks' rows, known before the rows are written (attributes are metadata).
+  auto checksum = [&](const RowJob &job) {
+    std::uint64_t local = 0;
+    if (job.words != nullptr) {
+      local = rows_hash(offset, job.words->data(), n, 1);
+    } else {
+      const double *cols[3] = {};
+      for (int k = 0; k < job.width; ++k)
+        cols[k] = job.components[k]->data();
+      local = job.width == 1   ? columns_hash<1>(offset, cols, n)
+              : job.width == 2 ? columns_hash<2>(offset, cols, n)
+                               : columns_hash<3>(offset, cols, n);
+    }
+    std::uint64_t sum = 0;
+    MPI_Allreduce(&local, &sum, 1, MPI_UINT64_T, MPI_SUM, comm);
+    return sum;
+  };
   auto field = [&](const std::string &name, hid_t type, int width, bool vector) {
     const auto fg = h5::create_group(g.get(), name, where);
     small_scalar<std::int64_t>(fg.get(), "step", info.step, comm, where);
     small_scalar<double>(fg.get(), "time", info.time, comm, where);
     const auto dset = create_rows(fg.get(), "value", type, total, width, vector, where);
+    checksum_attribute(dset.get(), checksum(pending), where);
     const haddr_t address = H5Dget_offset(dset.get());
     if (address == HADDR_UNDEF)
       h5::fail(where, "get the file address of " + name);
     bytes += static_cast<double>(total) * width * 8;
-    RowJob job;
+    RowJob job = pending;
     job.address = address;
     job.offset = offset;
     job.n = n;
@@ -257,20 +323,21 @@ double create_species(hid_t particles, const SpeciesFields &s, const CheckpointI
     return job;
   };
   for (const auto &[name, comp] : s.vectors) {
-    RowJob job = field(name, H5T_IEEE_F64LE, s.dim, true);
+    pending = RowJob{};
+    pending.width = s.dim;
     for (int k = 0; k < s.dim; ++k)
-      job.components[k] = comp[k];
-    jobs.push_back(job);
+      pending.components[k] = comp[k];
+    jobs.push_back(field(name, H5T_IEEE_F64LE, s.dim, true));
   }
   for (const auto &[name, words] : s.words) {
-    RowJob job = field(name, H5T_STD_U64LE, 1, false);
-    job.words = words;
-    jobs.push_back(job);
+    pending = RowJob{};
+    pending.words = words;
+    jobs.push_back(field(name, H5T_STD_U64LE, 1, false));
   }
   for (const auto &[name, values] : s.scalars) {
-    RowJob job = field(name, H5T_IEEE_F64LE, 1, false);
-    job.components[0] = values;
-    jobs.push_back(job);
+    pending = RowJob{};
+    pending.components[0] = values;
+    jobs.push_back(field(name, H5T_IEEE_F64LE, 1, false));
   }
   return bytes;
 }
@@ -316,11 +383,63 @@ h5::Dataset open_required(hid_t file, const std::string &name, const std::string
   if (!path_exists(file, name))
     refuse(path, "missing dataset " + name + "; allowed: a narrows checkpoint (format version " +
                      std::to_string(checkpoint_format_version) + ", written by narrows run)");
-  return h5::Dataset(H5Dopen2(file, name.c_str(), H5P_DEFAULT), path, "open dataset " + name);
+  h5::Dataset d(H5Dopen2(file, name.c_str(), H5P_DEFAULT));
+  if (!d)
+    damaged(path, name);
+  return d;
+}
+
+// A checkpoint that open_checkpoint accepted, opened again by a reader of its datasets
+// (collective); HDF5 failing now means damaged metadata.
+h5::File open_readable(const std::string &path, MPI_Comm comm) {
+  h5::silence_errors();
+  const auto fapl = mpio_fapl(comm, path);
+  h5::File file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()));
+  if (!file)
+    damaged(path, "the file's metadata");
+  return file;
+}
+
+// Checkpoints written before checksums existed carry none (not even on /parameters/scene).
+bool has_checksums(hid_t file) {
+  return H5Aexists_by_name(file, "/parameters/scene", checksum_name, H5P_DEFAULT) > 0;
+}
+
+// The checksum stored with dataset `name`; none for a checkpoint without checksums; refused
+// if the file has checksums but this dataset lost its own.
+std::optional<std::uint64_t> stored_checksum(hid_t file, hid_t dset, const std::string &name,
+                                             const std::string &path) {
+  const htri_t exists = H5Aexists(dset, checksum_name);
+  if (exists > 0) {
+    const h5::Attribute a(H5Aopen(dset, checksum_name, H5P_DEFAULT));
+    std::uint64_t sum = 0;
+    if (!a || H5Aread(a.get(), H5T_NATIVE_UINT64, &sum) < 0)
+      damaged(path, name + " (its checksum)");
+    return sum;
+  }
+  if (exists == 0 && !has_checksums(file))
+    return std::nullopt;
+  refuse(path, "damaged checkpoint: " + name +
+                   " has no checksum, the other datasets have; allowed: a checkpoint as narrows "
+                   "run wrote it");
+}
+
+void verify_checksum(const std::optional<std::uint64_t> &stored, std::uint64_t computed,
+                     const std::string &name, const std::string &path) {
+  if (!stored || *stored == computed)
+    return;
+  char line[160];
+  std::snprintf(line, sizeof line, " does not match its checksum (stored %016llx, data %016llx)",
+                static_cast<unsigned long long>(*stored),
+                static_cast<unsigned long long>(computed));
+  refuse(path, "damaged checkpoint: " + name + line +
+                   "; allowed: a checkpoint as narrows run wrote it, unmodified");
 }
 
 std::vector<hsize_t> shape_of(hid_t dset, const std::string &path) {
-  const h5::Dataspace s(H5Dget_space(dset), path, "get dataspace");
+  const h5::Dataspace s(H5Dget_space(dset));
+  if (!s)
+    damaged(path, "a dataspace");
   const int n = H5Sget_simple_extent_ndims(s.get());
   std::vector<hsize_t> dims(std::max(n, 0));
   if (n > 0)
@@ -328,24 +447,34 @@ std::vector<hsize_t> shape_of(hid_t dset, const std::string &path) {
   return dims;
 }
 
-template <class T> T read_scalar(hid_t file, const std::string &name, const std::string &path) {
+// verify = false: the value before its checksum is checked (the format version, which a
+// later narrows may have changed on purpose, is refused as such).
+template <class T>
+T read_scalar(hid_t file, const std::string &name, const std::string &path, bool verify = true) {
   const auto d = open_required(file, name, path);
   if (!shape_of(d.get(), path).empty())
     refuse(path, name + " is not a scalar; allowed: a narrows checkpoint");
   T value{};
-  h5::check(H5Dread(d.get(), h5::native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, &value), path,
-            "read " + name);
+  if (H5Dread(d.get(), h5::native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, &value) < 0)
+    damaged(path, name);
+  if (verify)
+    verify_checksum(stored_checksum(file, d.get(), name, path), bytes_hash(&value, sizeof value),
+                    name, path);
   return value;
 }
 
 std::string read_string(hid_t file, const std::string &name, const std::string &path) {
   const auto d = open_required(file, name, path);
-  const h5::Datatype type(H5Dget_type(d.get()), path, "get type of " + name);
+  const h5::Datatype type(H5Dget_type(d.get()));
+  if (!type)
+    damaged(path, name);
   if (H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) > 0)
     refuse(path, name + " is not a fixed-length string; allowed: a narrows checkpoint");
   std::string buf(H5Tget_size(type.get()), '\0');
-  h5::check(H5Dread(d.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buf.data()), path,
-            "read " + name);
+  if (H5Dread(d.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buf.data()) < 0)
+    damaged(path, name);
+  verify_checksum(stored_checksum(file, d.get(), name, path), bytes_hash(buf.data(), buf.size()),
+                  name, path);
   buf.resize(std::strlen(buf.c_str()));
   return buf;
 }
@@ -358,6 +487,42 @@ std::string shape_text(const std::vector<hsize_t> &dims) {
     s += ']';
   }
   return s.empty() ? "scalar" : s;
+}
+
+// Verifies the checksum of a small dataset the reader does not otherwise need (the step and
+// time of each particle field): read as stored, byte for byte.
+void verify_small(hid_t file, const std::string &name, const std::string &path) {
+  const auto d = open_required(file, name, path);
+  const h5::Datatype type(H5Dget_type(d.get()));
+  const h5::Dataspace space(H5Dget_space(d.get()));
+  const hssize_t count = space ? H5Sget_simple_extent_npoints(space.get()) : -1;
+  if (!type || count < 0 || count > (1 << 20))
+    damaged(path, name);
+  std::vector<char> bytes(H5Tget_size(type.get()) * static_cast<std::size_t>(count));
+  if (H5Dread(d.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data()) < 0)
+    damaged(path, name);
+  verify_checksum(stored_checksum(file, d.get(), name, path),
+                  bytes_hash(bytes.data(), bytes.size()), name, path);
+}
+
+// A box's edge lengths [dim] (checksum verified): finite and > 0.
+std::array<double, 3> read_edges(hid_t file, const std::string &name, int dim,
+                                 const std::string &path) {
+  const auto d = open_required(file, name, path);
+  const auto shape = shape_of(d.get(), path);
+  if (shape != std::vector<hsize_t>{static_cast<hsize_t>(dim)})
+    refuse(path,
+           name + " has shape " + shape_text(shape) + "; allowed: [" + std::to_string(dim) + "]");
+  std::array<double, 3> edges{1.0, 1.0, 1.0};
+  if (H5Dread(d.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, edges.data()) < 0)
+    damaged(path, name);
+  verify_checksum(stored_checksum(file, d.get(), name, path),
+                  bytes_hash(edges.data(), 8 * static_cast<std::size_t>(dim)), name, path);
+  for (int k = 0; k < dim; ++k)
+    if (!(edges[k] > 0.0 && std::isfinite(edges[k])))
+      refuse(path, name + "[" + std::to_string(k) + "] = " + number_text(edges[k]) +
+                       "; allowed: a finite length > 0");
+  return edges;
 }
 
 } // namespace
@@ -516,13 +681,19 @@ CheckpointInfo open_checkpoint(const std::string &path, MPI_Comm comm, h5::File 
            "damaged HDF5 file, HDF5 cannot open it (" + err + "); allowed: a complete checkpoint");
   }
   const hid_t f = file.get();
+  if (!has_checksums(f) && rank_of(comm) == 0)
+    std::fprintf(stderr,
+                 "warning: %s carries no checksums (written by a narrows before they existed); "
+                 "its data are accepted unverified\n",
+                 path.c_str());
 
   CheckpointInfo info;
-  const auto version = read_scalar<std::int64_t>(f, "/parameters/format_version", path);
+  const auto version = read_scalar<std::int64_t>(f, "/parameters/format_version", path, false);
   if (version != checkpoint_format_version)
     refuse(path, "/parameters/format_version = " + std::to_string(version) +
                      "; allowed: " + std::to_string(checkpoint_format_version) +
                      " (the format this narrows " NARROWS_VERSION " reads)");
+  read_scalar<std::int64_t>(f, "/parameters/format_version", path); // its checksum
   info.scene_text = read_string(f, "/parameters/scene", path);
   if (path_exists(f, "/parameters/canonical_scene"))
     info.canonical_scene = read_string(f, "/parameters/canonical_scene", path);
@@ -530,11 +701,15 @@ CheckpointInfo open_checkpoint(const std::string &path, MPI_Comm comm, h5::File 
   info.time = read_scalar<double>(f, "/parameters/time", path);
   info.seed = read_scalar<std::uint64_t>(f, "/parameters/seed", path);
   info.dimensions = read_scalar<std::int32_t>(f, "/parameters/dimensions", path);
-  if (info.step < 0)
-    refuse(path, "/parameters/step = " + std::to_string(info.step) + "; allowed: >= 0");
+  // Checkpoint names hold the step in 10 digits (checkpoint_path, list_checkpoints).
+  if (info.step < 0 || info.step > max_checkpoint_step)
+    refuse(path, "/parameters/step = " + std::to_string(info.step) + "; allowed: 0 to " +
+                     std::to_string(max_checkpoint_step));
   if (info.dimensions < 1 || info.dimensions > 3)
     refuse(path,
            "/parameters/dimensions = " + std::to_string(info.dimensions) + "; allowed: 1, 2 or 3");
+  if (!(std::isfinite(info.time) && info.time >= 0.0))
+    refuse(path, "/parameters/time = " + number_text(info.time) + "; allowed: a finite time >= 0");
   return info;
 }
 
@@ -570,36 +745,60 @@ CheckpointInfo read_checkpoint_info(const std::string &path, MPI_Comm comm) {
                      pos + " has " + shape_text(p_shape) + "; allowed: one id per particle ([" +
                      std::to_string(p_shape[0]) + "])");
   info.fluid_particles = p_shape[0];
-  const auto e = open_required(f, edges, path);
-  if (shape_of(e.get(), path) != std::vector<hsize_t>{static_cast<hsize_t>(info.dimensions)})
-    refuse(path, edges + " has shape " + shape_text(shape_of(e.get(), path)) + "; allowed: [" +
-                     std::to_string(info.dimensions) + "]");
-  h5::check(H5Dread(e.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, info.box.data()),
-            path, "read " + edges);
+  info.box = read_edges(f, edges, info.dimensions, path);
   (void)comm;
+  // The seed and box the data were made with are the stored scene's (which the restart
+  // compares with the given scene).
+  // (A stored scene that does not parse is refused by check_restart_scene, with its own line.)
+  scene::Scene stored;
+  try {
+    stored = scene::parse_scene(info.scene_text, path + ":/parameters/scene");
+  } catch (const Error &) {
+    return info;
+  }
+  if (stored.run.seed != info.seed)
+    refuse(path, "/parameters/seed = " + std::to_string(info.seed) +
+                     " but /parameters/scene has run.seed = " + std::to_string(stored.run.seed) +
+                     "; allowed: the same seed");
+  for (int k = 0; k < info.dimensions; ++k)
+    if (stored.domain.size[k] != info.box[k])
+      refuse(path, edges + "[" + std::to_string(k) + "] = " + number_text(info.box[k]) +
+                       " but /parameters/scene has domain.size[" + std::to_string(k) +
+                       "] = " + number_text(stored.domain.size[k]) + "; allowed: the same box");
   return info;
 }
 
 std::vector<double> read_checkpoint_array(const std::string &path, const std::string &name,
                                           std::size_t size, MPI_Comm comm) {
   h5::silence_errors();
-  const auto fapl = mpio_fapl(comm, path);
-  const h5::File file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()), path, "open file");
+  const h5::File file = open_readable(path, comm);
   const auto d = open_required(file.get(), "/" + name, path);
   const auto shape = shape_of(d.get(), path);
   if (shape != std::vector<hsize_t>{size})
     refuse(path, "/" + name + " has shape " + shape_text(shape) + "; allowed: [" +
                      std::to_string(size) + "] (what the scene needs)");
   std::vector<double> v(size);
-  h5::check(H5Dread(d.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), path,
-            "read /" + name);
+  if (H5Dread(d.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) < 0)
+    damaged(path, "/" + name);
+  verify_checksum(stored_checksum(file.get(), d.get(), "/" + name, path),
+                  bytes_hash(v.data(), 8 * size), "/" + name, path);
+  for (std::size_t i = 0; i < size; ++i)
+    if (!std::isfinite(v[i]))
+      refuse(path, "/" + name + " row " + std::to_string(i) + " = " + number_text(v[i]) +
+                       "; allowed: a finite number");
   return v;
+}
+
+std::array<double, 3> read_box_edges(const std::string &path, const std::string &species, int dim,
+                                     MPI_Comm comm) {
+  h5::silence_errors();
+  const h5::File file = open_readable(path, comm);
+  return read_edges(file.get(), "/particles/" + species + "/box/edges", dim, path);
 }
 
 std::uint64_t species_rows(const std::string &path, const SpeciesFields &s, MPI_Comm comm) {
   h5::silence_errors();
-  const auto fapl = mpio_fapl(comm, path);
-  const h5::File file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()), path, "open file");
+  const h5::File file = open_readable(path, comm);
   const std::string first_field =
       "/particles/" + s.name + "/" +
       (!s.vectors.empty() ? s.vectors.front().first : s.words.front().first) + "/value";
@@ -616,15 +815,31 @@ void read_species(const std::string &path, SpeciesFields &s, MPI_Comm comm) {
 void read_species_rows(const std::string &path, SpeciesFields &s, std::uint64_t first,
                        std::uint64_t n, MPI_Comm comm) {
   h5::silence_errors();
-  const auto fapl = mpio_fapl(comm, path);
-  const h5::File file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()), path, "open file");
+  const h5::File file = open_readable(path, comm);
   const std::string base = "/particles/" + s.name + "/";
+  if (path_exists(file.get(), base + "box/edges"))
+    verify_small(file.get(), base + "box/edges", path);
+  // The checksum covers the whole dataset: verified when the ranks' rows together are all of
+  // it (every reader reads a partition of the rows), the same outcome on every rank.
+  const auto verify = [&](const h5::Dataset &d, const std::string &name, std::uint64_t local) {
+    const std::uint64_t mine[2] = {n, local};
+    std::uint64_t all[2] = {0, 0};
+    MPI_Allreduce(mine, all, 2, MPI_UINT64_T, MPI_SUM, comm);
+    const auto shape = shape_of(d.get(), path);
+    if (!shape.empty() && all[0] == shape[0])
+      verify_checksum(stored_checksum(file.get(), d.get(), name, path), all[1], name, path);
+    const std::string group = name.substr(0, name.rfind('/'));
+    for (const char *small : {"/step", "/time"})
+      if (path_exists(file.get(), group + small))
+        verify_small(file.get(), group + small, path);
+  };
   for (auto &[name, comp] : s.vectors) {
-    const auto d = open_required(file.get(), base + name + "/value", path);
+    const std::string dname = base + name + "/value";
+    const auto d = open_required(file.get(), dname, path);
     for (int k = 0; k < s.dim; ++k)
       comp[k]->resize(n);
     const int dim = s.dim;
-    read_rows<double>(
+    const auto sum = read_rows<double>(
         d.get(), first, n, dim, comm,
         [&comp, dim](double *buf, std::size_t at, std::size_t count) {
           for (int k = 0; k < dim; ++k) {
@@ -633,36 +848,152 @@ void read_species_rows(const std::string &path, SpeciesFields &s, std::uint64_t 
               dst[i] = buf[i * dim + k];
           }
         },
-        path);
+        path, dname);
+    verify(d, dname, sum);
   }
   for (auto &[name, words] : s.words) {
-    const auto d = open_required(file.get(), base + name + "/value", path);
+    const std::string dname = base + name + "/value";
+    const auto d = open_required(file.get(), dname, path);
     words->resize(n);
-    read_rows<std::uint64_t>(
+    const auto sum = read_rows<std::uint64_t>(
         d.get(), first, n, 1, comm,
         [words](std::uint64_t *buf, std::size_t at, std::size_t count) {
           std::copy_n(buf, count, words->data() + at);
         },
-        path);
+        path, dname);
+    verify(d, dname, sum);
   }
   for (auto &[name, values] : s.scalars) {
-    const auto d = open_required(file.get(), base + name + "/value", path);
+    const std::string dname = base + name + "/value";
+    const auto d = open_required(file.get(), dname, path);
     values->resize(n);
-    read_rows<double>(
+    const auto sum = read_rows<double>(
         d.get(), first, n, 1, comm,
         [values](double *buf, std::size_t at, std::size_t count) {
           std::copy_n(buf, count, values->data() + at);
         },
-        path);
+        path, dname);
+    verify(d, dname, sum);
   }
 }
 
 bool has_species_field(const std::string &path, const std::string &species,
                        const std::string &field, MPI_Comm comm) {
   h5::silence_errors();
-  const auto fapl = mpio_fapl(comm, path);
-  const h5::File file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()), path, "open file");
+  const h5::File file = open_readable(path, comm);
   return path_exists(file.get(), "/particles/" + species + "/" + field + "/value");
+}
+
+namespace {
+
+constexpr std::uint64_t no_row = ~std::uint64_t{0};
+
+// One refusal on every rank: each rank offers its first bad row (no_row if none) and the line
+// that describes it; every rank throws the line of the lowest bad row (so no rank waits for
+// another that already gave up).
+void refuse_first_bad_row(std::uint64_t bad_row, const std::string &line, MPI_Comm comm) {
+  std::uint64_t first = no_row;
+  MPI_Allreduce(&bad_row, &first, 1, MPI_UINT64_T, MPI_MIN, comm);
+  if (first == no_row)
+    return;
+  const int rank = rank_of(comm);
+  int mine = bad_row == first ? rank : size_of(comm), owner = 0;
+  MPI_Allreduce(&mine, &owner, 1, MPI_INT, MPI_MIN, comm);
+  std::uint64_t length = rank == owner ? line.size() : 0;
+  MPI_Bcast(&length, 1, MPI_UINT64_T, owner, comm);
+  std::string text = rank == owner ? line : std::string(length, ' ');
+  MPI_Bcast(text.data(), static_cast<int>(length), MPI_CHAR, owner, comm);
+  throw input_error(text);
+}
+
+// Every id of [0, total) exactly once over all ranks: each (id, row) goes to the rank that
+// checks ids [ceil(d total / p), ceil((d + 1) total / p)), which keeps one row per id.
+void check_unique_ids(const std::vector<std::uint64_t> &ids, std::uint64_t first_row,
+                      std::uint64_t total, const std::string &dataset, const std::string &path,
+                      MPI_Comm comm) {
+  const int p = size_of(comm), d = rank_of(comm);
+  const auto owner = [&](std::uint64_t id) {
+    return static_cast<int>(static_cast<unsigned __int128>(id) * p / total);
+  };
+  std::vector<int> send_counts(p, 0), recv_counts(p, 0), sdispl(p, 0), rdispl(p, 0);
+  for (const auto id : ids)
+    send_counts[owner(id)] += 2;
+  MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT, comm);
+  for (int r = 1; r < p; ++r) {
+    sdispl[r] = sdispl[r - 1] + send_counts[r - 1];
+    rdispl[r] = rdispl[r - 1] + recv_counts[r - 1];
+  }
+  std::vector<std::uint64_t> send(2 * ids.size()), recv(rdispl[p - 1] + recv_counts[p - 1]);
+  std::vector<int> at = sdispl;
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    const int r = owner(ids[i]);
+    send[at[r]++] = ids[i];
+    send[at[r]++] = first_row + i;
+  }
+  MPI_Alltoallv(send.data(), send_counts.data(), sdispl.data(), MPI_UINT64_T, recv.data(),
+                recv_counts.data(), rdispl.data(), MPI_UINT64_T, comm);
+  const auto lo =
+      static_cast<std::uint64_t>((static_cast<unsigned __int128>(total) * d + p - 1) / p);
+  const auto hi =
+      static_cast<std::uint64_t>((static_cast<unsigned __int128>(total) * (d + 1) + p - 1) / p);
+  std::vector<std::uint64_t> row_of(hi - lo, no_row);
+  std::uint64_t bad = no_row;
+  std::string line;
+  for (std::size_t k = 0; k < recv.size(); k += 2) {
+    const std::uint64_t id = recv[k], row = recv[k + 1];
+    std::uint64_t &seen = row_of[id - lo];
+    if (seen == no_row) {
+      seen = row;
+      continue;
+    }
+    const std::uint64_t later = std::max(seen, row), earlier = std::min(seen, row);
+    if (later < bad) {
+      bad = later;
+      line = path + ": " + dataset + " row " + std::to_string(later) + " holds id " +
+             std::to_string(id) + ", as does row " + std::to_string(earlier) +
+             "; allowed: every id from 0 to " + std::to_string(total - 1) + " once";
+    }
+  }
+  refuse_first_bad_row(bad, line, comm);
+}
+
+} // namespace
+
+void validate_particles(const std::string &path, const SpeciesFields &fields,
+                        const CheckpointInfo &info, std::uint64_t total, MPI_Comm comm) {
+  // The state must be one the run can continue: finite, inside the box (between the walls),
+  // every id once. The first bad row (lowest over all ranks) is refused on every rank.
+  const std::string species = fields.name;
+  const auto &xs = fields.vectors.at(0).second, &vs = fields.vectors.at(1).second;
+  const std::vector<std::uint64_t> &id = *fields.words.at(0).second;
+  const int dim = fields.dim;
+  const auto first_row =
+      total * static_cast<std::uint64_t>(rank_of(comm)) / static_cast<std::uint64_t>(size_of(comm));
+  const std::string pos = "/particles/" + species + "/position/value",
+                    vel = "/particles/" + species + "/velocity/value",
+                    ids = "/particles/" + species + "/id/value";
+  std::uint64_t bad = no_row;
+  std::string line;
+  for (std::size_t i = 0; i < id.size() && bad == no_row; ++i) {
+    const std::string row = " row " + std::to_string(first_row + i);
+    if (id[i] >= total) {
+      line = path + ": " + ids + row + " holds id " + std::to_string(id[i]) +
+             "; allowed: 0 to " + std::to_string(total - 1);
+    }
+    for (int k = 0; k < dim && line.empty(); ++k) {
+      const double x = (*xs[k])[i], v = (*vs[k])[i], L = info.box[k];
+      if (!(x >= 0.0 && x <= L))
+        line = path + ": " + pos + row + " component " + std::to_string(k) + " = " +
+               number_text(x) + "; allowed: inside the box, 0 to " + number_text(L);
+      else if (!std::isfinite(v))
+        line = path + ": " + vel + row + " component " + std::to_string(k) + " = " +
+               number_text(v) + "; allowed: a finite number";
+    }
+    if (!line.empty())
+      bad = first_row + i;
+  }
+  refuse_first_bad_row(bad, line, comm);
+  check_unique_ids(id, first_row, total, ids, path, comm);
 }
 
 // ---- files of a run directory ------------------------------------------------------------

@@ -85,12 +85,33 @@ colloids::Colloids read_colloids(const std::string &path, const scene::Colloids 
   c.dim = dim;
   c.resize(static_cast<std::size_t>(total));
   colloids::set_radii_and_masses(c, spec, density, seed);
+  // Every rank holds all rows: the same refusal everywhere, naming the first bad row.
+  const auto edges = read_box_edges(path, "colloids", dim, comm);
+  std::vector<bool> seen(static_cast<std::size_t>(total), false);
   for (int i = 0; i < total; ++i) {
     const double *r = &all[static_cast<std::size_t>(i) * row];
+    const std::string at = " row " + std::to_string(i);
+    for (int k = 0; k < dim; ++k) {
+      if (!(r[k] >= 0.0 && r[k] <= edges[k]))
+        throw input_error(path + ": /particles/colloids/position/value" + at + " component " +
+                          std::to_string(k) + " = " + std::to_string(r[k]) +
+                          "; allowed: inside the box, 0 to " + std::to_string(edges[k]));
+      if (!std::isfinite(r[dim + k]))
+        throw input_error(path + ": /particles/colloids/velocity/value" + at + " component " +
+                          std::to_string(k) + " = " + std::to_string(r[dim + k]) +
+                          "; allowed: a finite number");
+    }
     const auto id = static_cast<std::uint64_t>(r[2 * dim]);
     if (id >= static_cast<std::uint64_t>(total))
-      throw input_error(path + ": /particles/colloids/id/value holds id " + std::to_string(id) +
-                        "; allowed: 0 to " + std::to_string(total - 1));
+      throw input_error(path + ": /particles/colloids/id/value" + at + " holds id " +
+                        std::to_string(id) + "; allowed: 0 to " + std::to_string(total - 1));
+    if (seen[id])
+      throw input_error(path + ": /particles/colloids/id/value" + at + " holds id " +
+                        std::to_string(id) +
+                        ", as does an earlier row; allowed: every id from 0 "
+                        "to " +
+                        std::to_string(total - 1) + " once");
+    seen[id] = true;
     for (int k = 0; k < dim; ++k) {
       c.x[k][id] = r[k];
       c.v[k][id] = r[dim + k];

@@ -2,12 +2,14 @@
 // between fixed times), conserved-charge currents and snapshot densities (see kmc/lattice.hpp).
 #include "narrows/kmc/lattice.hpp"
 
+#include "narrows/core/error.hpp"
 #include "narrows/core/rng.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <string>
 
 namespace narrows::kmc {
 
@@ -365,6 +367,13 @@ bool Lattice::run(double t_end, const std::function<bool()> &interrupted) {
       }
     while (t < stop) {
       const double to = stop - t > piece && !absorbing_ ? t + piece : stop;
+      // A span below the resolution of t (rates so high that 2^20 tries take less time than
+      // one ulp of t) would never end: refuse instead of spinning.
+      if (!(to > t))
+        throw invariant_error("kmc: the time t = " + std::to_string(t) +
+                              " cannot advance by the span of 2^20 tries (" +
+                              std::to_string(piece) + ") at rate " + std::to_string(lambda) +
+                              "; lower the rates or kmc.time");
       if (!absorbing_) {
         const std::uint64_t k = poisson(lambda * (to - t));
         std::uint64_t done = 0;
@@ -384,7 +393,7 @@ bool Lattice::run(double t_end, const std::function<bool()> &interrupted) {
         }
         tries_ += k;
         events_ += done;
-        since_asked_ += k;
+        since_asked_ += k + 1; // + 1: stop requests are seen even if no try is drawn
         idle_tries_ = done > 0 ? 0 : idle_tries_ + k;
         // A long run of rejected tries (as many as there are slots) may mean that no transition
         // is possible any more; then the tries are skipped (they would all be rejected).

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 namespace narrows::mpcd {
@@ -21,6 +22,15 @@ CellGrid::CellGrid(const Box &box, int first, int columns)
   if (dim == 2)
     cells[2] = 1;
   sums.resize(static_cast<std::size_t>(cells[0]) * cells[1] * cells[2]);
+}
+
+void no_cell(double x, int axis, double length, const char *species, std::uint64_t id) {
+  char line[200];
+  std::snprintf(line, sizeof line,
+                "coordinate %d = %.17g has no cell (allowed: finite, inside the box [0, %g])", axis,
+                x, length);
+  throw invariant_error(
+      (species ? std::string(species) + " id " + std::to_string(id) + ": " : std::string()) + line);
 }
 
 std::array<double, 3> grid_shift(std::uint64_t seed, std::uint64_t step, int dim) {
@@ -58,7 +68,7 @@ void bin_kernel(Fluid &f, CellGrid &g, std::size_t first, Strays *strays) {
       s.p[2] += fixed::from_double(vz[i]);
   };
   for (std::size_t i = first; i < n; ++i) {
-    const int column = cell_coordinate(x[i], sx, NX);
+    const int column = cell_coordinate(x[i], sx, NX, 0, "fluid particle", f.id[i]);
     const int ix = column - x0;
     if (static_cast<unsigned>(ix) >= static_cast<unsigned>(nx)) {
       if (strays) {
@@ -71,10 +81,12 @@ void bin_kernel(Fluid &f, CellGrid &g, std::size_t first, Strays *strays) {
                             std::to_string(x[i]) + " is outside this rank's slab (columns " +
                             std::to_string(x0) + " to " + std::to_string(x0 + nx - 1) + ")");
     }
-    const int row = Walls ? wall_row(y[i], sy, ny) : cell_coordinate(y[i], sy, ny);
+    const int row = Walls ? wall_row(y[i], sy, ny, "fluid particle", f.id[i])
+                          : cell_coordinate(y[i], sy, ny, 1, "fluid particle", f.id[i]);
     std::size_t c = ix + static_cast<std::size_t>(nx) * row;
     if constexpr (D == 3)
-      c += static_cast<std::size_t>(nx) * ny * cell_coordinate(z[i], sz, nz);
+      c += static_cast<std::size_t>(nx) * ny *
+           cell_coordinate(z[i], sz, nz, 2, "fluid particle", f.id[i]);
     cell[i] = static_cast<std::uint32_t>(c);
   }
   {

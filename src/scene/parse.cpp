@@ -62,7 +62,7 @@ const std::vector<Section> &schema() {
       {"kmc",
        {"length", "boundary", "rates", "left", "right", "initial", "time", "warmup", "replicas",
         "charge", "samples", "preset", "parameters", "fugacity", "boundary_rates",
-        "boundary_coupling"}},
+        "boundary_coupling", "max_tries"}},
       {"lattice",
        {"model", "size", "density", "initial", "amplitude", "walls", "body_force", "obstacles",
         "block"}},
@@ -174,7 +174,8 @@ std::string closest(const std::string &word, const std::vector<std::string> &can
 // toml11's syntax_error what() is a multi-line annotated excerpt. Condense it to
 //   file: line N: TOML syntax error: <what>; found '<source line>' (<note>)
 std::string condense_syntax_error(const std::string &what, const std::string &file,
-                                  std::size_t fallback_line) {
+                                  std::size_t fallback_line,
+                                  const std::vector<std::size_t> &line_map = {}) {
   std::istringstream in(what);
   std::string line, headline, src_text, note;
   std::size_t src_line = 0;
@@ -229,6 +230,8 @@ std::string condense_syntax_error(const std::string &what, const std::string &fi
     msg = "invalid TOML";
   if (src_line == 0)
     src_line = fallback_line;
+  if (src_line >= 1 && src_line <= line_map.size())
+    src_line = line_map[src_line - 1]; // the line of the scene file, not of the parsed text
   std::string out = file + ": line " + std::to_string(src_line) + ": TOML syntax error: " + msg;
   if (!src_text.empty()) {
     if (src_text.size() > 60)
@@ -240,14 +243,180 @@ std::string condense_syntax_error(const std::string &what, const std::string &fi
   return one_line(out);
 }
 
+// The index of the last character of the TOML string that starts at text[i] (a quote): its
+// closing quote, the newline that ends an unterminated one-line string, or the text's end.
+// Basic strings ("...", """...""") have backslash escapes; literal ones ('...') do not.
+std::size_t string_end(const std::string &text, std::size_t i) {
+  const char quote = text[i];
+  const std::string triple(3, quote);
+  const bool multi = text.compare(i, 3, triple) == 0;
+  const std::size_t n = text.size();
+  for (i += multi ? 3 : 1; i < n; ++i) {
+    if (quote == '"' && text[i] == '\\') {
+      ++i;
+      continue;
+    }
+    if (text[i] == quote && (!multi || text.compare(i, 3, triple) == 0))
+      return multi ? i + 2 : i;
+    if (!multi && text[i] == '\n')
+      return i;
+  }
+  return n - 1;
+}
+
+// Limits checked on the raw text before toml11 sees it: toml11 recurses once per nesting level
+// (bracket or dotted-key component), so a deep enough text overflows the stack.
+constexpr std::size_t max_scene_bytes = std::size_t{16} << 20;
+constexpr int max_scene_nesting = 64;
+
+// Refuses a text toml11 must not parse: too long, binary (a NUL byte), or nested deeper than
+// max_scene_nesting brackets or dotted-key components. Strings and comments are skipped.
+void check_raw_text(const std::string &text, const std::string &file) {
+  if (text.size() > max_scene_bytes)
+    throw input_error(file + ": scene file of " + std::to_string(text.size()) +
+                      " bytes; allowed: at most " + std::to_string(max_scene_bytes) + " bytes");
+  if (const auto nul = text.find('\0'); nul != std::string::npos)
+    throw input_error(file + ": byte " + std::to_string(nul) +
+                      " is NUL (binary content); allowed: a TOML text file");
+  if (text.find_first_not_of(" \t\r\n") == std::string::npos)
+    throw input_error(file + ": the scene file is empty; allowed: a TOML scene with at least "
+                             "[run] (see docs/scenes.md)");
+  int depth = 0, dots = 0, line = 1;
+  const std::size_t n = text.size();
+  const auto deep = [&](const char *what) {
+    throw input_error(file + ": line " + std::to_string(line) + ": " + what +
+                      " nested deeper than " + std::to_string(max_scene_nesting) +
+                      " levels; allowed: at most " + std::to_string(max_scene_nesting));
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    const char ch = text[i];
+    if (ch == '#') { // comment to the end of the line
+      while (i + 1 < n && text[i + 1] != '\n')
+        ++i;
+    } else if (ch == '"' || ch == '\'') {
+      const std::size_t end = string_end(text, i);
+      line +=
+          static_cast<int>(std::count(text.begin() + static_cast<std::ptrdiff_t>(i),
+                                      text.begin() + static_cast<std::ptrdiff_t>(end) + 1, '\n'));
+      i = end;
+    } else if ((std::isdigit(static_cast<unsigned char>(ch)) || ch == '+' || ch == '-') &&
+               (i == 0 || std::strchr(" \t\r\n=,[{", text[i - 1]) != nullptr)) {
+      // A number (or a bare key starting with a digit): toml11 clamps decimal integers beyond
+      // 64 bits to the largest one, so they are refused here.
+      std::size_t j = i;
+      while (j < n && std::strchr(" \t\r\n,]}#=", text[j]) == nullptr)
+        ++j;
+      const std::string token = text.substr(i, j - i);
+      if (std::count(token.begin(), token.end(), '.') > max_scene_nesting)
+        deep("dotted keys");
+      std::string digits;
+      for (const char d : token.substr(token[0] == '+' || token[0] == '-' ? 1 : 0))
+        if (d != '_')
+          digits += d;
+      if (!digits.empty() && digits.size() < 1000 &&
+          std::all_of(digits.begin(), digits.end(), [](char d) { return d >= '0' && d <= '9'; })) {
+        digits.erase(0, std::min(digits.find_first_not_of('0'), digits.size() - 1));
+        const std::string most = token[0] == '-' ? "9223372036854775808" : "9223372036854775807";
+        if (digits.size() > most.size() || (digits.size() == most.size() && digits > most))
+          throw input_error(file + ": line " + std::to_string(line) + ": integer " + token +
+                            " is beyond 64 bits; allowed: -9223372036854775808 to "
+                            "9223372036854775807");
+      } else if (digits.size() >= 1000) {
+        throw input_error(file + ": line " + std::to_string(line) + ": a number of " +
+                          std::to_string(digits.size()) + " characters; allowed: a TOML number");
+      }
+      i = j - 1;
+    } else if (ch == '[' || ch == '{') {
+      if (++depth > max_scene_nesting)
+        deep("brackets");
+      dots = 0;
+    } else if (ch == ']' || ch == '}') {
+      depth = std::max(depth - 1, 0);
+      dots = 0;
+    } else if (ch == '.') {
+      if (++dots > max_scene_nesting)
+        deep("dotted keys");
+    } else if (ch == '\n' || ch == '=' || ch == ',') {
+      line += ch == '\n';
+      dots = 0;
+    }
+  }
+}
+
+// toml11 scans a value's whole line for comments (region::comments) after parsing each value,
+// so an array of n values on one line takes O(n^2). Long lines of arrays are broken after
+// their commas (newlines are allowed between array elements; not inside inline tables, whose
+// lines are left alone). Returns the text toml11 reads; line_map[k] is the scene file's line
+// of its line k + 1 (empty when nothing was broken).
+std::string break_long_arrays(const std::string &text, std::vector<std::size_t> &line_map) {
+  constexpr std::size_t long_line = 1024;
+  bool any_long = false;
+  for (std::size_t at = 0, nl; at < text.size(); at = nl + 1) {
+    nl = text.find('\n', at);
+    if (nl == std::string::npos)
+      nl = text.size();
+    any_long = any_long || nl - at > long_line;
+  }
+  if (!any_long)
+    return text;
+  std::string out;
+  out.reserve(text.size() + text.size() / 8);
+  std::vector<char> open; // the brackets around the current position
+  std::size_t line = 1, column = 0;
+  const std::size_t n = text.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const char ch = text[i];
+    const auto newline = [&] {
+      line_map.push_back(line);
+      column = 0;
+    };
+    if (ch == '#') {
+      while (i < n && text[i] != '\n')
+        out += text[i++];
+      --i;
+    } else if (ch == '"' || ch == '\'') { // copy a string verbatim
+      const std::size_t end = string_end(text, i);
+      for (std::size_t k = i; k <= end; ++k)
+        if (text[k] == '\n') {
+          newline();
+          ++line;
+        }
+      out.append(text, i, end - i + 1);
+      column += 2;
+      i = end;
+      continue;
+    } else if (ch == '[' || ch == '{') {
+      open.push_back(ch);
+    } else if ((ch == ']' || ch == '}') && !open.empty()) {
+      open.pop_back();
+    }
+    if (ch == '#')
+      continue;
+    out += ch;
+    ++column;
+    if (ch == '\n') {
+      newline();
+      ++line;
+    } else if (ch == ',' && column > 80 && !open.empty() &&
+               std::all_of(open.begin(), open.end(), [](char b) { return b == '['; })) {
+      out += '\n';
+      newline();
+    }
+  }
+  line_map.push_back(line);
+  return out;
+}
+
 value parse_toml(const std::string &text, const std::string &file) {
-  std::istringstream in(text);
+  check_raw_text(text, file);
+  std::vector<std::size_t> line_map;
+  std::istringstream in(break_long_arrays(text, line_map));
   try {
     return toml::parse(in, file);
   } catch (const toml::syntax_error &e) {
-    throw input_error(condense_syntax_error(e.what(), file, e.location().line()));
+    throw input_error(condense_syntax_error(e.what(), file, e.location().line(), line_map));
   } catch (const toml::exception &e) {
-    throw input_error(condense_syntax_error(e.what(), file, e.location().line()));
+    throw input_error(condense_syntax_error(e.what(), file, e.location().line(), line_map));
   } catch (const std::exception &e) {
     throw input_error(one_line(file + ": TOML syntax error: " + e.what()));
   }
@@ -479,10 +648,12 @@ void parse_run(const Ctx &c, const value *run, Run &out) {
         as_integer(c, *v, "run.seed", seed_allowed, [](std::int64_t n) { return n >= 0; }));
 
   // kmc runs kmc.time per replica and has no steps: there run.steps is optional (and unused).
-  const std::string steps_allowed = "an integer >= 0 (the step at which the run ends)";
+  // Checkpoint names hold the step in 10 digits (io/checkpoint.hpp, max_checkpoint_step).
+  const std::string steps_allowed =
+      "an integer from 0 to 9999999999 (the step at which the run ends)";
   if (const value *v = find(run, "steps"))
-    out.steps =
-        as_integer(c, *v, "run.steps", steps_allowed, [](std::int64_t n) { return n >= 0; });
+    out.steps = as_integer(c, *v, "run.steps", steps_allowed,
+                           [](std::int64_t n) { return n >= 0 && n <= 9999999999; });
   else if (out.engine != Engine::kmc)
     c.missing("run.steps", steps_allowed);
 }
@@ -754,6 +925,11 @@ std::optional<Colloids> parse_colloids(const Ctx &c, const value *sec, const Dom
       std::filesystem::path path(name);
       if (path.is_relative())
         path = std::filesystem::path(c.file()).parent_path() / path;
+      std::error_code ec;
+      if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+        c.fail("colloids.positions_file", "colloids.positions_file = \"" + name +
+                                              "\": " + path.string() +
+                                              " is not a regular file; allowed: " + allowed);
       std::ifstream in(path);
       if (!in)
         c.fail("colloids.positions_file", "colloids.positions_file = \"" + name +
@@ -990,10 +1166,17 @@ void apply_override(Ctx &c, value &root, const std::string &text) {
   const std::string raw = trim(std::string_view(text).substr(eq + 1));
   value parsed = raw;
   try {
+    try {
+      check_raw_text("v = " + raw, "--set '" + one_line(text) + "'");
+    } catch (const Error &e) {
+      throw input_error(std::string(e.what()) + " (overriding " + c.file() + ")");
+    }
     std::istringstream in("v = " + raw);
     const value t = toml::parse(in, "--set");
     if (t.is_table() && t.as_table().size() == 1 && t.contains("v"))
       parsed = t.at("v");
+  } catch (const Error &) {
+    throw; // too long or too deep for the parser
   } catch (const std::exception &) {
     // not a TOML value: keep the bare word as a string
   }
@@ -1027,6 +1210,10 @@ std::string read_file(const std::string &path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw input_error(one_line(path + ": cannot open scene file (" + std::strerror(EISDIR) + ")"));
+  // A FIFO or device would block or never end: only regular files are read.
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    throw input_error(one_line(path + ": not a regular file (a FIFO, socket or device); allowed: "
+                                      "a scene file"));
   errno = 0;
   std::FILE *f = std::fopen(path.c_str(), "rb");
   if (f == nullptr)
@@ -1157,6 +1344,12 @@ Scene parse_scene(const std::string &text, const std::string &file,
     c.fail("output.observables",
            "output.observables lists \"viscosity\", which fits the Poiseuille profile; allowed "
            "only with [walls] and a body_force.value whose x component is non-zero");
+  // The fit needs two distinct values of y (L - y) over the unit bins: two bins are symmetric.
+  if (std::find(obs.begin(), obs.end(), "viscosity") != obs.end() && s.domain.size[1] < 3.0)
+    c.fail("output.observables", "output.observables lists \"viscosity\" with domain.size[1] = " +
+                                     float_text(s.domain.size[1]) +
+                                     ", too narrow to fit a parabola; allowed: domain.size[1] "
+                                     ">= 3");
   return s;
 }
 

@@ -6,8 +6,10 @@
 #include "narrows/kmc/preset.hpp"
 #include "narrows/kmc/rates.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <string>
@@ -370,6 +372,40 @@ Kmc parse_kmc(const toml::value *sec, const KmcFail &fail) {
                     [](std::int64_t n) { return n >= -1000 && n <= 1000; }));
   }
   kmc::apply_preset(out, keep_charge, initial_given);
+
+  // The work of one replica: a Poisson number of tries at rate slots x R_max over the simulated
+  // time (kmc/lattice.cpp), R_max the largest total rate out of one bond or boundary state.
+  if (const toml::value *v = find(sec, "max_tries"))
+    out.max_tries = c.number(*v, "kmc.max_tries", "a number > 0 (expected tries per replica)",
+                             [](double x) { return x > 0.0 && std::isfinite(x); });
+  double r_max = 0.0;
+  for (int from = 0; from < 9; ++from) {
+    double sum = 0.0;
+    for (int to = 0; to < 9; ++to)
+      if (to != from && out.rates[from * 9 + to] > 0.0)
+        sum += out.rates[from * 9 + to];
+    r_max = std::max(r_max, sum);
+  }
+  const bool open = out.boundary == KmcBoundary::open;
+  for (const auto *table : {&out.left, &out.right})
+    for (int from = 0; open && from < 3; ++from) {
+      double sum = 0.0;
+      for (int to = 0; to < 3; ++to)
+        if (to != from && (*table)[from * 3 + to] > 0.0)
+          sum += (*table)[from * 3 + to];
+      r_max = std::max(r_max, sum);
+    }
+  const double slots = static_cast<double>(out.length) + (open ? 1.0 : 0.0);
+  const double tries = slots * r_max * (out.warmup + out.time);
+  if (!(tries <= out.max_tries)) {
+    char line[400];
+    std::snprintf(line, sizeof line,
+                  "kmc: %.3g expected tries per replica (%.0f slots x largest total rate %.3g x "
+                  "(warmup + time) %.3g); allowed: at most kmc.max_tries = %.3g (raise "
+                  "kmc.max_tries to run it: about 1e8 tries take a second)",
+                  tries, slots, r_max, out.warmup + out.time, out.max_tries);
+    c.fail("kmc.max_tries", line);
+  }
   return out;
 }
 

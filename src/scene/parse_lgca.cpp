@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -68,7 +69,7 @@ Lgca parse_lgca(const toml::value *sec, const SectionFail &fail) {
   const bool one_d = out.model == LgcaModel::dhumieres_1d;
 
   const std::string size_allowed =
-      one_d ? "an array [L] of one integer from 2 to " + std::to_string(max_sites_per_axis)
+      one_d ? "an array [L] of one integer from 3 to " + std::to_string(max_sites_per_axis)
             : "an array [size_x, size_y] of integers from 2 to " +
                   std::to_string(max_sites_per_axis) + ", size_y even";
   const toml::value *size = find(sec, "size");
@@ -79,7 +80,7 @@ Lgca parse_lgca(const toml::value *sec, const SectionFail &fail) {
   for (std::size_t k = 0; k < size->as_array().size(); ++k)
     out.size.push_back(c.integer(size->as_array()[k], "lattice.size[" + std::to_string(k) + "]",
                                  size_allowed, [k, one_d](std::int64_t n) {
-                                   return n >= 2 && n <= max_sites_per_axis &&
+                                   return n >= (one_d ? 3 : 2) && n <= max_sites_per_axis &&
                                           (one_d || k == 0 || n % 2 == 0);
                                  }));
 
@@ -90,6 +91,23 @@ Lgca parse_lgca(const toml::value *sec, const SectionFail &fail) {
   else
     c.fail("lattice.density",
            "missing required key 'lattice.density'; allowed: " + density_allowed);
+  {
+    // Observables divide by the particle count: a lattice expected to hold less than one
+    // particle measures nothing (all-NaN results).
+    double links = out.model == LgcaModel::fhp_ii || out.model == LgcaModel::fhp_iii ? 7 : 6;
+    if (one_d)
+      links = 5; // lattice/dhumieres_1d.hpp
+    for (const auto n : out.size)
+      links *= static_cast<double>(n);
+    if (links * out.density < 1.0) {
+      char line[300];
+      std::snprintf(line, sizeof line,
+                    "lattice.density = %g gives %.3g particles expected on %.0f links; allowed: "
+                    "a density giving at least one particle (>= %.3g)",
+                    out.density, links * out.density, links, 1.0 / links);
+      c.fail("lattice.density", line);
+    }
+  }
 
   if (const toml::value *v = find(sec, "initial")) {
     const std::string allowed =

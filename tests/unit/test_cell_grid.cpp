@@ -1,5 +1,6 @@
 // The shifted collision grid: grid_shift, bin_particles against an independent floor/modulo
 // computation with fixed-point cell sums, and the stable counting sort by cell.
+#include "narrows/core/error.hpp"
 #include "narrows/core/fixed_point.hpp"
 #include "narrows/mpcd/cell_grid.hpp"
 #include "narrows/mpcd/cell_sort.hpp"
@@ -267,3 +268,42 @@ TEST(SortByCell, Permutation2D) { check_sort(make_box(2, {11, 6, 1}), 21); }
 TEST(SortByCell, Permutation3D) { check_sort(make_box(3, {6, 5, 7}), 22); }
 
 } // namespace
+
+// A coordinate no cell can hold (NaN, infinite, far outside the box) is a broken invariant
+// naming the particle, never an index out of the cell arrays (issue 18).
+TEST(GridBin, UnplaceableCoordinateIsAnInvariantError) {
+  for (const bool walls : {false, true})
+    for (int axis = 0; axis < 3; ++axis)
+      for (const double bad : {std::nan(""), HUGE_VAL, -HUGE_VAL, 1e300, -1e300, 40.0}) {
+        Box box = make_box(3, {8, 8, 8});
+        box.walls_y = walls;
+        CellGrid g(box);
+        Fluid f;
+        f.dim = 3;
+        f.resize(3);
+        for (int i = 0; i < 3; ++i) {
+          f.id[i] = 10 + i;
+          for (int k = 0; k < 3; ++k)
+            f.x[k][i] = 1.5 + i, f.v[k][i] = 0.0;
+        }
+        f.x[axis][1] = bad;
+        try {
+          bin_particles(f, g);
+          ADD_FAILURE() << "no error for coordinate " << axis << " = " << bad;
+        } catch (const Error &e) {
+          EXPECT_EQ(e.code(), ExitCode::invariant);
+          const std::string msg = e.what();
+          EXPECT_NE(msg.find("fluid particle id 11"), std::string::npos) << msg;
+          EXPECT_NE(msg.find("coordinate " + std::to_string(axis)), std::string::npos) << msg;
+        }
+      }
+}
+
+TEST(CellList, ClampedCellGuardsNonFiniteAndFarCoordinates) {
+  EXPECT_EQ(clamped_cell(0.0, 0.5, 4, "colloid", 1, 0), 0);
+  EXPECT_EQ(clamped_cell(-0.3, 0.5, 4, "colloid", 1, 0), 0);
+  EXPECT_EQ(clamped_cell(8.0, 0.5, 4, "colloid", 1, 0), 3);
+  EXPECT_EQ(clamped_cell(5.9, 0.5, 4, "colloid", 1, 0), 2);
+  for (const double bad : {std::nan(""), HUGE_VAL, -1e300, 16.0, -8.0})
+    EXPECT_THROW(clamped_cell(bad, 0.5, 4, "colloid", 7, 1), Error) << bad;
+}

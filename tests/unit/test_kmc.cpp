@@ -459,3 +459,15 @@ TEST(KmcTheory, TasepExactCurrent) {
 }
 
 } // namespace
+
+// The expected work of a replica is bounded by kmc.max_tries (issue 18): rates of 1e19 would
+// run for ever; the limit names the numbers and can be lifted.
+TEST(KmcScene, ExpectedTriesAboveMaxTriesAreRefused) {
+  // 51 slots (50 sites, open) x largest total rate 1e19 x 110 time units.
+  bad_kmc(replace(kmc_scene, "\"10->01\" = 1.0", "\"10->01\" = 1e19"),
+          {"kmc.max_tries", "5.61e+22 expected tries per replica", "largest total rate 1e+19"});
+  EXPECT_NO_THROW(scene::parse_scene(replace(kmc_scene, "\"10->01\" = 1.0", "\"10->01\" = 1e7"),
+                                     "run/kmc.toml", {"kmc.max_tries=1e11"}));
+  bad_kmc(kmc_scene, {"kmc.max_tries = 1e+03"}, {"kmc.max_tries=1000"});
+  bad_kmc(kmc_scene, {"kmc.max_tries"}, {"kmc.max_tries=-1"});
+}

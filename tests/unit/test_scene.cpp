@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -379,7 +382,7 @@ TEST(SceneErrors, BadOutputKeys) {
 
 TEST(SceneErrors, BadRunKeys) {
   bad(with("run", "seed = -1"), {"run.seed = -1", ">= 0"});
-  bad(with("run", "steps = -5"), {"run.steps = -5", ">= 0"});
+  bad(with("run", "steps = -5"), {"run.steps = -5", "from 0 to 9999999999"});
   bad(with("fluid", "sort_every = -1"), {"fluid.sort_every = -1"});
   bad(with("fluid", "kT = 0"), {"fluid.kT = 0"});
 }
@@ -489,4 +492,92 @@ TEST(Scene, Thermostat) {
       {"thermostat.gamma", "monte-carlo"});
   bad(with("thermostat", "kind = \"monte-carlo\"\ngamma = 2", channel_scene),
       {"thermostat.gamma = 2", "(0, 1]"});
+}
+
+// ---- hostile text (issue 18): limits checked before toml11 recurses or clamps ----------------
+
+TEST(SceneHostile, DeepNestingIsRefusedBeforeTheParser) {
+  bad("a = " + std::string(5000, '[') + std::string(5000, ']') + "\n",
+      {"line 1", "brackets nested deeper than 64 levels"});
+  std::string inline_tables = "a = ";
+  for (int i = 0; i < 5000; ++i)
+    inline_tables += "{b = ";
+  bad(inline_tables + "1" + std::string(5000, '}') + "\n", {"brackets nested deeper than 64"});
+  std::string dotted = "[a";
+  for (int i = 0; i < 100000; ++i)
+    dotted += ".a";
+  bad(dotted + "]\n", {"dotted keys nested deeper than 64"});
+  bad(dotted.substr(1) + " = 1\n", {"dotted keys nested deeper than 64"});
+  // 64 levels are fine for the limit (the scene is refused for its unknown section instead).
+  bad("a = " + std::string(64, '[') + std::string(64, ']') + "\n", {"unknown key 'a'"});
+  // Brackets and dots inside strings and comments do not count.
+  EXPECT_NO_THROW(
+      parse_scene(with("output", "dir = \"" + std::string(200, '[') + "." + std::string(100, '.') +
+                                     "\" # " + std::string(200, '{')),
+                  "run/ok.toml"));
+}
+
+TEST(SceneHostile, EmptyBinaryAndHugeTextsAreRefused) {
+  bad("", {"the scene file is empty"});
+  bad("\n \n\t\n", {"the scene file is empty"});
+  bad(minimal_scene.substr(0, 20) + std::string(1, '\0') + "garbage", {"byte 20 is NUL"});
+  bad(std::string((16 << 20) + 1, ' '), {"16777217 bytes; allowed: at most 16777216"});
+  bad(minimal_scene, {"--set", "brackets nested deeper"},
+      {"fluid.dt=" + std::string(100, '[') + std::string(100, ']')});
+}
+
+TEST(SceneHostile, IntegersBeyond64BitsAreRefusedNotClamped) {
+  bad(with("run", "seed = 99999999999999999999"),
+      {"integer 99999999999999999999 is beyond 64 bits"});
+  bad(with("run", "steps = 9_223_372_036_854_775_808"), {"beyond 64 bits"});
+  bad(with("run", "steps = -9223372036854775809"), {"beyond 64 bits"});
+  bad(minimal_scene, {"beyond 64 bits"}, {"run.seed=18446744073709551616"});
+  // The extremes themselves are integers toml11 reads exactly (then checked by their keys).
+  const auto s = parse_scene(with("run", "seed = 9223372036854775807"), "run/ok.toml");
+  EXPECT_EQ(s.run.seed, 9223372036854775807ULL);
+}
+
+TEST(SceneHostile, ArraysParseInLinearTime) {
+  std::string big = "[run]\nengine = \"mpcd\"\ndimensions = 2\nsteps = 1\n[domain]\nsize = [";
+  for (int i = 0; i < 100000; ++i)
+    big += "1.0, ";
+  big += "1.0]\n";
+  const auto start = std::chrono::steady_clock::now();
+  bad(big, {"domain.size"});
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_LT(seconds, 5.0) << "1e5 array entries took " << seconds << " s";
+}
+
+TEST(SceneHostile, NonRegularFilesAreRefused) {
+  const auto dir = std::filesystem::temp_directory_path() / "narrows_test_fifo";
+  std::filesystem::create_directories(dir);
+  const auto fifo = dir / "scene.toml";
+  std::filesystem::remove(fifo);
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  try {
+    load_scene(fifo.string());
+    ADD_FAILURE() << "a FIFO was read";
+  } catch (const Error &e) {
+    EXPECT_EQ(e.code(), ExitCode::bad_input);
+    EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(SceneHostile, ViscosityNeedsThreeRowsAndLgcaAParticle) {
+  bad(good_scene + "[walls]\n", {"domain.size[1] = 2", "allowed: domain.size[1] >= 3"},
+      {"domain.size=[4.0, 2.0]", "output.observables=[\"viscosity\"]"});
+  const std::string lgca = "[run]\nengine = \"lgca\"\nsteps = 10\n[lattice]\nmodel = \"fhp-i\"\n"
+                           "size = [256, 128]\ndensity = 1e-9\n";
+  bad(lgca, {"lattice.density = 1e-09 gives 0.000197 particles expected on 196608 links",
+             "at least one"});
+  bad("[run]\nengine = \"lgca\"\nsteps = 10\n[lattice]\nmodel = \"dhumieres-1d\"\nsize = [2]\n"
+      "density = 0.5\n",
+      {"lattice.size", "from 3 to"});
+}
+
+TEST(SceneHostile, RunStepsFitTheCheckpointName) {
+  bad(with("run", "steps = 10000000000"), {"run.steps = 10000000000", "from 0 to 9999999999"});
+  EXPECT_EQ(parse_scene(with("run", "steps = 9999999999"), "run/ok.toml").run.steps, 9999999999);
 }

@@ -73,6 +73,7 @@ public:
   std::size_t migrated_last_step() const { return strays_.index.size(); }
 
 private:
+  void step_stages(); // the step itself; advance() adds the step and rank to its errors
   void stream(mpcd::Fluid &fluid, double t) const;
   void bin_into_cells();
   void collide(std::uint64_t step);

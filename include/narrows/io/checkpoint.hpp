@@ -35,6 +35,8 @@
 namespace narrows::io {
 
 inline constexpr std::int64_t checkpoint_format_version = 1;
+// The largest step a checkpoint name holds (10 digits).
+inline constexpr std::int64_t max_checkpoint_step = 9999999999;
 
 // What a checkpoint stores besides the particles.
 struct CheckpointInfo {
@@ -95,6 +97,11 @@ std::vector<double> read_checkpoint_array(const std::string &path, const std::st
 // engines). Same refusals as read_checkpoint_info for the file and the parameters.
 CheckpointInfo read_checkpoint_header(const std::string &path, MPI_Comm comm);
 
+// The box edges stored with a species (/particles/<species>/box/edges, checksum verified;
+// collective): input_error if missing, of another shape, damaged or not finite and > 0.
+std::array<double, 3> read_box_edges(const std::string &path, const std::string &species, int dim,
+                                     MPI_Comm comm);
+
 // Rows of a species in the file (its first field).
 std::uint64_t species_rows(const std::string &path, const SpeciesFields &species, MPI_Comm comm);
 
@@ -107,6 +114,13 @@ void read_species_rows(const std::string &path, SpeciesFields &species, std::uin
 // are resized. The species must exist in the file (it was checked by read_checkpoint_info for
 // the fluid).
 void read_species(const std::string &path, SpeciesFields &species, MPI_Comm comm);
+
+// Refuses (collectively, one line naming the dataset and the first bad row) a species just
+// read by read_species whose state a run cannot continue: an id outside [0, total) or twice,
+// a position outside the box edges of info, a non-finite velocity. Fields: position and
+// velocity as the first two vector fields, id as the first word field.
+void validate_particles(const std::string &path, const SpeciesFields &fields,
+                        const CheckpointInfo &info, std::uint64_t total, MPI_Comm comm);
 
 // ---- files of a run directory ------------------------------------------------------------
 

@@ -68,8 +68,16 @@ std::array<double, 3> grid_shift(std::uint64_t seed, std::uint64_t step, int dim
 // wrapped. x lies in [0, L) and s in [-1/2, 1/2), so x - s lies in (-1/2, L + 1/2) and one
 // wrap each way suffices. (collision_at.cpp's in_cell uses the same floor(x - s), so cell and
 // offset always agree.)
-inline int cell_coordinate(double x, double s, int n) {
-  int i = static_cast<int>(std::floor(x - s));
+// A coordinate no cell can hold (not finite, or beyond the box it should have been wrapped
+// into): a broken invariant naming the particle (species may be null), never an index.
+[[noreturn]] void no_cell(double x, int axis, double length, const char *species, std::uint64_t id);
+
+inline int cell_coordinate(double x, double s, int n, int axis = 0, const char *species = nullptr,
+                           std::uint64_t id = 0) {
+  const double f = std::floor(x - s);
+  if (!(f >= -n && f < 2.0 * n)) [[unlikely]]
+    no_cell(x, axis, n, species, id);
+  int i = static_cast<int>(f);
   i += (i < 0) ? n : 0;
   i -= (i >= n) ? n : 0;
   return i;
@@ -77,10 +85,26 @@ inline int cell_coordinate(double x, double s, int n) {
 
 // Row of position y in a grid with walls (y in [0, L_y], shift s in [0, 1)): floor(y - s) + 1,
 // clamped so that a particle exactly on the upper wall with s = 0 stays in the last row.
-inline int wall_row(double y, double s, int rows) {
-  int j = static_cast<int>(std::floor(y - s)) + 1;
+inline int wall_row(double y, double s, int rows, const char *species = nullptr,
+                    std::uint64_t id = 0) {
+  const double f = std::floor(y - s);
+  if (!(f >= -rows && f < 2.0 * rows)) [[unlikely]]
+    no_cell(y, 1, rows - 1, species, id);
+  int j = static_cast<int>(f) + 1;
   j = j < 0 ? 0 : j;
   return j < rows ? j : rows - 1;
+}
+
+// Cell along one axis of a cell list of n cells of width 1/inv over [0, n/inv]: clamped into
+// [0, n) (a position on the upper edge, or rounded just below zero, stays in the edge cell);
+// a coordinate more than a box length outside, or not finite, is refused by no_cell.
+inline int clamped_cell(double x, double inv, int n, const char *species, std::uint64_t id,
+                        int axis) {
+  const double f = x * inv;
+  if (!(f > -n && f < 2.0 * n)) [[unlikely]]
+    no_cell(x, axis, n / inv, species, id);
+  const int i = static_cast<int>(f);
+  return i < 0 ? 0 : (i < n ? i : n - 1);
 }
 
 // Particles found outside this rank's slab while binning: index and global x column.

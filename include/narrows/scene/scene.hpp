@@ -140,6 +140,9 @@ struct Kmc {
   std::vector<double> fugacity;        // preset: z, or [z_left, z_right] for a shock
   bool boundary_from_fugacity = false; // preset: left/right rates made to fit the fugacities
   double boundary_coupling = 1.0;      // base rate of those generated boundary rates
+  // Refuse a scene whose expected tries per replica (slots x largest total rate x (warmup +
+  // time)) exceed this: such a run would not end in a useful time. Raise it to run anyway.
+  double max_tries = 1e12;
 };
 
 // Engine "lgca": FHP lattice gases on the triangular lattice and the 1D d'Humieres model (seed
