@@ -1,8 +1,8 @@
 // Colloid-colloid 48-24 forces (seed 000 eq 3.43) from a cell list of the colloids.
 #include "narrows/colloids/force_terms.hpp"
-#include "narrows/mpcd/cell_grid.hpp"
 #include "narrows/colloids/pair_geometry.hpp"
 #include "narrows/colloids/potentials.hpp"
+#include "narrows/mpcd/cell_grid.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,8 +1,8 @@
 // Colloid-fluid WCA forces (seed 000 eq 3.42) from a cell list of the fluid.
 #include "narrows/colloids/force_terms.hpp"
-#include "narrows/mpcd/cell_grid.hpp"
 #include "narrows/colloids/pair_geometry.hpp"
 #include "narrows/colloids/potentials.hpp"
+#include "narrows/mpcd/cell_grid.hpp"
 
 #include <algorithm>
 #include <cmath>

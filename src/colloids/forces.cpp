@@ -38,8 +38,8 @@ void build_fluid_cells(CellList &cl, const mpcd::Fluid &f, int dim) {
   for (std::size_t i = 0; i < n; ++i) {
     std::size_t cell = 0;
     for (int k = dim - 1; k >= 0; --k) {
-      const int ck = mpcd::clamped_cell(f.x[k][i], cl.inv_cell[k], cl.cells[k], "fluid particle",
-                                        f.id[i], k);
+      const int ck =
+          mpcd::clamped_cell(f.x[k][i], cl.inv_cell[k], cl.cells[k], "fluid particle", f.id[i], k);
       cell = cell * static_cast<std::size_t>(cl.cells[k]) + static_cast<std::size_t>(ck);
     }
     cl.next[i] = cl.head[cell];

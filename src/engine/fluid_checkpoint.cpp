@@ -5,7 +5,6 @@
 
 namespace narrows::engine {
 
-
 io::SpeciesFields fluid_fields(mpcd::Fluid &f) {
   io::SpeciesFields s;
   s.name = "fluid";

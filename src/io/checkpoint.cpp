@@ -977,8 +977,8 @@ void validate_particles(const std::string &path, const SpeciesFields &fields,
   for (std::size_t i = 0; i < id.size() && bad == no_row; ++i) {
     const std::string row = " row " + std::to_string(first_row + i);
     if (id[i] >= total) {
-      line = path + ": " + ids + row + " holds id " + std::to_string(id[i]) +
-             "; allowed: 0 to " + std::to_string(total - 1);
+      line = path + ": " + ids + row + " holds id " + std::to_string(id[i]) + "; allowed: 0 to " +
+             std::to_string(total - 1);
     }
     for (int k = 0; k < dim && line.empty(); ++k) {
       const double x = (*xs[k])[i], v = (*vs[k])[i], L = info.box[k];

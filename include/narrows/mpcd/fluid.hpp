@@ -50,16 +50,12 @@ struct Exclusion {
   std::function<bool(const std::array<double, 3> &)> inside;
 };
 
-// Creates this rank's part of a fluid of `total` particles filling the box: the particles of
-// the cells in columns [first_column, first_column + columns), so none has to move to another
-// rank. The particles are shared out over the cells taken in a fixed global order (column by
-// column along x, then z, then y) in proportion to each cell's free space W_g (the number of
-// 64 sample points outside the obstacles; 64 for every cell without them): cell g gets the ids
-// [total * S_g / S, total * S_(g+1) / S), S_g the sum of W over the cells before g (an
-// MPI_Exscan of integers). Positions are uniform in the cell (outside the obstacles),
-// velocities Maxwell-Boltzmann at kT (mass 1), both drawn from (seed, id); then the mean
-// velocity of all particles (summed exactly) is removed, so the total momentum is zero. The
-// state does not depend on the number of ranks.
+// Creates this rank's part of a fluid of `total` particles (ids 0..total-1) filling the box
+// outside the obstacles: the particles whose cell column lies in [first_column, first_column +
+// columns), so none has to move to another rank. Positions are uniform (redrawn inside an
+// obstacle), velocities Maxwell-Boltzmann at kT (mass 1), both drawn from (seed, id), so the
+// state does not depend on the number of ranks; then the mean velocity of all particles
+// (summed exactly) is removed, so the total momentum is zero. Only exclusion->inside is used.
 void init_fluid(Fluid &fluid, const Box &box, double kT, std::uint64_t seed, std::uint64_t total,
                 int first_column, int columns, MPI_Comm comm, const Exclusion *exclusion = nullptr);
 
