@@ -214,7 +214,8 @@ with h5py.File(sys.argv[2], "r+") as f:
     ids[len(ids) - 1] = 10**9  # the last row: read by the last rank
 PY
 for n in 2 3; do
-  refused "out-of-range id on $n ranks" "bad-id.h5: /particles/fluid/id/value holds id 1000000000" \
+  refused "out-of-range id on $n ranks" \
+    "bad-id.h5: damaged checkpoint: /particles/fluid/id/value does not match its checksum" \
     timeout 120 "${mpi[@]}" -n "$n" "$narrows" run "$tmp/mpcd.toml" --set walls.slip=true \
     --set run.steps=8 --restart "$tmp/bad-id.h5" --out "$tmp/b$n"
   check "out-of-range id on $n ranks: nothing written" '[ ! -e "$tmp/b$n" ]'

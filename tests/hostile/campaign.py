@@ -278,7 +278,10 @@ def main():
         def restart(scene, ckpt, label, must_refuse):
             out = tempfile.mkdtemp(prefix="restart-", dir=tmp)
             src_scene = short_scene[scene]
-            extra = ["--set", "run.steps=6"] if not scene.startswith("kmc") else []
+            # one step (kmc: two replicas) beyond the checkpoint, else "nothing to run" answers
+            # before the data are read
+            extra = ["--set", "run.steps=6"] if not scene.startswith("kmc") else \
+                ["--set", "kmc.replicas=4"]
             outcome, code, seconds, tail = run([narrows, "run", src_scene, "--restart", ckpt,
                                                 "--out", out] + extra, budget)
             shutil.rmtree(out, ignore_errors=True)
