@@ -104,8 +104,8 @@ MpcdSimulation::MpcdSimulation(const scene::Scene &scene, MPI_Comm comm, bool al
     md_.emplace(plan_.md, plan_.forces, box_);
   if (allocate) {
     grid_ = mpcd::CellGrid(box_, slabs_.first_column(), slabs_.local_columns());
-    // Each rank creates the particles of its own cells (ids by a global order of the cells),
-    // so nothing migrates at the start and the state is the same on any number of ranks.
+    // Each rank keeps the particles (drawn per id) of its own cells, so nothing migrates at
+    // the start and the state is the same on any number of ranks.
     const std::uint64_t total = particle_count(scene);
     if (scene.colloids) {
       colloids_ =

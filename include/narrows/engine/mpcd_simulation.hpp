@@ -31,8 +31,8 @@ struct Stage {
 class MpcdSimulation {
 public:
   // Builds the slabs, the plan and, if `allocate`, this rank's cell grid and its part of the
-  // initial state: the particles of its own cells (mpcd::init_fluid: ids 0..N-1 by a global
-  // order of the cells, the same state on any number of ranks, zero total momentum) and all
+  // initial state: the particles of its own cells (mpcd::init_fluid: ids 0..N-1, each drawn
+  // from (seed, id), the same state on any number of ranks, zero total momentum) and all
   // colloids. Without it only the plan exists (for `narrows info` and `check`). Throws
   // bad_input if the scene cannot run on the ranks of comm (check_ranks).
   MpcdSimulation(const scene::Scene &scene, MPI_Comm comm, bool allocate = true);
