@@ -9,9 +9,10 @@
 namespace narrows::run {
 
 // Runs `work` on every rank of comm, then agrees: if it threw on any rank, every rank throws
-// the error of the lowest such rank (an Error with ExitCode::ok too: a run that ends early) (narrows::Error with its code; other exceptions become
-// exit code 1, "internal error: ..."). `work` must not itself end in a collective call that
-// a failing rank would skip: throw after the last collective call, or wrap smaller steps.
+// the error of the lowest such rank (an Error with ExitCode::ok too: a run that ends early)
+// (narrows::Error with its code; other exceptions become exit code 1, "internal error: ...").
+// `work` must not itself end in a collective call that a failing rank would skip: throw after the
+// last collective call, or wrap smaller steps.
 void collectively(MPI_Comm comm, const std::function<void()> &work);
 
 } // namespace narrows::run

@@ -15,11 +15,11 @@ namespace narrows::scene {
 // comments, layout, key order or number spelling have the same canonical text.
 std::string canonical_text(const std::string &toml_text, const std::string &file);
 
-// The first key (run.engine, run.dimensions, then in sorted order) whose value differs between the scene given now and the
-// checkpoint's stored scene (canonical or original text, either works), skipping run.steps,
-// output.* and the keys listed in `may_change` (exact keys, e.g. "kmc.replicas"). A missing
-// value is "(not set)"; a whole top-level table present on one side only is named as the
-// table ("[walls]"). Throws input_error if the stored text does not parse.
+// The first key (run.engine, run.dimensions, then in sorted order) whose value differs between the
+// scene given now and the checkpoint's stored scene (canonical or original text, either works),
+// skipping run.steps, output.* and the keys listed in `may_change` (exact keys, e.g.
+// "kmc.replicas"). A missing value is "(not set)"; a whole top-level table present on one side only
+// is named as the table ("[walls]"). Throws input_error if the stored text does not parse.
 struct SceneDifference {
   std::string key, given, stored;
 };
