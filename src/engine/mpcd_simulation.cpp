@@ -112,7 +112,6 @@ MpcdSimulation::MpcdSimulation(const scene::Scene &scene, MPI_Comm comm, bool al
           colloids::place_colloids(*scene.colloids, box_, scene.fluid.density, scene.run.seed);
       const colloids::ColloidCover cover(colloids_, box_);
       const mpcd::Exclusion exclusion{
-          [&](std::size_t cell) { return cover.touches(cell); },
           [&](const std::array<double, 3> &p) { return cover.inside(p); }};
       mpcd::init_fluid(fluid_, box_, scene.fluid.kT, scene.run.seed, total, slabs_.first_column(),
                        slabs_.local_columns(), comm, &exclusion);

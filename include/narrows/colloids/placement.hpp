@@ -47,8 +47,6 @@ bool inside_any(const Colloids &c, const mpcd::Box &box, const std::array<double
 class ColloidCover {
 public:
   ColloidCover(const Colloids &c, const mpcd::Box &box);
-  // Whether a colloid may overlap the cell (global index (z * cells_y + y) * cells_x + x).
-  bool touches(std::size_t cell) const { return offset_[cell + 1] > offset_[cell]; }
   // The same as inside_any(c, box, p).
   bool inside(const std::array<double, 3> &p) const;
 

@@ -42,11 +42,8 @@ struct Fluid {
 // Number of particles of a box filled at a mean density: round(density * volume).
 std::uint64_t fluid_particle_count(const Box &box, double density);
 
-// Obstacles the fluid is kept out of (the colloids): `touches(cell)` says whether one may
-// overlap the cell (global index (z * cells_y + y) * cells_x + x), `inside(p)` whether p lies in
-// one.
+// Obstacles the fluid is kept out of (the colloids): `inside(p)` says whether p lies in one.
 struct Exclusion {
-  std::function<bool(std::size_t cell)> touches;
   std::function<bool(const std::array<double, 3> &)> inside;
 };
 
@@ -55,7 +52,7 @@ struct Exclusion {
 // columns), so none has to move to another rank. Positions are uniform (redrawn inside an
 // obstacle), velocities Maxwell-Boltzmann at kT (mass 1), both drawn from (seed, id), so the
 // state does not depend on the number of ranks; then the mean velocity of all particles
-// (summed exactly) is removed, so the total momentum is zero. Only exclusion->inside is used.
+// (summed exactly) is removed, so the total momentum is zero.
 void init_fluid(Fluid &fluid, const Box &box, double kT, std::uint64_t seed, std::uint64_t total,
                 int first_column, int columns, MPI_Comm comm, const Exclusion *exclusion = nullptr);
 
