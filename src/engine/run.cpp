@@ -77,8 +77,8 @@ public:
         writer_->append_vector("settling_velocity", step, t, std::span(v.data(), sim_.box().dim));
       settling_sum_ = SettlingSum{};
     }
-    if (positions_ && writer_) {
-      const auto &c = sim_.colloids();
+    if (positions_) {
+      const colloids::Colloids c = sim_.gather_colloids(); // collective
       const int d = c.dim;
       std::vector<double> ids(c.size()), x(c.size() * d);
       for (std::size_t a = 0; a < c.size(); ++a) {
@@ -86,7 +86,8 @@ public:
         for (int k = 0; k < d; ++k)
           x[a * d + k] = c.x[k][a];
       }
-      writer_->append_profile("colloid_positions", step, t, ids, x, d);
+      if (writer_)
+        writer_->append_profile("colloid_positions", step, t, ids, x, d);
     }
     if (momentum_) {
       const auto p = total_momentum(sim_);
@@ -179,7 +180,11 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
     writer = std::make_unique<io::ObservablesWriter>(shell.output_file("observables"), scene.text);
   Observer observer(sim, std::move(writer));
   std::optional<TrajectoryWriter> trajectory;
-  const colloids::Colloids *colloids = scene.colloids ? &sim.colloids() : nullptr;
+  // The trajectory and checkpoints hold every colloid: gathered from their owners when written.
+  colloids::Colloids all_colloids;
+  const colloids::Colloids *colloids = scene.colloids ? &all_colloids : nullptr;
+  if (colloids)
+    all_colloids = sim.gather_colloids();
   if (scene.output.trajectory_every > 0) {
     const std::string file = shell.output_file("trajectory");
     trajectory.emplace(file, scene.text, sim.box(), particle_count(scene),
@@ -205,8 +210,10 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
       info.walls_y = sim.box().walls_y;
       std::vector<io::SpeciesFields> species{fluid_fields(sim.fluid())};
       colloids::Colloids none;
-      if (scene.colloids)
-        species.push_back(io::colloid_fields(sim.colloids(), none, comm));
+      if (colloids) {
+        all_colloids = sim.gather_colloids();
+        species.push_back(io::colloid_fields(all_colloids, none, comm));
+      }
       const double bytes = io::write_checkpoint(path, info, species, comm);
       const double s = watch.seconds();
       char text[200];
@@ -225,8 +232,11 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
       invariants.check(sim);
       observer.sample();
     }
-    if (trajectory && shell.trajectory_due(sim.step()))
+    if (trajectory && shell.trajectory_due(sim.step())) {
+      if (colloids)
+        all_colloids = sim.gather_colloids();
       trajectory->write_frame(sim.step(), sim.time(), sim.fluid(), colloids);
+    }
     if (shell.stop_requested())
       break;
     if (shell.checkpoint_due(sim.step()))

@@ -37,7 +37,8 @@ namespace {
 // Alltoallv of rows of `row` words: counts are in rows. Returns received rows in recv.
 void exchange_rows(MPI_Comm comm, int ranks, std::size_t row, const std::vector<int> &send_rows,
                    std::vector<int> &recv_rows, std::vector<int> &sdispl, std::vector<int> &rdispl,
-                   const std::vector<std::uint64_t> &send, std::vector<std::uint64_t> &recv) {
+                   const std::vector<std::uint64_t> &send, std::vector<std::uint64_t> &recv,
+                   std::uint64_t &bytes_sent) {
   recv_rows.assign(ranks, 0);
   MPI_Alltoall(send_rows.data(), 1, MPI_INT, recv_rows.data(), 1, MPI_INT, comm);
   std::vector<int> scount(ranks), rcount(ranks);
@@ -55,6 +56,9 @@ void exchange_rows(MPI_Comm comm, int ranks, std::size_t row, const std::vector<
   if (stotal > std::numeric_limits<int>::max() || rtotal > std::numeric_limits<int>::max())
     throw Error(ExitCode::other, "exchange of more than 2^31 words in one step");
   recv.resize(static_cast<std::size_t>(rtotal));
+  int me = 0;
+  MPI_Comm_rank(comm, &me);
+  bytes_sent += 8 * static_cast<std::uint64_t>(stotal - scount[me]);
   MPI_Alltoallv(send.data(), scount.data(), sdispl.data(), MPI_UINT64_T, recv.data(), rcount.data(),
                 rdispl.data(), MPI_UINT64_T, comm);
 }
@@ -125,7 +129,7 @@ void Exchange::migrate(const SoaView &s, const std::vector<std::size_t> &leavers
     }
   }
   exchange_rows(comm_, ranks_, F, send_counts_, recv_counts_, send_displs_, recv_displs_, send_,
-                recv_);
+                recv_, bytes_sent_);
   const std::size_t arrived = recv_.size() / (F ? F : 1);
   s.resize(n + arrived);
   for (std::size_t j = 0; j < arrived; ++j) {
@@ -184,7 +188,7 @@ Halo Exchange::halo(const SoaView &s, int x_field, double lo, double hi, double 
     row[f] = p.i;
   }
   exchange_rows(comm_, ranks_, row_len, send_counts_, recv_counts_, send_displs_, recv_displs_,
-                send_, recv_);
+                send_, recv_, bytes_sent_);
   Halo h;
   const std::size_t g = recv_.size() / row_len;
   h.reals.assign(s.reals.size(), std::vector<double>(g));
@@ -206,6 +210,66 @@ Halo Exchange::halo(const SoaView &s, int x_field, double lo, double hi, double 
   return h;
 }
 
+Halo Exchange::copy(const SoaView &s, const CopyList &list) {
+  if (!s.halfwords.empty())
+    throw Error(ExitCode::other, "copies of 4-byte fields are not supported");
+  const std::size_t F = s.fields(), row_len = F + 1; // + source index
+  std::size_t total = 0;
+  auto next = plan_rows(
+      ranks_, list.dest.size(), [&](std::size_t j) { return list.dest[j]; }, send_counts_, total);
+  send_.resize(total * row_len);
+  for (std::size_t j = 0; j < list.index.size(); ++j) {
+    const std::size_t i = list.index[j];
+    std::uint64_t *row = &send_[next[list.dest[j]]++ * row_len];
+    std::size_t f = 0;
+    for (auto *a : s.reals)
+      row[f++] = std::bit_cast<std::uint64_t>((*a)[i]);
+    for (auto *a : s.words)
+      row[f++] = (*a)[i];
+    row[f] = i;
+  }
+  exchange_rows(comm_, ranks_, row_len, send_counts_, recv_counts_, send_displs_, recv_displs_,
+                send_, recv_, bytes_sent_);
+  const std::size_t n = s.size(), g = recv_.size() / row_len;
+  s.resize(n + g);
+  Halo h;
+  h.source_rank.resize(g);
+  h.source_index.resize(g);
+  std::size_t j = 0;
+  for (int r = 0; r < ranks_; ++r)
+    for (int q = 0; q < recv_counts_[r]; ++q, ++j) {
+      const std::uint64_t *row = &recv_[j * row_len];
+      std::size_t f = 0;
+      for (auto *a : s.reals)
+        (*a)[n + j] = std::bit_cast<double>(row[f++]);
+      for (auto *a : s.words)
+        (*a)[n + j] = row[f++];
+      h.source_rank[j] = r;
+      h.source_index[j] = row[f];
+    }
+  return h;
+}
+
+void Exchange::refresh(const std::vector<std::vector<double> *> &fields, const CopyList &list,
+                       std::size_t first_ghost) {
+  const std::size_t F = fields.size();
+  std::size_t total = 0;
+  auto next = plan_rows(
+      ranks_, list.dest.size(), [&](std::size_t j) { return list.dest[j]; }, send_counts_, total);
+  send_.resize(total * F);
+  for (std::size_t j = 0; j < list.index.size(); ++j) {
+    std::uint64_t *row = &send_[next[list.dest[j]]++ * F];
+    for (std::size_t f = 0; f < F; ++f)
+      row[f] = std::bit_cast<std::uint64_t>((*fields[f])[list.index[j]]);
+  }
+  exchange_rows(comm_, ranks_, F, send_counts_, recv_counts_, send_displs_, recv_displs_, send_,
+                recv_, bytes_sent_);
+  const std::size_t g = F ? recv_.size() / F : 0;
+  for (std::size_t j = 0; j < g; ++j)
+    for (std::size_t f = 0; f < F; ++f)
+      (*fields[f])[first_ghost + j] = std::bit_cast<double>(recv_[j * F + f]);
+}
+
 void Exchange::reverse(const Halo &h, const std::vector<std::int64_t> &per_ghost, int k,
                        std::vector<std::int64_t> &per_owner) {
   const std::size_t row_len = static_cast<std::size_t>(k) + 1;
@@ -220,7 +284,7 @@ void Exchange::reverse(const Halo &h, const std::vector<std::int64_t> &per_ghost
       row[1 + j] = static_cast<std::uint64_t>(per_ghost[g * k + j]);
   }
   exchange_rows(comm_, ranks_, row_len, send_counts_, recv_counts_, send_displs_, recv_displs_,
-                send_, recv_);
+                send_, recv_, bytes_sent_);
   for (std::size_t j = 0; j < recv_.size() / row_len; ++j) {
     const std::uint64_t *row = &recv_[j * row_len];
     for (int q = 0; q < k; ++q)

@@ -31,6 +31,17 @@ struct Halo {
   std::size_t size() const { return source_rank.size(); }
 };
 
+// Rows to copy to other ranks: row index[j] goes to rank dest[j] (a row may be listed for
+// several ranks, never twice for the same one).
+struct CopyList {
+  std::vector<std::size_t> index;
+  std::vector<int> dest;
+  void clear() {
+    index.clear();
+    dest.clear();
+  }
+};
+
 class Exchange {
 public:
   explicit Exchange(MPI_Comm comm);
@@ -51,6 +62,19 @@ public:
   Halo halo(const SoaView &species, int x_field, double lo, double hi, double L, double width,
             int left, int right, double min_slab_width);
 
+  // Ghost copies of the rows `list` names, appended to the arrays of `species` themselves
+  // (rows size() .. size() + ghosts - 1, ordered by source rank, then by the sender's order).
+  // Returns where each came from, for refresh() and reverse().
+  Halo copy(const SoaView &species, const CopyList &list);
+
+  // Sends the current values of `fields` of the rows of `list` again, to the same ghost rows
+  // (from `first_ghost` on, in the order copy() made): the same list and fields on every rank.
+  void refresh(const std::vector<std::vector<double> *> &fields, const CopyList &list,
+               std::size_t first_ghost);
+
+  // Bytes this rank has sent through MPI_Alltoallv since construction (a figure for benchmarks).
+  std::uint64_t bytes_sent() const { return bytes_sent_; }
+
   // For each ghost of `halo`, `per_ghost[g * k + j]` (k values per ghost) is added to
   // `per_owner[i * k + j]` of its owner particle i. Exact and order-independent.
   void reverse(const Halo &halo, const std::vector<std::int64_t> &per_ghost, int k,
@@ -66,6 +90,7 @@ private:
   std::vector<std::uint64_t> send_, recv_;
   std::vector<std::size_t> leavers_;
   std::vector<int> leaver_dest_;
+  std::uint64_t bytes_sent_ = 0;
 };
 
 } // namespace narrows::parallel
