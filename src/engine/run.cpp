@@ -6,6 +6,7 @@
 #include "narrows/colloids/placement.hpp"
 #include "narrows/core/error.hpp"
 #include "narrows/core/timer.hpp"
+#include "narrows/engine/colloid_checkpoint.hpp"
 #include "narrows/engine/fluid_checkpoint.hpp"
 #include "narrows/engine/info.hpp"
 #include "narrows/engine/invariants.hpp"
@@ -13,7 +14,6 @@
 #include "narrows/engine/totals.hpp"
 #include "narrows/engine/trajectory_writer.hpp"
 #include "narrows/io/checkpoint.hpp"
-#include "narrows/io/colloid_checkpoint.hpp"
 #include "narrows/io/observables_writer.hpp"
 #include "narrows/parallel/slabs.hpp"
 #include "narrows/run/collective.hpp"
@@ -164,7 +164,7 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
     });
     if (scene.colloids)
       run::collectively(comm, [&] {
-        sim.restore_colloids(io::read_colloids(file, *scene.colloids, scene.run.dimensions,
+        sim.restore_colloids(read_colloids(file, *scene.colloids, scene.run.dimensions,
                                                scene.fluid.density, scene.run.seed, comm));
       });
   }
@@ -212,7 +212,7 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
       colloids::Colloids none;
       if (colloids) {
         all_colloids = sim.gather_colloids();
-        species.push_back(io::colloid_fields(all_colloids, none, comm));
+        species.push_back(colloid_fields(all_colloids, none, comm));
       }
       const double bytes = io::write_checkpoint(path, info, species, comm);
       const double s = watch.seconds();
@@ -245,6 +245,17 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
   }
   const double seconds = shell.loop_seconds();
   const auto steps = static_cast<std::uint64_t>(sim.step() - first);
+  if (scene.colloids && steps > 0) { // the cost of colloids owned by slabs, for cluster users
+    const double mine = static_cast<double>(sim.colloid_bytes_sent());
+    double largest = 0.0;
+    MPI_Reduce(&mine, &largest, 1, MPI_DOUBLE, MPI_MAX, 0, comm);
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "colloid messages: %.4g bytes per step from the busiest rank (ghosts, their "
+                  "forces, migration)",
+                  largest / static_cast<double>(steps));
+    log.line(text);
+  }
   const std::string last = save_checkpoint();
   shell.finish("step " + std::to_string(sim.step()), last);
   shell.loop_time(seconds, steps, "steps", std::to_string(n_particles) + " particles",
