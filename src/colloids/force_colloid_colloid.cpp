@@ -27,7 +27,7 @@ double add_colloid_colloid_4824(CellList &cl, std::vector<int> &cell_of,
   const std::size_t nc = c.size();
   const auto &L = box.length;
   const auto &cells = cl.cells;
-  std::fill(cl.head.begin(), cl.head.end(), -1);
+  cl.clear();
   cl.next.resize(nc);
   cell_of.resize(nc * D);
   for (std::size_t a = 0; a < nc; ++a) {
@@ -38,8 +38,7 @@ double add_colloid_colloid_4824(CellList &cl, std::vector<int> &cell_of,
       cell_of[a * D + k] = ck;
       cell = cell * static_cast<std::size_t>(n) + static_cast<std::size_t>(ck);
     }
-    cl.next[a] = cl.head[cell];
-    cl.head[cell] = static_cast<std::int32_t>(a);
+    cl.push(cell, static_cast<std::int32_t>(a));
   }
   double energy = 0.0;
   for (std::size_t a = 0; a < nc; ++a) {

@@ -19,6 +19,7 @@ void CellList::size_for(const mpcd::Box &box, double cut) {
     n *= static_cast<std::size_t>(cells[k]);
   }
   head.assign(n, -1);
+  filled.clear();
 }
 
 void FluidForces::clear(int dim) {
@@ -34,7 +35,7 @@ namespace {
 
 void build_fluid_cells(CellList &cl, const mpcd::Fluid &f, int dim) {
   const std::size_t n = f.size();
-  std::fill(cl.head.begin(), cl.head.end(), -1);
+  cl.clear();
   cl.next.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     std::size_t cell = 0;
@@ -43,8 +44,7 @@ void build_fluid_cells(CellList &cl, const mpcd::Fluid &f, int dim) {
           mpcd::clamped_cell(f.x[k][i], cl.inv_cell[k], cl.cells[k], "fluid particle", f.id[i], k);
       cell = cell * static_cast<std::size_t>(cl.cells[k]) + static_cast<std::size_t>(ck);
     }
-    cl.next[i] = cl.head[cell];
-    cl.head[cell] = static_cast<std::int32_t>(i);
+    cl.push(cell, static_cast<std::int32_t>(i));
   }
 }
 

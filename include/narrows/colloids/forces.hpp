@@ -42,12 +42,26 @@ struct PotentialEnergy {
   double total() const { return colloid_fluid + colloid_colloid + wall; }
 };
 
-// A linked cell list over the whole box, cells at least `cut` wide along each axis.
+// A linked cell list over the whole box, cells at least `cut` wide along each axis. A rank's
+// particles fill only the cells near its slab: clear() empties just the cells filled since the
+// last clear, so a rebuild costs O(particles), not O(cells of the box).
 struct CellList {
   std::array<int, 3> cells{1, 1, 1};
   std::array<double, 3> inv_cell{1.0, 1.0, 1.0};
   std::vector<std::int32_t> head, next;
+  std::vector<std::size_t> filled; // cells whose head is set
   void size_for(const mpcd::Box &box, double cut);
+  void clear() {
+    for (const std::size_t c : filled)
+      head[c] = -1;
+    filled.clear();
+  }
+  void push(std::size_t cell, std::int32_t i) {
+    if (head[cell] < 0)
+      filled.push_back(cell);
+    next[static_cast<std::size_t>(i)] = head[cell];
+    head[cell] = i;
+  }
 };
 
 // Forces of the colloids on local fluid particles: [i * dim + k] in fixed point, set only for
