@@ -65,8 +65,8 @@ void ForceField::size_cells(double r_max) {
 }
 
 template <int D, bool WallsY>
-PotentialEnergy ForceField::compute(const mpcd::Fluid &f, const Colloids &c,
-                                    ColloidGhosts *ghosts, MPI_Comm comm, bool want_energy) {
+PotentialEnergy ForceField::compute(const mpcd::Fluid &f, const Colloids &c, ColloidGhosts *ghosts,
+                                    MPI_Comm comm, bool want_energy) {
   const std::size_t n = f.size(), nc = c.size();
   const std::size_t owned = ghosts ? ghosts->owned() : nc;
   // Forces of the previous call are cleared where they were set; arrays grow with the fluid.

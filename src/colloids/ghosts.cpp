@@ -49,14 +49,13 @@ void ColloidGhosts::add(Colloids &c, std::vector<double> *margin, double own_ext
   const double r_max = largest_radius(c), L = box_.length[0];
   list_.clear();
   for (std::size_t a = 0; a < owned_; ++a) {
-    const double range =
-        repulsive_cutoff(24, c.radius[a] + r_max) + (margin ? (*margin)[a] : 0.0);
+    const double range = repulsive_cutoff(24, c.radius[a] + r_max) + (margin ? (*margin)[a] : 0.0);
     for (int r = 0; r < ranks; ++r) {
       if (r == me)
         continue;
       const double lo = slabs_.first_column_of(r) - extent_[r];
-      const double hi = (r + 1 < ranks ? slabs_.first_column_of(r + 1) : slabs_.columns()) +
-                        extent_[r];
+      const double hi =
+          (r + 1 < ranks ? slabs_.first_column_of(r + 1) : slabs_.columns()) + extent_[r];
       if (near_interval(c.x[0][a], lo, hi, range, L)) {
         list_.index.push_back(a);
         list_.dest.push_back(r);

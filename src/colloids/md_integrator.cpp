@@ -85,7 +85,8 @@ void MdIntegrator::substeps(Colloids &colloids, const FluidStream &stream) {
   const double tau = params_.tau;
   const std::size_t owned = ghosts_.owned();
   const MPI_Comm comm = slabs_.comm();
-  forces_.compute(near_, colloids, &ghosts_, comm); // the same colloid forces: every pair is in near_
+  forces_.compute(near_, colloids, &ghosts_,
+                  comm); // the same colloid forces: every pair is in near_
   for (int s = 0; s < params_.substeps; ++s) {
     kick(near_, colloids);
     stream(near_, tau);

@@ -165,7 +165,7 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
     if (scene.colloids)
       run::collectively(comm, [&] {
         sim.restore_colloids(read_colloids(file, *scene.colloids, scene.run.dimensions,
-                                               scene.fluid.density, scene.run.seed, comm));
+                                           scene.fluid.density, scene.run.seed, comm));
       });
   }
   run::Log &log = shell.open(restarting ? sim.step() : -1);

@@ -153,3 +153,59 @@ TEST(Exchange, ReverseSumsExactlyToOwners) {
     EXPECT_EQ(per_owner[i * k + 1], (at_left + at_right) * (-3 * id - 1));
   }
 }
+
+// Ghost rows for an arbitrary list of (row, rank) pairs, as colloids use them (ghosts.hpp): a
+// row may go to several ranks, also beyond the neighbours; refresh() updates the same ghost
+// rows from their owners; reverse() sums per-ghost values back.
+TEST(Exchange, CopyRefreshAndReverseOfGhostRows) {
+  const int me = rank(), P = ranks();
+  Toy t;
+  for (int j = 0; j < 4; ++j)
+    t.add(slab * me + j, -j, 1.0 + j, 10 * me + j);
+  // Row j goes to every other rank r with (r + j) % 2 == 0 (none, some or all of them).
+  parallel::CopyList list;
+  for (int j = 0; j < 4; ++j)
+    for (int r = 0; r < P; ++r)
+      if (r != me && (r + j) % 2 == 0) {
+        list.index.push_back(j);
+        list.dest.push_back(r);
+      }
+  parallel::Exchange ex(MPI_COMM_WORLD);
+  const parallel::Halo h = ex.copy(t.view(), list);
+  // Expected ghosts here: row j of every other rank s with (me + j) % 2 == 0.
+  std::size_t expected = 0;
+  for (int s = 0; s < P; ++s)
+    for (int j = 0; j < 4; ++j)
+      expected += s != me && (me + j) % 2 == 0;
+  ASSERT_EQ(h.size(), expected) << "rank " << me;
+  ASSERT_EQ(t.id.size(), 4 + expected);
+  for (std::size_t g = 0; g < h.size(); ++g) {
+    const std::size_t i = 4 + g;
+    const int s = static_cast<int>(t.id[i] / 10), j = static_cast<int>(t.id[i] % 10);
+    EXPECT_EQ(h.source_rank[g], s);
+    EXPECT_EQ(h.source_index[g], static_cast<std::uint64_t>(j));
+    EXPECT_EQ(t.x[i], slab * s + j); // the row unchanged, no periodic shift
+    EXPECT_EQ(t.radius[i], 1.0 + j);
+  }
+  // Owners move their rows; refresh brings the ghosts along, in the same order.
+  for (int j = 0; j < 4; ++j)
+    t.x[j] += 1000.0;
+  ex.refresh({&t.x}, list, 4);
+  for (std::size_t g = 0; g < h.size(); ++g) {
+    const std::size_t i = 4 + g;
+    EXPECT_EQ(t.x[i], slab * static_cast<double>(t.id[i] / 10) + static_cast<double>(t.id[i] % 10) +
+                          1000.0);
+  }
+  // Each ghost sends 1 + (its holder's rank) back: row j's sum is sum over its ghost holders.
+  std::vector<std::int64_t> per_ghost(h.size(), 0), per_owner(4, 0);
+  for (std::size_t g = 0; g < h.size(); ++g)
+    per_ghost[g] = 1 + me;
+  ex.reverse(h, per_ghost, 1, per_owner);
+  for (int j = 0; j < 4; ++j) {
+    std::int64_t want = 0;
+    for (int r = 0; r < P; ++r)
+      if (r != me && (r + j) % 2 == 0)
+        want += 1 + r;
+    EXPECT_EQ(per_owner[j], want) << "rank " << me << " row " << j;
+  }
+}

@@ -83,8 +83,8 @@ public:
   // the owned rows (those before ghosts->owned(); all without ghosts) and fluid_force() hold
   // the forces. With want_energy, also returns the potential energy, summed over comm.
   // comm = MPI_COMM_NULL and no ghosts: this process alone, without MPI (unit tests).
-  PotentialEnergy compute(const mpcd::Fluid &fluid, const Colloids &colloids,
-                          ColloidGhosts *ghosts, MPI_Comm comm, bool want_energy = false);
+  PotentialEnergy compute(const mpcd::Fluid &fluid, const Colloids &colloids, ColloidGhosts *ghosts,
+                          MPI_Comm comm, bool want_energy = false);
   PotentialEnergy compute(const mpcd::Fluid &fluid, const Colloids &colloids, MPI_Comm comm,
                           bool want_energy = false) {
     return compute(fluid, colloids, nullptr, comm, want_energy);

@@ -68,10 +68,10 @@ private:
   mpcd::Box box_;
   parallel::Exchange exchange_;
   std::size_t owned_ = 0;
-  double r_max_ = -1.0;           // the largest radius of all colloids (fixed for a run)
-  std::vector<double> extent_;    // per rank: e_r of the last add
-  parallel::CopyList list_;       // owned rows and the ranks they were copied to
-  parallel::Halo halo_;           // where each ghost row came from
+  double r_max_ = -1.0;        // the largest radius of all colloids (fixed for a run)
+  std::vector<double> extent_; // per rank: e_r of the last add
+  parallel::CopyList list_;    // owned rows and the ranks they were copied to
+  parallel::Halo halo_;        // where each ghost row came from
   std::vector<std::int64_t> ghost_values_;
 };
 

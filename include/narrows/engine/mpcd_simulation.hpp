@@ -33,8 +33,9 @@ public:
   // Builds the slabs, the plan and, if `allocate`, this rank's cell grid and its part of the
   // initial state: the particles of its own cells (mpcd::init_fluid: ids 0..N-1, each drawn
   // from (seed, id), the same state on any number of ranks, zero total momentum) and the
-  // colloids whose centres lie in its slab (colloids/ownership.hpp). Without it only the plan exists (for `narrows info` and `check`). Throws
-  // bad_input if the scene cannot run on the ranks of comm (check_ranks).
+  // colloids whose centres lie in its slab (colloids/ownership.hpp). Without it only the plan
+  // exists (for `narrows info` and `check`). Throws bad_input if the scene cannot run on the ranks
+  // of comm (check_ranks).
   MpcdSimulation(const scene::Scene &scene, MPI_Comm comm, bool allocate = true);
   MpcdSimulation(const MpcdSimulation &) = delete;
   MpcdSimulation &operator=(const MpcdSimulation &) = delete;
