@@ -1,10 +1,9 @@
-// Migrate, halo and reverse for any structure-of-arrays species, over MPI_Alltoallv.
+// Migrate, copy, refresh and reverse for any structure-of-arrays species, over MPI_Alltoallv.
 #include "narrows/parallel/exchange.hpp"
 
 #include "narrows/core/error.hpp"
 
 #include <bit>
-#include <cmath>
 #include <limits>
 #include <string>
 
@@ -142,72 +141,6 @@ void Exchange::migrate(const SoaView &s, const std::vector<std::size_t> &leavers
     for (auto *a : s.halfwords)
       (*a)[n + j] = static_cast<std::uint32_t>(row[f++]);
   }
-}
-
-Halo Exchange::halo(const SoaView &s, int x_field, double lo, double hi, double L, double width,
-                    int left, int right, double min_slab_width) {
-  if (width > min_slab_width)
-    throw input_error("halo width " + std::to_string(width) + " exceeds the narrowest slab (" +
-                      std::to_string(min_slab_width) +
-                      " cells); allowed: a width up to the slab width (use fewer ranks)");
-  if (!s.halfwords.empty())
-    throw Error(ExitCode::other, "halo of 4-byte fields is not supported");
-  const std::size_t n = s.size(), F = s.fields();
-  const std::size_t row_len = F + 1; // + source index
-  const std::vector<double> &x = *s.reals[x_field];
-  const double span = hi - lo;
-  // Each selected particle becomes one row per receiving side.
-  struct Pick {
-    std::size_t i;
-    int to;
-    double x;
-  };
-  std::vector<Pick> picks;
-  for (std::size_t i = 0; i < n; ++i) {
-    double u = std::fmod(x[i] - lo, L); // position in the slab, unwrapped
-    if (u < 0)
-      u += L;
-    const double xs = lo + u;
-    if (u <= width) // within the width of the left edge (inclusive): for the left neighbour
-      picks.push_back({i, left, rank_ == 0 ? xs + L : xs});
-    if (span - u <= width) // near the right edge (inclusive: a particle exactly at the width)
-      picks.push_back({i, right, rank_ == ranks_ - 1 ? xs - L : xs});
-  }
-  std::size_t total = 0;
-  auto next = plan_rows(
-      ranks_, picks.size(), [&](std::size_t j) { return picks[j].to; }, send_counts_, total);
-  send_.resize(total * row_len);
-  for (const Pick &p : picks) {
-    std::uint64_t *row = &send_[next[p.to]++ * row_len];
-    std::size_t f = 0;
-    for (std::size_t a = 0; a < s.reals.size(); ++a)
-      row[f++] =
-          std::bit_cast<std::uint64_t>(static_cast<int>(a) == x_field ? p.x : (*s.reals[a])[p.i]);
-    for (auto *a : s.words)
-      row[f++] = (*a)[p.i];
-    row[f] = p.i;
-  }
-  exchange_rows(comm_, ranks_, row_len, send_counts_, recv_counts_, send_displs_, recv_displs_,
-                send_, recv_, bytes_sent_);
-  Halo h;
-  const std::size_t g = recv_.size() / row_len;
-  h.reals.assign(s.reals.size(), std::vector<double>(g));
-  h.words.assign(s.words.size(), std::vector<std::uint64_t>(g));
-  h.source_rank.resize(g);
-  h.source_index.resize(g);
-  std::size_t j = 0;
-  for (int r = 0; r < ranks_; ++r)
-    for (int k = 0; k < recv_counts_[r]; ++k, ++j) {
-      const std::uint64_t *row = &recv_[j * row_len];
-      std::size_t f = 0;
-      for (auto &a : h.reals)
-        a[j] = std::bit_cast<double>(row[f++]);
-      for (auto &a : h.words)
-        a[j] = row[f++];
-      h.source_rank[j] = r;
-      h.source_index[j] = row[f];
-    }
-  return h;
 }
 
 Halo Exchange::copy(const SoaView &s, const CopyList &list) {

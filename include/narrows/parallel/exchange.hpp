@@ -1,6 +1,7 @@
 // Moving particles of any structure-of-arrays species between ranks: migrate (ownership
-// changed), halo (copies of particles near a slab edge for the neighbouring rank), reverse
-// (sum per-copy quantities back to the owners, in fixed point so the sum is exact).
+// changed), copy (ghost copies of listed rows for other ranks) and refresh (their values
+// again), reverse (sum per-copy quantities back to the owners, in fixed point so the sum is
+// exact).
 #pragma once
 
 #include <mpi.h>
@@ -21,11 +22,8 @@ struct SoaView {
   void resize(std::size_t n) const;
 };
 
-// Ghost copies received by halo(): their rows (same layout as the species), and for each one
-// where it came from, so reverse() can send per-copy sums back.
+// Where each ghost copy made by copy() came from, so reverse() can send per-copy sums back.
 struct Halo {
-  std::vector<std::vector<double>> reals;
-  std::vector<std::vector<std::uint64_t>> words;
   std::vector<int> source_rank;            // per ghost
   std::vector<std::uint64_t> source_index; // per ghost: index in the owner's arrays
   std::size_t size() const { return source_rank.size(); }
@@ -54,13 +52,6 @@ public:
   // (nothing in narrows depends on it: cell sums are fixed point).
   void migrate(const SoaView &species, const std::vector<std::size_t> &leavers,
                const std::vector<int> &leaver_dest);
-
-  // Copies of the particles whose x lies within `width` of the slab [lo, hi) edges go to the
-  // neighbouring ranks (left, right). Periodic along x with length L: a copy that crosses the
-  // periodic end has its x shifted by +-L so it lies next to the receiving slab. `x_field` is
-  // the index of x among species.reals. Throws if width exceeds the width of any slab.
-  Halo halo(const SoaView &species, int x_field, double lo, double hi, double L, double width,
-            int left, int right, double min_slab_width);
 
   // Ghost copies of the rows `list` names, appended to the arrays of `species` themselves
   // (rows size() .. size() + ghosts - 1, ordered by source rank, then by the sender's order).
