@@ -1,4 +1,5 @@
 // The narrows command line: run, check, info, bench (DESIGN.md, "The user-facing contract").
+#include "narrows/continuum/driver.hpp"
 #include "narrows/core/error.hpp"
 #include "narrows/engine/bench.hpp"
 #include "narrows/engine/info.hpp"
@@ -114,6 +115,9 @@ int main_inner(int argc, char **argv) {
   if (scene.run.engine == narrows::scene::Engine::kmc)
     return narrows::kmc::command(scene, static_cast<bool>(*check), static_cast<bool>(*info),
                                  run_opt, MPI_COMM_WORLD);
+  if (scene.run.engine == narrows::scene::Engine::continuum)
+    return narrows::continuum::command(scene, static_cast<bool>(*check), static_cast<bool>(*info),
+                                       run_opt, MPI_COMM_WORLD);
   if (scene.run.engine == narrows::scene::Engine::lgca)
     return narrows::lattice::command(scene, static_cast<bool>(*check), static_cast<bool>(*info),
                                      run_opt, MPI_COMM_WORLD);
