@@ -78,6 +78,9 @@ std::vector<std::string> describe(const scene::Scene &scene) {
     out.push_back("initial: profile of " + std::to_string(m.profile.size()) +
                   " values, piecewise linear, cell averages");
     break;
+  case scene::ContinuumInitial::cells:
+    out.push_back("initial: the given cell averages");
+    break;
   case scene::ContinuumInitial::sine:
     out.push_back("initial: " + fmt("%g + %g sin(2 pi x / %g)", m.mean, m.amplitude, m.length));
     break;

@@ -49,6 +49,9 @@ std::vector<double> initial_cells(const scene::Continuum &m) {
     }
     break;
   }
+  case scene::ContinuumInitial::cells:
+    u = m.profile;
+    break;
   case scene::ContinuumInitial::sine: {
     const double k = 2.0 * std::numbers::pi / m.length;
     for (std::size_t i = 0; i < n; ++i) {

@@ -110,18 +110,21 @@ void parse_lattice_gas(const Checker &c, const toml::value *sec, Continuum &out)
 
 void parse_initial(const Checker &c, const toml::value &v, const Range &range, Continuum &out) {
   const std::string allowed = "{ kind = \"riemann\", left, right, position } or { kind = "
-                              "\"profile\", values = [...] } or { kind = \"sine\", mean, "
-                              "amplitude }";
+                              "\"profile\" | \"cells\", values = [...] } or { kind = \"sine\", "
+                              "mean, amplitude }";
   if (!v.is_table())
     c.wrong_type("continuum.initial", v, allowed);
   const toml::value *kind = find(&v, "kind");
   if (kind == nullptr)
     c.fail("continuum.initial.kind", "missing required key 'continuum.initial.kind'; allowed: "
-                                     "\"riemann\", \"profile\", \"sine\"");
-  const std::size_t k = choice(c, *kind, "continuum.initial.kind", {"riemann", "profile", "sine"});
+                                     "\"riemann\", \"profile\", \"sine\", \"cells\"");
+  const std::size_t k =
+      choice(c, *kind, "continuum.initial.kind", {"riemann", "profile", "sine", "cells"});
   out.initial = static_cast<ContinuumInitial>(k);
-  const std::vector<std::vector<std::string>> keys{
-      {"kind", "left", "right", "position"}, {"kind", "values"}, {"kind", "mean", "amplitude"}};
+  const std::vector<std::vector<std::string>> keys{{"kind", "left", "right", "position"},
+                                                   {"kind", "values"},
+                                                   {"kind", "mean", "amplitude"},
+                                                   {"kind", "values"}};
   const std::vector<std::string> &mine = keys[k];
   for (const auto &[key, x] : sorted(v)) {
     (void)x;
@@ -154,11 +157,15 @@ void parse_initial(const Checker &c, const toml::value &v, const Range &range, C
                               "a number from 0 to continuum.length (the jump)",
                               [L](double x) { return x >= 0.0 && x <= L; });
     }
-  } else if (out.initial == ContinuumInitial::profile) {
-    const std::string what = "an array of 2 to 10000000 values (" + range.text +
-                             "), at equally spaced points from 0 to continuum.length";
+  } else if (out.initial == ContinuumInitial::profile || out.initial == ContinuumInitial::cells) {
+    const bool cells = out.initial == ContinuumInitial::cells;
+    const std::string what = cells ? "an array of continuum.cells = " + std::to_string(out.cells) +
+                                         " values (" + range.text + "), the initial cell averages"
+                                   : "an array of 2 to 10000000 values (" + range.text +
+                                         "), at equally spaced points from 0 to continuum.length";
     const toml::value &p = required("values", what);
-    if (!p.is_array() || p.as_array().size() < 2 || p.as_array().size() > 10000000)
+    if (!p.is_array() || p.as_array().size() < 2 || p.as_array().size() > 10000000 ||
+        (cells && static_cast<std::int64_t>(p.as_array().size()) != out.cells))
       c.wrong_type("continuum.initial.values", p, what);
     for (std::size_t i = 0; i < p.as_array().size(); ++i)
       out.profile.push_back(density(c, p.as_array()[i],
@@ -240,7 +247,7 @@ Continuum parse_continuum(const toml::value *sec, const SectionFail &fail) {
   // Reservoirs default to the initial data at the two ends.
   if (out.initial == ContinuumInitial::riemann)
     out.reservoirs = {out.left, out.right};
-  else if (out.initial == ContinuumInitial::profile)
+  else if (out.initial == ContinuumInitial::profile || out.initial == ContinuumInitial::cells)
     out.reservoirs = {out.profile.front(), out.profile.back()};
   else
     out.reservoirs = {out.mean, out.mean};

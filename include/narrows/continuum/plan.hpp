@@ -27,7 +27,7 @@ struct Plan {
 Plan make_plan(const scene::Continuum &model);
 
 // Cell averages of the initial data (riemann: the cut cell takes the weighted mean; profile:
-// the piecewise-linear interpolant averaged exactly; sine: exact averages).
+// the piecewise-linear interpolant averaged exactly; sine: exact averages; cells: as given).
 std::vector<double> initial_cells(const scene::Continuum &model);
 
 // Cell centres (the bins of the density observable).

@@ -193,7 +193,7 @@ struct LgcaColloid {
 enum class ContinuumModel { conservation_law };
 enum class ContinuumFlux { burgers, tasep, family1, family2, colloid_chain };
 enum class ContinuumBoundary { open, periodic };
-enum class ContinuumInitial { riemann, profile, sine };
+enum class ContinuumInitial { riemann, profile, sine, cells };
 enum class ContinuumLimiter { mc, minmod };
 
 struct Continuum {
@@ -208,11 +208,11 @@ struct Continuum {
   std::array<double, 2> reservoirs{}; // open: densities held left of 0 and right of length
   ContinuumInitial initial = ContinuumInitial::riemann;
   double left = 0.0, right = 0.0, position = 0.0; // riemann: left | right at position
-  std::vector<double> profile;                    // profile: values at equally spaced points
-  double mean = 0.0, amplitude = 0.0;             // sine: mean + amplitude sin(2 pi x / length)
-  double time = 0.0;                              // simulated time
-  std::int64_t samples = 100;                     // observable samples over `time` (+ t = 0)
-  double cfl = 0.4;                               // Courant number of the time step
+  std::vector<double> profile; // profile: values at equally spaced points; cells: cell averages
+  double mean = 0.0, amplitude = 0.0; // sine: mean + amplitude sin(2 pi x / length)
+  double time = 0.0;                  // simulated time
+  std::int64_t samples = 100;         // observable samples over `time` (+ t = 0)
+  double cfl = 0.4;                   // Courant number of the time step
   ContinuumLimiter limiter = ContinuumLimiter::mc;
 };
 
