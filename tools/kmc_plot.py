@@ -18,68 +18,27 @@ Prints the distance between the coarse-grained measured profile and the hydrodyn
 (mean |difference| per site over the jump |sigma_left - sigma_right|) at each plotted time.
 """
 import argparse
-import os
-import shutil
-import subprocess
 import sys
-import tempfile
-import tomllib
 
 import h5py
 import numpy as np
 
-
-def find_narrows(given):
-    """The narrows binary: --narrows, $NARROWS, build/narrows next to tools/, or the PATH."""
-    here = os.path.dirname(os.path.abspath(__file__))
-    for path in (given, os.environ.get("NARROWS"), os.path.join(here, "..", "build", "narrows"),
-                 shutil.which("narrows")):
-        if path and os.path.isfile(path) and os.access(path, os.X_OK):
-            return path
-    sys.exit("kmc_plot.py: the narrows binary was not found; allowed: --narrows PATH, $NARROWS, "
-             "build/narrows or narrows on the PATH")
-
-
-def toml_value(v):
-    """A TOML rendering of a number or a table of numbers (rates, parameters)."""
-    if isinstance(v, dict):
-        return "{ " + ", ".join(f'"{k}" = {toml_value(x)}' for k, x in v.items()) + " }"
-    return repr(float(v))
+from continuum_run import find_narrows, kmc_flux_lines, run_continuum
 
 
 def continuum_solution(narrows, kmc_scene_text, cells0, b, times):
     """Cell averages at `times` (the kmc sample times, equally spaced from 0) of the continuum
     engine started from cells0 (cells of b sites), with the kmc preset's flux."""
-    kmc = tomllib.loads(kmc_scene_text)["kmc"]
-    preset = kmc.get("preset", "none")
-    if preset == "family1":
-        flux = f'flux = "family1"\nrates = {toml_value(kmc["rates"])}\n'
-    elif preset == "family2":
-        flux = f'flux = "family2"\nparameters = {toml_value(kmc["parameters"])}\n'
-    else:
-        sys.exit(f"kmc_plot.py: kmc.preset = {preset!r} has no hydrodynamic flux; allowed: "
-                 "family1, family2")
     n = len(cells0)
     values = ", ".join(repr(float(x)) for x in cells0)
-    scene = ('[run]\nengine = "continuum"\n[continuum]\nmodel = "conservation-law"\n' + flux +
-             f"length = {float(n * b)!r}\ncells = {n}\nboundary = \"open\"\n"
-             f'initial = {{ kind = "cells", values = [{values}] }}\n'
-             f"time = {float(times[-1])!r}\nsamples = {len(times) - 1}\n"
-             '[output]\nobservables = ["density"]\nprogress = false\n')
-    with tempfile.TemporaryDirectory() as tmp:
-        path = os.path.join(tmp, "hydro.toml")
-        with open(path, "w") as f:
-            f.write(scene)
-        done = subprocess.run([narrows, "run", path, "--out", os.path.join(tmp, "out")],
-                              capture_output=True, text=True)
-        if done.returncode != 0:
-            sys.exit(f"kmc_plot.py: the continuum run failed: {done.stderr.strip()}")
-        with h5py.File(os.path.join(tmp, "out", "observables.h5"), "r") as f:
-            d = f["observables/density"]
-            t = d["time"][:]
-            if not np.allclose(t, times, rtol=1e-9, atol=1e-9 * times[-1]):
-                sys.exit("kmc_plot.py: continuum sample times differ from the kmc ones")
-            return d["value"][:]
+    t, value = run_continuum(
+        narrows,
+        kmc_flux_lines(kmc_scene_text) + f"length = {float(n * b)!r}\ncells = {n}\n"
+        f'boundary = "open"\ninitial = {{ kind = "cells", values = [{values}] }}\n'
+        f"time = {float(times[-1])!r}\nsamples = {len(times) - 1}\n", ("density",))["density"]
+    if not np.allclose(t, times, rtol=1e-9, atol=1e-9 * times[-1]):
+        sys.exit("kmc_plot.py: continuum sample times differ from the kmc ones")
+    return value
 
 
 def block(x, b):

@@ -3,7 +3,8 @@
 # writes density and shock_position, the shock of run/continuum_burgers_riemann.toml moves at
 # the Rankine-Hugoniot speed; a restart from the checkpoint half-way continues bitwise (the
 # final cell averages and every later sample equal those of the uninterrupted run), 2 ranks
-# give the numbers of 1; bad input exits 2 with one line and writes nothing.
+# give the numbers of 1; tools/shock_report.py puts a kmc shock against it; bad input exits 2
+# with one line and writes nothing.
 set -u
 source "$(dirname "$0")/common.bash"
 
@@ -57,6 +58,24 @@ t = sys.argv[1]
 a = h5py.File(t + "/full/observables.h5", "r")["observables/density/value"][()]
 b = h5py.File(t + "/two/observables.h5", "r")["observables/density/value"][()]
 assert np.array_equal(a, b)
+PY'
+
+# tools/shock_report.py: the family 2 shock of run/kmc_family2_shock.toml against the continuum
+# engine: one PNG and the table; the continuum shock moves at Rankine-Hugoniot (0.5 %), the kmc
+# shock's mean within 3 standard errors of it.
+runs "kmc family 2 shock" "$narrows" run "$src/run/kmc_family2_shock.toml" --out "$tmp/f2" > /dev/null 2>&1
+runs "shock_report.py" /usr/bin/python3 "$src/tools/shock_report.py" "$tmp/f2/observables.h5" \
+  --narrows "$narrows" > "$tmp/report.txt" 2>&1
+check "shock_report.py: PNG and table" '[ -s "$tmp/f2/shock_report.png" ] && [ -s "$tmp/f2/shock_report.txt" ]'
+check "shock_report.py: continuum at Rankine-Hugoniot, kmc within 3 errors" '/usr/bin/python3 - "$tmp/report.txt" <<PY
+import re, sys
+text = open(sys.argv[1]).read()
+print(text)
+kmc, err = map(float, re.search(r"\| kmc [^|]*\| ([-0-9.e]+) \+- ([0-9.e]+) \|", text).groups())
+cont = float(re.search(r"\| continuum engine [^|]*\| ([-0-9.e]+) \|", text).group(1))
+rh = float(re.search(r"\| Rankine-Hugoniot [^|]*\| ([-0-9.e]+) \|", text).group(1))
+assert abs(cont - rh) < 0.005 * abs(rh), (cont, rh)
+assert abs(kmc - rh) < 3 * err, (kmc, err, rh)
 PY'
 
 # Bad input: one line naming the file, the key, what was found and what is allowed; no output.
