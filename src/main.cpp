@@ -1,4 +1,5 @@
 // The narrows command line: run, check, info, bench (DESIGN.md, "The user-facing contract").
+#include "narrows/continuum/bench.hpp"
 #include "narrows/continuum/driver.hpp"
 #include "narrows/core/error.hpp"
 #include "narrows/engine/bench.hpp"
@@ -65,6 +66,11 @@ int main_inner(int argc, char **argv) {
   double kmc_sites = 0.0;
   bench->add_option("--kmc", kmc_sites, "only the kmc engine, on this many sites (e.g. 1e6)")
       ->check(CLI::PositiveNumber);
+  double continuum_cells = 0.0;
+  bench
+      ->add_option("--continuum", continuum_cells,
+                   "only the continuum engine's scheme, on this many cells (e.g. 1e5)")
+      ->check(CLI::PositiveNumber);
   int lgca_sites = 0;
   bench
       ->add_option("--lgca", lgca_sites,
@@ -97,6 +103,11 @@ int main_inner(int argc, char **argv) {
   if (*bench && kmc_sites > 0.0) {
     if (root)
       narrows::kmc::run_bench(std::cout, kmc_sites, bench_opt.json);
+    return 0;
+  }
+  if (*bench && continuum_cells > 0.0) {
+    if (root)
+      narrows::continuum::run_bench(std::cout, continuum_cells, bench_opt.json);
     return 0;
   }
   if (*bench && lgca_sites > 0) {

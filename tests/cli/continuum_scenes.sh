@@ -2,7 +2,8 @@
 # The continuum engine from the command line: check prints the scheme and time step, the run
 # writes density and shock_position, the shock of run/continuum_burgers_riemann.toml moves at
 # the Rankine-Hugoniot speed; a restart from the checkpoint half-way continues bitwise (the
-# final cell averages and every later sample equal those of the uninterrupted run), 2 ranks
+# final cell averages and every later sample equal those of the uninterrupted run), a changed
+# checkpoint is refused by its checksum, 2 ranks
 # give the numbers of 1; tools/shock_report.py puts a kmc shock against it; bad input exits 2
 # with one line and writes nothing.
 set -u
@@ -47,6 +48,13 @@ for k in ("density", "shock_position"):
     assert np.array_equal(fa[k]["value"][-n:], fb[k]["value"][()]), k
     assert np.array_equal(fa[k]["time"][-n:], fb[k]["time"][()]), k
 PY'
+# A checkpoint whose cell averages were changed after writing fails its checksum (io/row_hash).
+cp "$tmp/full/checkpoint-0000001000.h5" "$tmp/damaged.h5"
+/usr/bin/python3 -c 'import sys, h5py; f = h5py.File(sys.argv[1], "r+"); f["continuum/density"][400] += 1e-12' \
+  "$tmp/damaged.h5"
+refused "restart from a changed checkpoint" "damaged.h5.*/continuum/density does not match its checksum" \
+  "$narrows" run "$scene" --restart "$tmp/damaged.h5" --out "$tmp/damaged"
+check "changed checkpoint: nothing written" '[ ! -e "$tmp/damaged" ]'
 refused "restart with another flux" "continuum.flux" \
   "$narrows" run "$scene" --set continuum.flux=tasep --restart "$tmp/part/checkpoint-0000001000.h5" --out "$tmp/other"
 
@@ -77,6 +85,10 @@ rh = float(re.search(r"\| Rankine-Hugoniot [^|]*\| ([-0-9.e]+) \|", text).group(
 assert abs(cont - rh) < 0.005 * abs(rh), (cont, rh)
 assert abs(kmc - rh) < 3 * err, (kmc, err, rh)
 PY'
+
+runs "bench --continuum" "$narrows" bench --continuum 1000 > "$tmp/bench.txt" 2>&1
+check "bench: cell-steps/s of burgers and family1" \
+  '[ "$(grep -c "^continuum .* cell-steps/s on one core" "$tmp/bench.txt")" -eq 2 ]'
 
 # Bad input: one line naming the file, the key, what was found and what is allowed; no output.
 refused "unknown flux" 'continuum.flux = "lwr" is not known; allowed: "burgers".*continuum_burgers_riemann.toml' \
