@@ -3,6 +3,9 @@
 
 #include "narrows/core/error.hpp"
 
+#include <algorithm>
+#include <array>
+
 namespace narrows::lattice {
 
 namespace {
@@ -19,18 +22,40 @@ io::SpeciesFields lattice_species(std::vector<std::uint64_t> &words) {
   return s;
 }
 
+// Calls f(index of the word, the rows 8 b .. 8 b + n - 1, n, column x) for every word of the
+// checkpoint layout (column x's word b holds rows 8 b .. 8 b + 7, one byte each). The lattice is
+// stored by rows, the checkpoint by columns: a tile of 64 columns at a time keeps both sides in
+// cache (row by row over the whole width took 35 s for a 32768^2 lattice, one TLB miss per
+// byte; tiled it takes about a second).
+template <class Lattice, class F> void for_each_word(Lattice &l, F &&f) {
+  const std::size_t wpc = words_per_column(l);
+  const int nx = l.local_columns(), ny = l.size_y();
+  constexpr int tile = 64;
+  for (int x0 = 0; x0 < nx; x0 += tile) {
+    const int x1 = std::min(nx, x0 + tile);
+    for (std::size_t b = 0; b < wpc; ++b) {
+      const int y0 = static_cast<int>(8 * b), n = std::min(8, ny - y0);
+      std::array<decltype(l.row(0)), 8> rows{};
+      for (int k = 0; k < n; ++k)
+        rows[k] = l.row(y0 + k);
+      for (int x = x0; x < x1; ++x)
+        f(static_cast<std::size_t>(x) * wpc + b, rows, n, x);
+    }
+  }
+}
+
 } // namespace
 
 double write_lattice_checkpoint(const std::string &path, const FhpLattice &l,
                                 const std::string &scene_text, const std::string &canonical_scene) {
   const std::size_t wpc = words_per_column(l);
   std::vector<std::uint64_t> words(wpc * static_cast<std::size_t>(l.local_columns()), 0);
-  for (int y = 0; y < l.size_y(); ++y) {
-    const std::uint8_t *r = l.row(y);
-    for (int x = 0; x < l.local_columns(); ++x)
-      words[static_cast<std::size_t>(x) * wpc + static_cast<std::size_t>(y / 8)] |=
-          static_cast<std::uint64_t>(r[x]) << (8 * (y % 8));
-  }
+  for_each_word(l, [&](std::size_t at, const auto &rows, int n, int x) {
+    std::uint64_t w = 0;
+    for (int k = 0; k < n; ++k)
+      w |= static_cast<std::uint64_t>(rows[k][x]) << (8 * k);
+    words[at] = w;
+  });
   io::CheckpointInfo info;
   info.scene_text = scene_text;
   info.canonical_scene = canonical_scene;
@@ -57,13 +82,10 @@ void read_lattice_checkpoint(const std::string &path, const io::CheckpointInfo &
                       "; allowed: a checkpoint of this scene");
   io::read_species_rows(path, species, wpc * static_cast<std::uint64_t>(l.first_column()),
                         wpc * static_cast<std::uint64_t>(l.local_columns()), l.comm());
-  for (int y = 0; y < l.size_y(); ++y) {
-    std::uint8_t *r = l.row(y);
-    for (int x = 0; x < l.local_columns(); ++x)
-      r[x] = static_cast<std::uint8_t>(
-          words[static_cast<std::size_t>(x) * wpc + static_cast<std::size_t>(y / 8)] >>
-          (8 * (y % 8)));
-  }
+  for_each_word(l, [&](std::size_t at, const auto &rows, int n, int x) {
+    for (int k = 0; k < n; ++k)
+      rows[k][x] = static_cast<std::uint8_t>(words[at] >> (8 * k));
+  });
   l.set_time(info.step);
 }
 
