@@ -115,10 +115,14 @@ double wrapped(double v, double l) {
   return v >= l ? v - l : v;
 }
 
+// A dataset of `values` (a scalar dataset if `scalar`) with its checksum attribute.
 template <class T>
-void write_checked(hid_t loc, const char *name, std::span<const T> values,
-                   const std::string &path) {
-  io::h5::write_dataset<T>(loc, name, values, path);
+void write_checked(hid_t loc, const char *name, std::span<const T> values, const std::string &path,
+                   bool scalar = false) {
+  if (scalar)
+    io::h5::write_scalar<T>(loc, name, values[0], path);
+  else
+    io::h5::write_dataset<T>(loc, name, values, path);
   const io::h5::Dataset d(H5Dopen2(loc, name, H5P_DEFAULT), path, std::string("open ") + name);
   const std::uint64_t sum = io::bytes_hash(values.data(), values.size_bytes());
   io::h5::write_attribute(d.get(), checksum_name, std::span<const std::uint64_t>(&sum, 1), path);
@@ -221,10 +225,10 @@ void write_colloid_checkpoint(const std::string &path, const FhpColloid &c,
   const MomentumUnits p = c.momentum();
   write_checked<std::int64_t>(g.get(), "momentum", p, path);
   const double omega = c.omega(), angle = c.angle();
-  write_checked<double>(g.get(), "omega", std::span<const double>(&omega, 1), path);
+  write_checked<double>(g.get(), "omega", std::span<const double>(&omega, 1), path, true);
   const std::array<double, 2> x = c.position();
   write_checked<double>(g.get(), "position", x, path);
-  write_checked<double>(g.get(), "angle", std::span<const double>(&angle, 1), path);
+  write_checked<double>(g.get(), "angle", std::span<const double>(&angle, 1), path, true);
   if (stats != nullptr) {
     const ColloidCorrelations::State st = stats->state();
     const io::h5::Group h = io::h5::create_group(g.get(), "correlations", path);
