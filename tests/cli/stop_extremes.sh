@@ -67,6 +67,25 @@ stopped() {
   step=$((10#$(echo "${last:-checkpoint-0.h5}" | sed 's/.*checkpoint-\([0-9]*\).h5/\1/')))
 }
 
+# restarted NAME OUT COMMAND...: COMMAND --restart OUT one step beyond $step continues it.
+restarted() {
+  local name=$1 out=$2
+  shift 2
+  runs "$name: one-step restart" "$@" --restart "$out" --set run.steps=$((step + 1)) \
+    --out "$out" > "$tmp/$name.re" 2>&1
+  check "$name: the restart continued the checkpoint" \
+    'grep -q "restarted from .* at step $step" "$tmp/$name.re"'
+}
+# extreme NAME SCENE SETS...: check accepts the scene, SIGTERM stops its run cleanly, and the
+# checkpoint restarts.
+extreme() {
+  local name=$1 scene=$2
+  shift 2
+  runs "$name: the scene passes check" "$narrows" check "$scene" "$@" > /dev/null
+  stopped "$name" "$tmp/$name" self "$narrows" run "$scene" "$@"
+  restarted "$name" "$tmp/$name" "$narrows" run "$scene" "$@"
+}
+
 # ---- mpcd: 2.56e6 particles in 16 x 16 cells, kT = 1e6, mean free path 1e6 cells (check's
 # limit), the largest run.steps. (kT = 1e10 passes check too, but the runaway-speed invariant,
 # |v| <= 1e4, stops such a run at its first observation.)
@@ -87,30 +106,18 @@ kT = 1e6
 every = 1000000
 progress = false
 TOML
-runs "mpcd extreme scene passes check" "$narrows" check "$tmp/mpcd.toml" > /dev/null
-stopped mpcd "$tmp/mpcd" self "$narrows" run "$tmp/mpcd.toml"
-runs "mpcd: one-step restart" "$narrows" run "$tmp/mpcd.toml" --restart "$tmp/mpcd" \
-  --set run.steps=$((step + 1)) --out "$tmp/mpcd" > "$tmp/mpcd.re" 2>&1
-check "mpcd: the restart continued the checkpoint" 'grep -q "restarted from .* at step $step" "$tmp/mpcd.re"'
+extreme mpcd "$tmp/mpcd.toml"
 
 # ---- mpcd on 2 ranks: SIGTERM to one rank only, then to both ranks
 stopped mpcd_2ranks_one "$tmp/mpcd2" one "${mpi[@]}" -n 2 "$narrows" run "$tmp/mpcd.toml"
-runs "mpcd 2 ranks: one-step restart" "${mpi[@]}" -n 2 "$narrows" run "$tmp/mpcd.toml" \
-  --restart "$tmp/mpcd2" --set run.steps=$((step + 1)) --out "$tmp/mpcd2" > "$tmp/mpcd2.re" 2>&1
-check "mpcd 2 ranks: the restart continued the checkpoint" \
-  'grep -q "restarted from .* at step $step" "$tmp/mpcd2.re"'
+restarted mpcd_2ranks_one "$tmp/mpcd2" "${mpi[@]}" -n 2 "$narrows" run "$tmp/mpcd.toml"
 stopped mpcd_2ranks_all "$tmp/mpcd3" all "${mpi[@]}" -n 2 "$narrows" run "$tmp/mpcd.toml"
 
 # ---- mpcd with colloids: the largest md_substeps, colloids of mass 1e300, the largest
 # run.steps (density 10: one step at md_substeps = 10000 takes a fraction of a second)
 colloid_sets=(--set colloids.md_substeps=10000 --set colloids.mass=1e300
   --set run.steps=9999999999 --set output.every=1000000)
-scene_c="$src/run/colloids_conservation.toml"
-runs "mpcd colloids extreme scene passes check" "$narrows" check "$scene_c" "${colloid_sets[@]}" > /dev/null
-stopped mpcd_colloids "$tmp/mc" self "$narrows" run "$scene_c" "${colloid_sets[@]}"
-runs "mpcd colloids: one-step restart" "$narrows" run "$scene_c" "${colloid_sets[@]}" \
-  --restart "$tmp/mc" --set run.steps=$((step + 1)) --out "$tmp/mc" > "$tmp/mc.re" 2>&1
-check "mpcd colloids: the restart continued the checkpoint" 'grep -q "restarted from .* at step $step" "$tmp/mc.re"'
+extreme mpcd_colloids "$src/run/colloids_conservation.toml" "${colloid_sets[@]}"
 
 # ---- lgca: FHP-III on 4096 x 4096 sites at d = 0.999, the largest run.steps
 cat > "$tmp/lgca.toml" <<'TOML'
@@ -126,22 +133,13 @@ density = 0.999
 every = 1000000000
 progress = false
 TOML
-runs "lgca extreme scene passes check" "$narrows" check "$tmp/lgca.toml" > /dev/null
-stopped lgca "$tmp/lgca" self "$narrows" run "$tmp/lgca.toml"
-runs "lgca: one-step restart" "$narrows" run "$tmp/lgca.toml" --restart "$tmp/lgca" \
-  --set run.steps=$((step + 1)) --out "$tmp/lgca" > "$tmp/lgca.re" 2>&1
-check "lgca: the restart continued the checkpoint" 'grep -q "restarted from .* at step $step" "$tmp/lgca.re"'
+extreme lgca "$tmp/lgca.toml"
 
 # ---- lgca with a moving colloid: mass 1e-300 (the disc takes any momentum), radius 60,
 # averages over 1e5 lags
 lc_sets=(--set colloid.mass=1e-300 --set colloid.radius=60.0 --set colloid.max_lag=100000
   --set run.steps=9999999999)
-scene_lc="$src/run/lgca_colloid_moving.toml"
-runs "lgca colloid extreme scene passes check" "$narrows" check "$scene_lc" "${lc_sets[@]}" > /dev/null
-stopped lgca_colloid "$tmp/lc" self "$narrows" run "$scene_lc" "${lc_sets[@]}"
-runs "lgca colloid: one-step restart" "$narrows" run "$scene_lc" "${lc_sets[@]}" \
-  --restart "$tmp/lc" --set run.steps=$((step + 1)) --out "$tmp/lc" > "$tmp/lc.re" 2>&1
-check "lgca colloid: the restart continued the checkpoint" 'grep -q "restarted from .* at step $step" "$tmp/lc.re"'
+extreme lgca_colloid "$src/run/lgca_colloid_moving.toml" "${lc_sets[@]}"
 
 # ---- kmc: the issue's case, family 2 with a huge c. c = 1e300 makes a rate infinite and is
 # refused; 1e150 is the largest decade check accepts (rates up to 1e300) once kmc.max_tries is

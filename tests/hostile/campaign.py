@@ -299,19 +299,23 @@ def main():
             return (f"restart {scene} from {label}", outcome, f"(exit {code}) {tail}")
 
         jobs = []
+
+        def data_flip(scene, ckpt, ranges, label):
+            """A copy of ckpt with a bit of a dataset's stored data flipped: must be refused."""
+            name, off, length = rng.choice(ranges)
+            byte, bit = off + rng.randrange(length), rng.randrange(8)
+            bad = os.path.join(tmp, label + ".h5")
+            shutil.copy(ckpt, bad)
+            flip_bit(bad, byte, bit)
+            jobs.append((scene, bad, f"bit {bit} of byte {byte} ({name})", True))
+
         for scene, ckpt in good.items():
             jobs.append((scene, ckpt, "its undamaged checkpoint", None))
         for n, (scene, ckpt) in enumerate(good.items()):
             ranges = data_ranges(ckpt)
             size = os.path.getsize(ckpt)
             for k in range(flips):
-                # a bit of a dataset's stored data: must be refused
-                name, off, length = rng.choice(ranges)
-                byte, bit = off + rng.randrange(length), rng.randrange(8)
-                bad = os.path.join(tmp, f"flip{n}-{k}.h5")
-                shutil.copy(ckpt, bad)
-                flip_bit(bad, byte, bit)
-                jobs.append((scene, bad, f"bit {bit} of byte {byte} ({name})", True))
+                data_flip(scene, ckpt, ranges, f"flip{n}-{k}")
                 # a bit anywhere (may be unused space): no crash, no hang
                 bad = os.path.join(tmp, f"any{n}-{k}.h5")
                 shutil.copy(ckpt, bad)
@@ -320,12 +324,7 @@ def main():
                 jobs.append((scene, bad, f"a bit of byte {byte} anywhere", False))
             colloid = [r for r in ranges if r[0].startswith("colloid/")]
             for k in range(colloid_flips if colloid else 0):
-                name, off, length = rng.choice(colloid)
-                byte, bit = off + rng.randrange(length), rng.randrange(8)
-                bad = os.path.join(tmp, f"colloid{n}-{k}.h5")
-                shutil.copy(ckpt, bad)
-                flip_bit(bad, byte, bit)
-                jobs.append((scene, bad, f"bit {bit} of byte {byte} ({name})", True))
+                data_flip(scene, ckpt, colloid, f"colloid{n}-{k}")
             cut = os.path.join(tmp, f"cut{n}.h5")
             with open(ckpt, "rb") as f, open(cut, "wb") as g:
                 g.write(f.read(size // 2))
