@@ -11,6 +11,7 @@
 #include "narrows/engine/info.hpp"
 #include "narrows/engine/invariants.hpp"
 #include "narrows/engine/mpcd_simulation.hpp"
+#include "narrows/engine/restart_checks.hpp"
 #include "narrows/engine/totals.hpp"
 #include "narrows/engine/trajectory_writer.hpp"
 #include "narrows/io/checkpoint.hpp"
@@ -162,11 +163,16 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
       check_fluid_count(scene, info, file);
       sim.restore(read_fluid(file, info, comm), info.step);
     });
-    if (scene.colloids)
+    if (scene.colloids) {
       run::collectively(comm, [&] {
         sim.restore_colloids(read_colloids(file, *scene.colloids, scene.run.dimensions,
                                            scene.fluid.density, scene.run.seed, comm));
       });
+      // sim.colloids() holds every colloid on every rank (gather them when they are owned by
+      // slabs).
+      check_fluid_outside_colloids(sim.fluid(), sim.colloids(), sim.box(), scene.colloids->epsilon,
+                                   scene.fluid.kT, file, comm);
+    }
   }
   run::Log &log = shell.open(restarting ? sim.step() : -1);
   for (const auto &line : describe_scene(scene, comm))
