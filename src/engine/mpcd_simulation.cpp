@@ -127,10 +127,7 @@ void MpcdSimulation::restore(mpcd::Fluid &&fluid, std::int64_t step) {
   grid_ = mpcd::CellGrid(box_, slabs_.first_column(), slabs_.local_columns());
   fluid_ = std::move(fluid);
   step_ = step;
-  // Each particle to the slab of its unshifted column, as after the last step's binning (the
-  // colloid ghosts assume the fluid lies within a cell of its rank's slab).
-  if (plan_.slabs)
-    migrate_to_owners();
+  restored_ = plan_.slabs; // the next step first sends each particle to its slab (collective)
 }
 
 void MpcdSimulation::restore_colloids(colloids::Colloids &&all) {
@@ -263,6 +260,10 @@ void MpcdSimulation::advance() {
 void MpcdSimulation::step_stages() {
   const MpcdPlan &p = plan_;
   const auto step = static_cast<std::uint64_t>(step_);
+  if (restored_) { // a checkpoint's blocks: each particle to the slab of its unshifted column,
+    migrate_to_owners(); // as after binning (colloid ghosts assume the fluid near its slab)
+    restored_ = false;
+  }
   if (p.colloids) // forces now; ghost colloids; copies out the fluid that may meet a colloid
     md_->take_near_fluid(fluid_, colloids_);
   stream(fluid_, p.dt); // every particle, the whole step (walls, body force exact)

@@ -168,10 +168,9 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
         sim.restore_colloids(read_colloids(file, *scene.colloids, scene.run.dimensions,
                                            scene.fluid.density, scene.run.seed, comm));
       });
-      // sim.colloids() holds every colloid on every rank (gather them when they are owned by
-      // slabs).
-      check_fluid_outside_colloids(sim.fluid(), sim.colloids(), sim.box(), scene.colloids->epsilon,
-                                   scene.fluid.kT, file, comm);
+      // Every colloid (gathered from the owners) against this rank's fluid.
+      check_fluid_outside_colloids(sim.fluid(), sim.gather_colloids(), sim.box(),
+                                   scene.colloids->epsilon, scene.fluid.kT, file, comm);
     }
   }
   run::Log &log = shell.open(restarting ? sim.step() : -1);

@@ -43,9 +43,9 @@ public:
   // One MPCD step: every stage of the plan in order, then the step counter advances.
   void advance();
 
-  // Continues from a checkpoint: the fluid becomes `fluid` (any block of the particles, sent
-  // to their slab owners here; collective), the step counter `step`. For a simulation built
-  // with allocate = false, this also builds this rank's cell grid.
+  // Continues from a checkpoint: the fluid becomes `fluid` (any block of the particles; the
+  // next advance() first sends them to their slab owners), the step counter `step`. For a
+  // simulation built with allocate = false, this also builds this rank's cell grid.
   void restore(mpcd::Fluid &&fluid, std::int64_t step);
   // With [colloids], a restart also restores them: `all` holds every colloid; this rank keeps
   // those it owns.
@@ -101,6 +101,7 @@ private:
   mpcd::LayerSums layer_sums_;
   std::vector<Stage> stages_;
   std::int64_t step_ = 0;
+  bool restored_ = false; // the fluid is a checkpoint's blocks, not yet on its slabs
 };
 
 mpcd::Box make_box(const scene::Scene &scene);
