@@ -2,6 +2,7 @@
 #include "narrows/engine/info.hpp"
 
 #include "narrows/colloids/placement.hpp"
+#include "narrows/engine/invariants.hpp"
 #include "narrows/core/error.hpp"
 #include "narrows/engine/mpcd_simulation.hpp"
 #include "narrows/mpcd/transport_theory.hpp"
@@ -91,6 +92,14 @@ void check_runnable(const scene::Scene &s, MPI_Comm comm) {
                       " cells (fluid.dt = " + fmt("%.3g", s.fluid.dt) +
                       ", fluid.kT = " + fmt("%.3g", s.fluid.kT) + "); allowed: at most " +
                       fmt("%g", max_free_path) + " (beyond it positions are noise)");
+  // The invariant check stops a run at a particle speed above max_speed; a Maxwell velocity
+  // component exceeds 10 sqrt(kT/m) with probability 1.5e-23 per draw, so below this bound no
+  // run stops for its temperature alone.
+  const double hottest = (max_speed / 10.0) * (max_speed / 10.0);
+  if (!(s.fluid.kT <= hottest))
+    throw input_error(head + "fluid.kT = " + fmt("%.3g", s.fluid.kT) +
+                      " gives thermal speeds the run refuses (it stops at speed " +
+                      fmt("%g", max_speed) + "); allowed: at most " + fmt("%g", hottest));
   if (s.body_force) {
     // The flight per step the force alone gives by the end of the run (the fluid accelerates
     // until the walls or collisions hold it): beyond the bound positions are noise, and the

@@ -86,9 +86,9 @@ extreme() {
   restarted "$name" "$tmp/$name" "$narrows" run "$scene" "$@"
 }
 
-# ---- mpcd: 2.56e6 particles in 16 x 16 cells, kT = 1e6, mean free path 1e6 cells (check's
-# limit), the largest run.steps. (kT = 1e10 passes check too, but the runaway-speed invariant,
-# |v| <= 1e4, stops such a run at its first observation.)
+# ---- mpcd: 2.56e6 particles in 16 x 16 cells, kT = 1e6 (check's limit: above it the
+# runaway-speed invariant, |v| <= 1e4, would stop the run at its first observation), mean free
+# path 1e6 cells (check's limit), the largest run.steps.
 cat > "$tmp/mpcd.toml" <<'TOML'
 [run]
 engine = "mpcd"
@@ -107,6 +107,8 @@ every = 1000000
 progress = false
 TOML
 extreme mpcd "$tmp/mpcd.toml"
+refused "mpcd: kT = 1e10 is refused by check" "fluid.kT = 1e+10 gives thermal speeds" \
+  "$narrows" check "$tmp/mpcd.toml" --set fluid.kT=1e10 --set fluid.dt=1e-3
 
 # ---- mpcd on 2 ranks: SIGTERM to one rank only, then to both ranks
 stopped mpcd_2ranks_one "$tmp/mpcd2" one "${mpi[@]}" -n 2 "$narrows" run "$tmp/mpcd.toml"
