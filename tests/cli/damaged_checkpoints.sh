@@ -35,26 +35,34 @@ check "mpcd checkpoint written" '[ -s "$tmp/c/checkpoint-0000000004.h5" ]'
 good=$tmp/c/checkpoint-0000000004.h5
 
 cat > "$tmp/flip.py" <<'PY'
-# flip.py IN OUT DATASET BYTE_FRACTION BIT: OUT = IN with one bit of DATASET's stored data
-# flipped (at the given fraction of its bytes); prints the dataset.
+# flip.py IN BYTE_FRACTION BIT OUT1 DATASET1 [OUT2 DATASET2 ...]: each OUTk = IN with one bit of
+# DATASETk's stored data flipped (at the given fraction of its bytes). One python start for all
+# the copies (importing h5py takes ~0.5 s).
 import shutil, sys, h5py
-src, dst, name, frac, bit = sys.argv[1], sys.argv[2], sys.argv[3], float(sys.argv[4]), int(sys.argv[5])
+src, frac, bit = sys.argv[1], float(sys.argv[2]), int(sys.argv[3])
+pairs = list(zip(sys.argv[4::2], sys.argv[5::2]))
 with h5py.File(src, "r") as f:
-    d = f[name]
-    off, size = d.id.get_offset(), d.id.get_storage_size()
-shutil.copy(src, dst)
-at = off + min(int(frac * size), size - 1)
-with open(dst, "r+b") as f:
-    f.seek(at); b = f.read(1)[0]; f.seek(at); f.write(bytes([b ^ (1 << bit)]))
+    where = {name: (f[name].id.get_offset(), f[name].id.get_storage_size()) for _, name in pairs}
+for dst, name in pairs:
+    off, size = where[name]
+    shutil.copy(src, dst)
+    at = off + min(int(frac * size), size - 1)
+    with open(dst, "r+b") as f:
+        f.seek(at); b = f.read(1)[0]; f.seek(at); f.write(bytes([b ^ (1 << bit)]))
 PY
 
 ranks=0
 # One flipped bit in each dataset a restart reads: refused naming the dataset, file untouched.
-for ds in /particles/fluid/position/value /particles/fluid/velocity/value /particles/fluid/id/value \
-  /particles/colloids/position/value /particles/colloids/velocity/value \
-  /particles/colloids/radius/value /particles/fluid/box/edges \
-  /parameters/scene /parameters/step /parameters/time /parameters/seed; do
-  $py "$tmp/flip.py" "$good" "$tmp/bad.h5" "$ds" 0.37 5
+datasets=(/particles/fluid/position/value /particles/fluid/velocity/value /particles/fluid/id/value
+  /particles/colloids/position/value /particles/colloids/velocity/value
+  /particles/colloids/radius/value /particles/fluid/box/edges
+  /parameters/scene /parameters/step /parameters/time /parameters/seed)
+flips=()
+for i in "${!datasets[@]}"; do flips+=("$tmp/bad$i.h5" "${datasets[i]}"); done
+runs "write the damaged copies" $py "$tmp/flip.py" "$good" 0.37 5 "${flips[@]}"
+for i in "${!datasets[@]}"; do
+  ds=${datasets[i]}
+  cp "$tmp/bad$i.h5" "$tmp/bad.h5" # the messages name bad.h5
   sum=$(md5sum < "$tmp/bad.h5")
   ranks=$((ranks % 3 + 1)) # 1, 2, 3 ranks in turn: the checksum is verified collectively
   for n in $ranks; do
@@ -86,7 +94,7 @@ observables = ["shear_wave"]
 progress = false
 TOML
 "$narrows" run "$tmp/l.toml" --out "$tmp/l" > /dev/null 2> "$tmp/err"
-$py "$tmp/flip.py" "$tmp/l/checkpoint-0000000004.h5" "$tmp/badl.h5" /particles/lattice/state/value 0.5 0
+$py "$tmp/flip.py" "$tmp/l/checkpoint-0000000004.h5" 0.5 0 "$tmp/badl.h5" /particles/lattice/state/value
 for n in 1 2; do
   refused "lgca flip, $n ranks" "damaged checkpoint: /particles/lattice/state/value does not match" \
     timeout 60 "${mpi[@]}" -n $n "$narrows" run "$tmp/l.toml" --restart "$tmp/badl.h5" --set run.steps=6 --out "$tmp/lr$n"
@@ -110,7 +118,7 @@ progress = false
 TOML
 "$narrows" run "$tmp/k.toml" --set kmc.replicas=1 --out "$tmp/k" > /dev/null 2> "$tmp/err"
 kck=$(ls "$tmp"/k/checkpoint-*.h5 | head -1)
-$py "$tmp/flip.py" "$kck" "$tmp/badk.h5" /kmc/mean 0.5 6
+$py "$tmp/flip.py" "$kck" 0.5 6 "$tmp/badk.h5" /kmc/mean
 refused "kmc flip" "damaged checkpoint: /kmc/mean does not match its checksum" \
   timeout 60 "$narrows" run "$tmp/k.toml" --restart "$tmp/badk.h5" --out "$tmp/kr"
 
@@ -128,53 +136,57 @@ refused_after_warning() {
   check "$name: message matches '$pattern'" 'grep -q -- "$pattern" "$tmp/lerr1" || { cat "$tmp/lerr1"; false; }'
 }
 cat > "$tmp/legacy.py" <<'PY'
-# legacy.py IN OUT EDIT: OUT = IN without checksums (as older narrows wrote), then EDIT applied.
+# legacy.py IN EDIT1 OUT1 [EDIT2 OUT2 ...]: each OUTk = IN without checksums (as older narrows
+# wrote), then EDITk applied. One python start for all the copies.
 import shutil, sys, h5py, numpy as np
-src, dst, edit = sys.argv[1:4]
-shutil.copy(src, dst)
-with h5py.File(dst, "r+") as f:
-    def strip(name, obj):
-        if "checksum" in obj.attrs:
-            del obj.attrs["checksum"]
-    f.visititems(strip)
-    pos, vel, ids = (f["/particles/fluid/%s/value" % k] for k in ("position", "velocity", "id"))
-    n = ids.shape[0]
-    if edit == "outside":
-        p = pos[...]; p[n - 3, 0] = 1e300; pos[...] = p
-    elif edit == "beyond_wall":
-        p = pos[...]; p[n // 2, 1] = 12.5; pos[...] = p
-    elif edit == "nan":
-        v = vel[...]; v[n - 2, 1] = np.nan; vel[...] = v
-    elif edit == "duplicate":
-        i = ids[...]; i[n - 1] = i[0]; ids[...] = i
-    elif edit == "all_zero":
-        ids[...] = np.zeros(n, dtype=np.uint64)
-    elif edit == "range":
-        i = ids[...]; i[n - 1] = n + 5; ids[...] = i
-    elif edit == "seed":
-        f["/parameters/seed"][()] = 9
-    elif edit == "box":
-        e = f["/particles/fluid/box/edges"][...]; e[1] = 13.0; f["/particles/fluid/box/edges"][...] = e
-    elif edit == "time":
-        f["/parameters/time"][()] = np.nan
-    elif edit == "step":
-        f["/parameters/step"][()] = 2**62
+src = sys.argv[1]
+for edit, dst in zip(sys.argv[2::2], sys.argv[3::2]):
+  shutil.copy(src, dst)
+  with h5py.File(dst, "r+") as f:
+      def strip(name, obj):
+          if "checksum" in obj.attrs:
+              del obj.attrs["checksum"]
+      f.visititems(strip)
+      pos, vel, ids = (f["/particles/fluid/%s/value" % k] for k in ("position", "velocity", "id"))
+      n = ids.shape[0]
+      if edit == "outside":
+          p = pos[...]; p[n - 3, 0] = 1e300; pos[...] = p
+      elif edit == "beyond_wall":
+          p = pos[...]; p[n // 2, 1] = 12.5; pos[...] = p
+      elif edit == "nan":
+          v = vel[...]; v[n - 2, 1] = np.nan; vel[...] = v
+      elif edit == "duplicate":
+          i = ids[...]; i[n - 1] = i[0]; ids[...] = i
+      elif edit == "all_zero":
+          ids[...] = np.zeros(n, dtype=np.uint64)
+      elif edit == "range":
+          i = ids[...]; i[n - 1] = n + 5; ids[...] = i
+      elif edit == "seed":
+          f["/parameters/seed"][()] = 9
+      elif edit == "box":
+          e = f["/particles/fluid/box/edges"][...]; e[1] = 13.0; f["/particles/fluid/box/edges"][...] = e
+      elif edit == "time":
+          f["/parameters/time"][()] = np.nan
+      elif edit == "step":
+          f["/parameters/step"][()] = 2**62
 PY
-$py "$tmp/legacy.py" "$good" "$tmp/legacy.h5" none
+edits=(outside:"position/value row .* component 0 = 1.0000000000000001e+300; allowed: inside the box"
+  nan:"velocity/value row .* = nan; allowed: a finite number"
+  duplicate:"id/value row .* holds id 0, as does row 0; allowed: every id"
+  all_zero:"id/value row 1 holds id 0, as does row 0"
+  range:"id/value row .* holds id .*; allowed: 0 to"
+  seed:"/parameters/seed = 9 but /parameters/scene has run.seed = 8"
+  box:"box/edges\[1\] = 13 but /parameters/scene has domain.size\[1\] = 12"
+  time:"/parameters/time = nan; allowed: a finite time"
+  step:"/parameters/step = 4611686018427387904; allowed: 0 to 9999999999")
+copies=(none "$tmp/legacy.h5")
+for edit in "${edits[@]}"; do copies+=("${edit%%:*}" "$tmp/${edit%%:*}.h5"); done
+runs "write the copies without checksums" $py "$tmp/legacy.py" "$good" "${copies[@]}"
 timeout 60 "$narrows" run "$tmp/c.toml" --restart "$tmp/legacy.h5" --set run.steps=6 --out "$tmp/lg" > /dev/null 2> "$tmp/err_lg"
 check "checkpoint without checksums: accepted" '[ $? -eq 0 ]'
 check "checkpoint without checksums: a warning says so" 'grep -q "carries no checksums" "$tmp/err_lg"'
-for edit in outside:"position/value row .* component 0 = 1.0000000000000001e+300; allowed: inside the box" \
-  nan:"velocity/value row .* = nan; allowed: a finite number" \
-  duplicate:"id/value row .* holds id 0, as does row 0; allowed: every id" \
-  all_zero:"id/value row 1 holds id 0, as does row 0" \
-  range:"id/value row .* holds id .*; allowed: 0 to" \
-  seed:"/parameters/seed = 9 but /parameters/scene has run.seed = 8" \
-  box:"box/edges\[1\] = 13 but /parameters/scene has domain.size\[1\] = 12" \
-  time:"/parameters/time = nan; allowed: a finite time" \
-  step:"/parameters/step = 4611686018427387904; allowed: 0 to 9999999999"; do
+for edit in "${edits[@]}"; do
   name=${edit%%:*} pattern=${edit#*:}
-  $py "$tmp/legacy.py" "$good" "$tmp/$name.h5" "$name"
   ranks=$((ranks % 2 + 2)) # 1 rank, and 2 or 3 in turn: every rank ends with the same line
   for n in 1 $ranks; do
     refused_after_warning "$name, $n ranks" "$pattern" \
