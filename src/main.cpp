@@ -1,4 +1,6 @@
 // The narrows command line: run, check, info, bench (DESIGN.md, "The user-facing contract").
+#include "narrows/continuum/bench.hpp"
+#include "narrows/continuum/driver.hpp"
 #include "narrows/core/error.hpp"
 #include "narrows/engine/bench.hpp"
 #include "narrows/engine/info.hpp"
@@ -64,6 +66,11 @@ int main_inner(int argc, char **argv) {
   double kmc_sites = 0.0;
   bench->add_option("--kmc", kmc_sites, "only the kmc engine, on this many sites (e.g. 1e6)")
       ->check(CLI::PositiveNumber);
+  double continuum_cells = 0.0;
+  bench
+      ->add_option("--continuum", continuum_cells,
+                   "only the continuum engine's scheme, on this many cells (e.g. 1e5)")
+      ->check(CLI::PositiveNumber);
   int lgca_sites = 0;
   bench
       ->add_option("--lgca", lgca_sites,
@@ -98,6 +105,11 @@ int main_inner(int argc, char **argv) {
       narrows::kmc::run_bench(std::cout, kmc_sites, bench_opt.json);
     return 0;
   }
+  if (*bench && continuum_cells > 0.0) {
+    if (root)
+      narrows::continuum::run_bench(std::cout, continuum_cells, bench_opt.json);
+    return 0;
+  }
   if (*bench && lgca_sites > 0) {
     narrows::lattice::run_bench(std::cout, lgca_sites, static_cast<int>(bench_opt.steps),
                                 bench_opt.json, MPI_COMM_WORLD);
@@ -114,6 +126,9 @@ int main_inner(int argc, char **argv) {
   if (scene.run.engine == narrows::scene::Engine::kmc)
     return narrows::kmc::command(scene, static_cast<bool>(*check), static_cast<bool>(*info),
                                  run_opt, MPI_COMM_WORLD);
+  if (scene.run.engine == narrows::scene::Engine::continuum)
+    return narrows::continuum::command(scene, static_cast<bool>(*check), static_cast<bool>(*info),
+                                       run_opt, MPI_COMM_WORLD);
   if (scene.run.engine == narrows::scene::Engine::lgca)
     return narrows::lattice::command(scene, static_cast<bool>(*check), static_cast<bool>(*info),
                                      run_opt, MPI_COMM_WORLD);

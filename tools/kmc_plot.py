@@ -7,11 +7,13 @@
 - shock position: mean and variance against time, with the theory v_s and D_s;
 - charge profiles at several times against the solution of the hydrodynamic equation
   d sigma/dt + d j(sigma)/dx = 0 (seed 000 eq 2.60; family 1 flux from eq 2.48 with rho*(sigma)
-  of eq 2.59, as written by narrows into /observables/current_theory), solved by finite volumes
-  with the Godunov flux, started from the measured profile at the first sample and held at the
-  two end densities.
+  of eq 2.59, family 2 eq 2.126): this tool does not solve it, the continuum engine does
+  (`narrows run` of a conservation-law scene written from the kmc run's own scene: the preset's
+  rates, the measured profile at the first sample coarse-grained into cells of B sites as the
+  initial cell averages, the two end values held as reservoirs, samples at the kmc sample times).
 
 Usage: tools/kmc_plot.py OUT/observables.h5 [MORE.h5 ...] [--png FILE] [--block B]
+                         [--narrows PATH]
 Prints the distance between the coarse-grained measured profile and the hydrodynamic solution
 (mean |difference| per site over the jump |sigma_left - sigma_right|) at each plotted time.
 """
@@ -21,35 +23,22 @@ import sys
 import h5py
 import numpy as np
 
-
-def godunov_flux(a, b, dens, flux):
-    """Godunov flux between left states a and right states b for a tabulated flux j(u)."""
-    lo, hi = np.minimum(a, b), np.maximum(a, b)
-    ja, jb = np.interp(a, dens, flux), np.interp(b, dens, flux)
-    inside = (dens[None, :] >= lo[:, None]) & (dens[None, :] <= hi[:, None])
-    big = np.where(inside, flux[None, :], np.inf)
-    small = np.where(inside, flux[None, :], -np.inf)
-    fmin = np.minimum(np.minimum(ja, jb), big.min(axis=1))
-    fmax = np.maximum(np.maximum(ja, jb), small.max(axis=1))
-    return np.where(a <= b, fmin, fmax)
+from continuum_run import find_narrows, kmc_flux_lines, run_continuum
 
 
-def solve_hydro(sigma0, dx, times, dens, flux):
-    """Profiles at `times` (from 0) of d sigma/dt + d j/dx = 0, cells of width dx."""
-    slope = np.max(np.abs(np.gradient(flux, dens)))
-    dt_max = 0.4 * dx / max(slope, 1e-12)
-    left, right = sigma0[0], sigma0[-1]
-    u = sigma0.astype(float).copy()
-    out, t = [], 0.0
-    for target in times:
-        while t < target - 1e-12:
-            dt = min(dt_max, target - t)
-            ext = np.concatenate(([left], u, [right]))
-            f = godunov_flux(ext[:-1], ext[1:], dens, flux)
-            u = u - dt / dx * (f[1:] - f[:-1])
-            t += dt
-        out.append(u.copy())
-    return out
+def continuum_solution(narrows, kmc_scene_text, cells0, b, times):
+    """Cell averages at `times` (the kmc sample times, equally spaced from 0) of the continuum
+    engine started from cells0 (cells of b sites), with the kmc preset's flux."""
+    n = len(cells0)
+    values = ", ".join(repr(float(x)) for x in cells0)
+    t, value = run_continuum(
+        narrows,
+        kmc_flux_lines(kmc_scene_text) + f"length = {float(n * b)!r}\ncells = {n}\n"
+        f'boundary = "open"\ninitial = {{ kind = "cells", values = [{values}] }}\n'
+        f"time = {float(times[-1])!r}\nsamples = {len(times) - 1}\n", ("density",))["density"]
+    if not np.allclose(t, times, rtol=1e-9, atol=1e-9 * times[-1]):
+        sys.exit("kmc_plot.py: continuum sample times differ from the kmc ones")
+    return value
 
 
 def block(x, b):
@@ -62,6 +51,7 @@ def main():
     ap.add_argument("files", nargs="+")
     ap.add_argument("--png", default=None, help="output PNG (default: next to the first file)")
     ap.add_argument("--block", type=int, default=10, help="sites per coarse-graining block")
+    ap.add_argument("--narrows", default=None, help="the narrows binary (default: build/narrows)")
     args = ap.parse_args()
 
     import matplotlib
@@ -139,14 +129,14 @@ def main():
 
     if "hydro" in panels:
         ax = axes[panels.index("hydro")]
-        dens = first["current_theory/bins"][:]
-        flux = first["current_theory/value"][0]
         q = first["charge_profile/value"][:]
         t = first["charge_profile/time"][:]
         b = max(1, args.block)
         x = block(first["charge_profile/bins"][:], b)
         picks = sorted(set([0, len(t) // 3, 2 * len(t) // 3, len(t) - 1]))
-        hydro = solve_hydro(block(q[0], b), float(b), [t[i] for i in picks], dens, flux)
+        scene_text = h5py.File(args.files[0], "r")["parameters/scene"][()].decode()
+        solution = continuum_solution(find_narrows(args.narrows), scene_text, block(q[0], b), b, t)
+        hydro = [solution[i] for i in picks]
         jump = abs(block(q[0], b)[0] - block(q[0], b)[-1])
         for c, (i, h) in enumerate(zip(picks, hydro)):
             meas = block(q[i], b)
@@ -158,7 +148,7 @@ def main():
                   f"(|measured - initial| / jump = {still:.4f})")
         ax.set_xlabel("site")
         ax.set_ylabel("charge per site")
-        ax.set_title("charge profile: kmc (dots), eq 2.60 (lines)")
+        ax.set_title("charge profile: kmc (dots), continuum engine, eq 2.60 (lines)")
         ax.legend(fontsize=8)
 
     fig.tight_layout()

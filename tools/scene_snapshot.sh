@@ -5,6 +5,7 @@
 #   bash tools/scene_snapshot.sh --compare OUTDIR_A OUTDIR_B [--exclude /path ...]
 #                                       # h5diff of every HDF5 file, without the objects named
 #                                       # (e.g. a dataset one side adds on purpose)
+# SCENES='run/seed000_*.toml' limits the run to the scenes the glob names (default run/*.toml).
 # Timing lines of the logs differ between runs; only the HDF5 files are compared.
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -44,7 +45,7 @@ ranks=${3:-1}
 mkdir -p "$out"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 failed=0
-for scene in run/*.toml; do
+for scene in ${SCENES:-run/*.toml}; do
   name=$(basename "$scene" .toml)
   engine=$(grep -E '^\s*engine\s*=' "$scene" | head -1 | sed -E 's/.*"(.*)".*/\1/')
   case "$engine" in

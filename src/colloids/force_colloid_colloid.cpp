@@ -12,18 +12,22 @@ namespace narrows::colloids {
 template <int D, bool WallsY>
 double add_colloid_colloid_4824(CellList &cl, std::vector<int> &cell_of,
                                 std::vector<std::uint32_t> &partners, const Colloids &c,
-                                const mpcd::Box &box, double eps, bool want_energy,
-                                std::vector<std::int64_t> &on_colloids) {
+                                std::size_t owned, const mpcd::Box &box, double eps,
+                                bool want_energy, std::vector<std::int64_t> &on_colloids) {
   // Colloid a meets the partners b > a in the cells within one of its own (along an axis of
   // fewer than three cells, all of its cells, so no cell is visited twice and no pair counted
   // twice; along a wall axis the range stops at the walls). The pair forces are rounded to
   // fixed point and summed as integers, so the order of the pairs does not matter; the energy
   // is a sum of doubles, so for it the partners of each a are taken in increasing b, the order
   // of a double loop over a < b.
+  // Rows from `owned` on are ghost copies (ghosts.hpp): a pair adds only to its owned rows (the
+  // owner of the other side adds its half from the same positions, bitwise the negative), pairs
+  // of two ghosts are left to their owners, and the energy of a pair with a ghost is counted
+  // on the rank that owns the colloid with the smaller id.
   const std::size_t nc = c.size();
   const auto &L = box.length;
   const auto &cells = cl.cells;
-  std::fill(cl.head.begin(), cl.head.end(), -1);
+  cl.clear();
   cl.next.resize(nc);
   cell_of.resize(nc * D);
   for (std::size_t a = 0; a < nc; ++a) {
@@ -34,11 +38,11 @@ double add_colloid_colloid_4824(CellList &cl, std::vector<int> &cell_of,
       cell_of[a * D + k] = ck;
       cell = cell * static_cast<std::size_t>(n) + static_cast<std::size_t>(ck);
     }
-    cl.next[a] = cl.head[cell];
-    cl.head[cell] = static_cast<std::int32_t>(a);
+    cl.push(cell, static_cast<std::int32_t>(a));
   }
   double energy = 0.0;
   for (std::size_t a = 0; a < nc; ++a) {
+    const bool a_owned = a < owned;
     int lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0}, home[3] = {0, 0, 0};
     for (int k = 0; k < D; ++k) {
       const int n = cells[k];
@@ -77,12 +81,18 @@ double add_colloid_colloid_4824(CellList &cl, std::vector<int> &cell_of,
       const double scc = c.radius[a] + c.radius[b];
       if (r2 >= std::pow(repulsive_cutoff(24, scc), 2))
         continue;
+      const bool b_owned = b < owned;
+      if (!a_owned && !b_owned)
+        continue;
       const PairTerm t = repulsive_pair<24>(r2, scc * scc, eps);
-      energy += t.energy;
+      if ((a_owned && b_owned) || (a_owned ? c.id[a] < c.id[b] : c.id[b] < c.id[a]))
+        energy += t.energy;
       for (int k = 0; k < D; ++k) {
         const std::int64_t q = to_fixed(t.f_over_r * d[k]);
-        on_colloids[a * D + k] += q;
-        on_colloids[static_cast<std::size_t>(b) * D + k] -= q;
+        if (a_owned)
+          on_colloids[a * D + k] += q;
+        if (b_owned)
+          on_colloids[static_cast<std::size_t>(b) * D + k] -= q;
       }
     }
   }
@@ -91,7 +101,7 @@ double add_colloid_colloid_4824(CellList &cl, std::vector<int> &cell_of,
 
 #define NARROWS_INSTANTIATE(D, W)                                                                  \
   template double add_colloid_colloid_4824<D, W>(                                                  \
-      CellList &, std::vector<int> &, std::vector<std::uint32_t> &, const Colloids &,              \
+      CellList &, std::vector<int> &, std::vector<std::uint32_t> &, const Colloids &, std::size_t, \
       const mpcd::Box &, double, bool, std::vector<std::int64_t> &);
 NARROWS_FOR_EACH_DIM_AND_WALLS(NARROWS_INSTANTIATE)
 #undef NARROWS_INSTANTIATE

@@ -5,17 +5,17 @@
 namespace narrows::colloids {
 
 template <int D>
-void add_gravity(const Colloids &c, const std::array<double, 3> &g,
+void add_gravity(const Colloids &c, std::size_t owned, const std::array<double, 3> &g,
                  std::vector<std::int64_t> &on_colloids) {
   for (int k = 0; k < D; ++k)
     if (g[k] != 0.0)
-      for (std::size_t a = 0; a < c.size(); ++a)
+      for (std::size_t a = 0; a < owned; ++a)
         on_colloids[a * D + k] += to_fixed(c.mass[a] * g[k]);
 }
 
-template void add_gravity<2>(const Colloids &, const std::array<double, 3> &,
+template void add_gravity<2>(const Colloids &, std::size_t, const std::array<double, 3> &,
                              std::vector<std::int64_t> &);
-template void add_gravity<3>(const Colloids &, const std::array<double, 3> &,
+template void add_gravity<3>(const Colloids &, std::size_t, const std::array<double, 3> &,
                              std::vector<std::int64_t> &);
 
 } // namespace narrows::colloids

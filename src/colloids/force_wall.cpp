@@ -8,11 +8,11 @@
 namespace narrows::colloids {
 
 template <int D>
-double add_wall_lj(const Colloids &c, const mpcd::Box &box, double eps, double sigma_wall,
-                   double wall_q, std::vector<std::int64_t> &on_colloids) {
+double add_wall_lj(const Colloids &c, std::size_t owned, const mpcd::Box &box, double eps,
+                   double sigma_wall, double wall_q, std::vector<std::int64_t> &on_colloids) {
   const auto &L = box.length;
   double energy = 0.0;
-  for (std::size_t a = 0; a < c.size(); ++a) {
+  for (std::size_t a = 0; a < owned; ++a) {
     const double sw = sigma_wall > 0.0 ? sigma_wall : 2.0 * c.radius[a];
     const double hcut = wall_cutoff(sw), y = c.x[1][a];
     if (!(y > 0.0 && y < L[1])) {
@@ -36,9 +36,9 @@ double add_wall_lj(const Colloids &c, const mpcd::Box &box, double eps, double s
   return energy;
 }
 
-template double add_wall_lj<2>(const Colloids &, const mpcd::Box &, double, double, double,
-                               std::vector<std::int64_t> &);
-template double add_wall_lj<3>(const Colloids &, const mpcd::Box &, double, double, double,
-                               std::vector<std::int64_t> &);
+template double add_wall_lj<2>(const Colloids &, std::size_t, const mpcd::Box &, double, double,
+                               double, std::vector<std::int64_t> &);
+template double add_wall_lj<3>(const Colloids &, std::size_t, const mpcd::Box &, double, double,
+                               double, std::vector<std::int64_t> &);
 
 } // namespace narrows::colloids

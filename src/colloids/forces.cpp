@@ -1,5 +1,6 @@
 // The colloid forces as the sum of their terms, in fixed point.
 #include "narrows/colloids/forces.hpp"
+#include "narrows/colloids/ghosts.hpp"
 #include "narrows/mpcd/cell_grid.hpp"
 
 #include "narrows/colloids/force_terms.hpp"
@@ -18,6 +19,7 @@ void CellList::size_for(const mpcd::Box &box, double cut) {
     n *= static_cast<std::size_t>(cells[k]);
   }
   head.assign(n, -1);
+  filled.clear();
 }
 
 void FluidForces::clear(int dim) {
@@ -33,7 +35,7 @@ namespace {
 
 void build_fluid_cells(CellList &cl, const mpcd::Fluid &f, int dim) {
   const std::size_t n = f.size();
-  std::fill(cl.head.begin(), cl.head.end(), -1);
+  cl.clear();
   cl.next.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     std::size_t cell = 0;
@@ -42,8 +44,7 @@ void build_fluid_cells(CellList &cl, const mpcd::Fluid &f, int dim) {
           mpcd::clamped_cell(f.x[k][i], cl.inv_cell[k], cl.cells[k], "fluid particle", f.id[i], k);
       cell = cell * static_cast<std::size_t>(cl.cells[k]) + static_cast<std::size_t>(ck);
     }
-    cl.next[i] = cl.head[cell];
-    cl.head[cell] = static_cast<std::int32_t>(i);
+    cl.push(cell, static_cast<std::int32_t>(i));
   }
 }
 
@@ -52,13 +53,11 @@ void build_fluid_cells(CellList &cl, const mpcd::Fluid &f, int dim) {
 ForceField::ForceField(const ForceParams &params, const mpcd::Box &box)
     : params_(params), box_(box), dim_(box.dim) {}
 
-void ForceField::size_cells(const Colloids &c) {
+void ForceField::size_cells(double r_max) {
   // Fluid cells at least the largest WCA cut-off wide, colloid cells at least the largest
-  // 48-24 cut-off; the radii are fixed, so this runs once.
-  double r_max = 0.0;
-  for (const double r : c.radius)
-    r_max = std::max(r_max, r);
-  if (r_max == cell_radius_)
+  // 48-24 cut-off, for the largest radius seen so far (cells wider than the cut-off serve
+  // smaller colloids too; the radii are fixed, so this runs once).
+  if (r_max <= cell_radius_)
     return;
   cell_radius_ = r_max;
   fluid_cells_.size_for(box_, repulsive_cutoff(6, r_max));
@@ -66,52 +65,55 @@ void ForceField::size_cells(const Colloids &c) {
 }
 
 template <int D, bool WallsY>
-PotentialEnergy ForceField::compute(const mpcd::Fluid &f, const Colloids &c, MPI_Comm comm,
-                                    bool want_energy) {
+PotentialEnergy ForceField::compute(const mpcd::Fluid &f, const Colloids &c, ColloidGhosts *ghosts,
+                                    MPI_Comm comm, bool want_energy) {
   const std::size_t n = f.size(), nc = c.size();
+  const std::size_t owned = ghosts ? ghosts->owned() : nc;
   // Forces of the previous call are cleared where they were set; arrays grow with the fluid.
   fluid_.clear(D);
   fluid_.value.resize(n * D, 0);
   fluid_.flag.resize(n, 0);
-  size_cells(c);
-  build_fluid_cells(fluid_cells_, f, D);
+  double r_max = 0.0;
+  for (const double r : c.radius)
+    r_max = std::max(r_max, r);
+  size_cells(r_max);
   const double eps = params_.epsilon;
   PotentialEnergy energy;
+  colloid_.assign(nc * D, 0);
+  if (cell_radius_ > 0.0) // the list near_fluid.hpp uses too, also when this rank has no colloid
+    build_fluid_cells(fluid_cells_, f, D);
 
-  // Terms between fluid and colloids: this rank's fluid on every colloid, summed over ranks.
-  colloid_local_.assign(nc * D, 0);
-  energy.colloid_fluid = add_colloid_fluid_wca<D, WallsY>(fluid_cells_, f, c, box_, eps,
-                                                          want_energy, fluid_, colloid_local_);
-  colloid_.resize(nc * D);
-  if (comm == MPI_COMM_NULL) {
-    colloid_ = colloid_local_;
-  } else {
-    MPI_Allreduce(colloid_local_.data(), colloid_.data(), static_cast<int>(nc * D), MPI_INT64_T,
-                  MPI_SUM, comm);
-  }
-  if (want_energy && comm != MPI_COMM_NULL) {
-    double sum = 0.0;
-    MPI_Allreduce(&energy.colloid_fluid, &sum, 1, MPI_DOUBLE, MPI_SUM, comm);
-    energy.colloid_fluid = sum;
-  }
+  // Terms between fluid and colloids: this rank's fluid on its own and its ghost colloids; the
+  // ghosts' shares go to their owners.
+  if (nc > 0)
+    energy.colloid_fluid = add_colloid_fluid_wca<D, WallsY>(fluid_cells_, f, c, box_, eps,
+                                                            want_energy, fluid_, colloid_);
+  if (ghosts)
+    ghosts->reverse(colloid_, D);
 
-  // Terms among colloids and of external fields: the same on every rank (all hold all
-  // colloids). Contact forces with history would be added here.
-  energy.colloid_colloid = add_colloid_colloid_4824<D, WallsY>(
-      colloid_cells_, colloid_cell_, partners_, c, box_, eps, want_energy, colloid_);
+  // Terms among colloids and of external fields, on the owned rows. Contact forces with
+  // history would be added here.
+  if (nc > 0)
+    energy.colloid_colloid = add_colloid_colloid_4824<D, WallsY>(
+        colloid_cells_, colloid_cell_, partners_, c, owned, box_, eps, want_energy, colloid_);
   if constexpr (WallsY)
-    energy.wall = add_wall_lj<D>(c, box_, eps, params_.sigma_wall, params_.wall_q, colloid_);
-  add_gravity<D>(c, params_.gravity, colloid_);
+    energy.wall = add_wall_lj<D>(c, owned, box_, eps, params_.sigma_wall, params_.wall_q, colloid_);
+  add_gravity<D>(c, owned, params_.gravity, colloid_);
+  if (want_energy && comm != MPI_COMM_NULL) { // each pair and wall term on one rank
+    std::array<double, 3> mine{energy.colloid_fluid, energy.colloid_colloid, energy.wall}, sum{};
+    MPI_Allreduce(mine.data(), sum.data(), 3, MPI_DOUBLE, MPI_SUM, comm);
+    energy = {sum[0], sum[1], sum[2]};
+  }
   return energy;
 }
 
 PotentialEnergy ForceField::compute(const mpcd::Fluid &fluid, const Colloids &colloids,
-                                    MPI_Comm comm, bool want_energy) {
+                                    ColloidGhosts *ghosts, MPI_Comm comm, bool want_energy) {
   if (dim_ == 3)
-    return box_.walls_y ? compute<3, true>(fluid, colloids, comm, want_energy)
-                        : compute<3, false>(fluid, colloids, comm, want_energy);
-  return box_.walls_y ? compute<2, true>(fluid, colloids, comm, want_energy)
-                      : compute<2, false>(fluid, colloids, comm, want_energy);
+    return box_.walls_y ? compute<3, true>(fluid, colloids, ghosts, comm, want_energy)
+                        : compute<3, false>(fluid, colloids, ghosts, comm, want_energy);
+  return box_.walls_y ? compute<2, true>(fluid, colloids, ghosts, comm, want_energy)
+                      : compute<2, false>(fluid, colloids, ghosts, comm, want_energy);
 }
 
 } // namespace narrows::colloids

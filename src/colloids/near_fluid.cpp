@@ -12,24 +12,22 @@ namespace narrows::colloids {
 
 namespace {
 
+// The largest path |v| dt + a dt^2 / 2 of particle i.
+template <int D> double reach(const mpcd::Fluid &f, std::size_t i, double dt, double half_a_dt2) {
+  double v2 = 0.0;
+  for (int k = 0; k < D; ++k)
+    v2 += f.v[k][i] * f.v[k][i];
+  return std::sqrt(v2) * dt + half_a_dt2;
+}
+
 template <int D, bool WallsY>
 void select(const CellList &cl, const mpcd::Fluid &f, const Colloids &c, const mpcd::Box &box,
-            const std::vector<double> &margin, double dt, double fluid_accel,
+            const std::vector<double> &margin, double dt, double fluid_accel, double max_reach,
             std::vector<std::uint8_t> &flag, std::vector<std::uint32_t> &index) {
   const std::size_t n = f.size();
   const auto &cells = cl.cells;
   const double half_a_dt2 = 0.5 * fluid_accel * dt * dt;
   const double *X[3] = {f.x[0].data(), f.x[1].data(), D == 3 ? f.x[2].data() : nullptr};
-  const double *V[3] = {f.v[0].data(), f.v[1].data(), D == 3 ? f.v[2].data() : nullptr};
-  auto reach = [&](std::size_t i) {
-    double v2 = 0.0;
-    for (int k = 0; k < D; ++k)
-      v2 += V[k][i] * V[k][i];
-    return std::sqrt(v2) * dt + half_a_dt2;
-  };
-  double max_reach = 0.0;
-  for (std::size_t i = 0; i < n; ++i)
-    max_reach = std::max(max_reach, reach(i));
   flag.assign(n, 0);
   index.clear();
   const auto &L = box.length;
@@ -69,7 +67,7 @@ void select(const CellList &cl, const mpcd::Fluid &f, const Colloids &c, const m
             const double xj[3] = {X[0][js], X[1][js], D == 3 ? X[2][js] : 0.0};
             double d[3];
             const double r2 = separation<D, WallsY>(xj, xc, L, d);
-            const double limit = range + reach(js);
+            const double limit = range + reach<D>(f, js, dt, half_a_dt2);
             if (r2 < limit * limit) {
               flag[js] = 1;
               index.push_back(static_cast<std::uint32_t>(j));
@@ -81,16 +79,27 @@ void select(const CellList &cl, const mpcd::Fluid &f, const Colloids &c, const m
 
 } // namespace
 
+double fluid_reach(const mpcd::Fluid &f, double dt, double fluid_accel) {
+  const double half_a_dt2 = 0.5 * fluid_accel * dt * dt;
+  double max_reach = 0.0;
+  for (std::size_t i = 0; i < f.size(); ++i)
+    max_reach = std::max(max_reach, f.dim == 3 ? reach<3>(f, i, dt, half_a_dt2)
+                                               : reach<2>(f, i, dt, half_a_dt2));
+  return max_reach;
+}
+
 void select_near_fluid(const CellList &cells, const mpcd::Fluid &f, const Colloids &c,
                        const mpcd::Box &box, const std::vector<double> &margin, double dt,
-                       double fluid_accel, std::vector<std::uint8_t> &flag,
+                       double fluid_accel, double max_reach, std::vector<std::uint8_t> &flag,
                        std::vector<std::uint32_t> &index) {
   if (box.dim == 3)
-    box.walls_y ? select<3, true>(cells, f, c, box, margin, dt, fluid_accel, flag, index)
-                : select<3, false>(cells, f, c, box, margin, dt, fluid_accel, flag, index);
+    box.walls_y
+        ? select<3, true>(cells, f, c, box, margin, dt, fluid_accel, max_reach, flag, index)
+        : select<3, false>(cells, f, c, box, margin, dt, fluid_accel, max_reach, flag, index);
   else
-    box.walls_y ? select<2, true>(cells, f, c, box, margin, dt, fluid_accel, flag, index)
-                : select<2, false>(cells, f, c, box, margin, dt, fluid_accel, flag, index);
+    box.walls_y
+        ? select<2, true>(cells, f, c, box, margin, dt, fluid_accel, max_reach, flag, index)
+        : select<2, false>(cells, f, c, box, margin, dt, fluid_accel, max_reach, flag, index);
 }
 
 } // namespace narrows::colloids

@@ -49,18 +49,18 @@ InvariantCheck::InvariantCheck(const MpcdSimulation &sim) {
   step0_ = sim.step();
   const auto &scene = sim.scene();
   const bool rule_conserves = scene.fluid.collision != scene::Collision::random_maxwell;
+  double colloid_mass = 0.0; // of all colloids, in id order
+  if (scene.colloids)
+    for (const double m : sim.gather_colloids().mass)
+      colloid_mass += m;
   for (int k = 0; k < sim.box().dim; ++k) {
     conserved_[k] = rule_conserves;
     if (scene.body_force && scene.body_force->kind == scene::ForceKind::sine && k == 0)
       conserved_[k] = false; // the sine force injects sum_i sin(k y_i), which fluctuates
     if (scene.body_force && scene.body_force->kind == scene::ForceKind::constant)
       drive_[k] = scene.body_force->value[k] * static_cast<double>(count_);
-    if (scene.colloids) { // gravity on the colloids: force M_a g on each
-      double mass = 0.0;
-      for (const double m : sim.colloids().mass)
-        mass += m;
-      drive_[k] += scene.colloids->gravity[k] * mass;
-    }
+    if (scene.colloids) // gravity on the colloids: force M_a g on each
+      drive_[k] += scene.colloids->gravity[k] * colloid_mass;
     // No-slip walls and virtual particles exchange momentum with the fluid; slip walls
     // without virtual particles only reverse v_y, so along the walls the momentum is the force
     // impulse and is checked. In the other channels it is not: the momentum the walls take

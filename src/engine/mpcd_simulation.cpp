@@ -3,8 +3,8 @@
 
 #include "narrows/core/error.hpp"
 
+#include "narrows/colloids/ownership.hpp"
 #include "narrows/colloids/placement.hpp"
-#include "narrows/core/error.hpp"
 #include "narrows/mpcd/cell_sort.hpp"
 #include "narrows/mpcd/collision.hpp"
 #include "narrows/mpcd/streaming.hpp"
@@ -101,7 +101,7 @@ MpcdSimulation::MpcdSimulation(const scene::Scene &scene, MPI_Comm comm, bool al
   for (auto &line : describe_pipeline(scene, plan_, box_))
     stages_.push_back({std::move(line)});
   if (plan_.colloids)
-    md_.emplace(plan_.md, plan_.forces, box_);
+    md_.emplace(plan_.md, plan_.forces, box_, slabs_);
   if (allocate) {
     grid_ = mpcd::CellGrid(box_, slabs_.first_column(), slabs_.local_columns());
     // Each rank keeps the particles (drawn per id) of its own cells, so nothing migrates at
@@ -115,12 +115,34 @@ MpcdSimulation::MpcdSimulation(const scene::Scene &scene, MPI_Comm comm, bool al
           [&](const std::array<double, 3> &p) { return cover.inside(p); }};
       mpcd::init_fluid(fluid_, box_, scene.fluid.kT, scene.run.seed, total, slabs_.first_column(),
                        slabs_.local_columns(), comm, &exclusion);
+      colloids::keep_owned(colloids_, slabs_); // every rank placed all; each keeps its own
     } else {
       mpcd::init_fluid(fluid_, box_, scene.fluid.kT, scene.run.seed, total, slabs_.first_column(),
                        slabs_.local_columns(), comm);
     }
   }
 }
+
+void MpcdSimulation::restore(mpcd::Fluid &&fluid, std::int64_t step) {
+  grid_ = mpcd::CellGrid(box_, slabs_.first_column(), slabs_.local_columns());
+  fluid_ = std::move(fluid);
+  step_ = step;
+  // Each particle to the slab of its unshifted column, as after the last step's binning (the
+  // colloid ghosts assume the fluid lies within a cell of its rank's slab).
+  if (plan_.slabs)
+    migrate_to_owners();
+}
+
+void MpcdSimulation::restore_colloids(colloids::Colloids &&all) {
+  colloids_ = std::move(all);
+  colloids::keep_owned(colloids_, slabs_);
+}
+
+colloids::Colloids MpcdSimulation::gather_colloids() const {
+  return colloids::gather_colloids(colloids_, comm_);
+}
+
+std::uint64_t MpcdSimulation::colloid_bytes_sent() const { return md_ ? md_->bytes_sent() : 0; }
 
 void MpcdSimulation::migrate_to_owners() {
   // Used where nothing is binned (random solvent b): one scan for particles outside the slab.
@@ -241,13 +263,14 @@ void MpcdSimulation::advance() {
 void MpcdSimulation::step_stages() {
   const MpcdPlan &p = plan_;
   const auto step = static_cast<std::uint64_t>(step_);
-  if (p.colloids) // forces now; copies out the fluid that may meet a colloid this step
-    md_->take_near_fluid(fluid_, colloids_, comm_);
+  if (p.colloids) // forces now; ghost colloids; copies out the fluid that may meet a colloid
+    md_->take_near_fluid(fluid_, colloids_);
   stream(fluid_, p.dt); // every particle, the whole step (walls, body force exact)
   if (p.colloids) {     // MD sub-steps of the colloids and those copies, which then go back
-    md_->substeps(colloids_, comm_, [this](mpcd::Fluid &f, double t) { stream(f, t); });
+    md_->substeps(colloids_, [this](mpcd::Fluid &f, double t) { stream(f, t); });
     md_->put_back_near_fluid(fluid_);
     md_->check_paths(colloids_);
+    md_->hand_over(colloids_); // ghosts dropped; colloids that left the slab change owner
   }
   grid_.set_shift(mpcd::grid_shift(p.seed, step, p.dim)); // the same on every rank
   if (p.collision == scene::Collision::random_maxwell) {  // random solvent (b): no cells

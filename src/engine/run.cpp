@@ -6,14 +6,15 @@
 #include "narrows/colloids/placement.hpp"
 #include "narrows/core/error.hpp"
 #include "narrows/core/timer.hpp"
+#include "narrows/engine/colloid_checkpoint.hpp"
 #include "narrows/engine/fluid_checkpoint.hpp"
 #include "narrows/engine/info.hpp"
 #include "narrows/engine/invariants.hpp"
 #include "narrows/engine/mpcd_simulation.hpp"
+#include "narrows/engine/restart_checks.hpp"
 #include "narrows/engine/totals.hpp"
 #include "narrows/engine/trajectory_writer.hpp"
 #include "narrows/io/checkpoint.hpp"
-#include "narrows/io/colloid_checkpoint.hpp"
 #include "narrows/io/observables_writer.hpp"
 #include "narrows/parallel/slabs.hpp"
 #include "narrows/run/collective.hpp"
@@ -77,8 +78,8 @@ public:
         writer_->append_vector("settling_velocity", step, t, std::span(v.data(), sim_.box().dim));
       settling_sum_ = SettlingSum{};
     }
-    if (positions_ && writer_) {
-      const auto &c = sim_.colloids();
+    if (positions_) {
+      const colloids::Colloids c = sim_.gather_colloids(); // collective
       const int d = c.dim;
       std::vector<double> ids(c.size()), x(c.size() * d);
       for (std::size_t a = 0; a < c.size(); ++a) {
@@ -86,7 +87,8 @@ public:
         for (int k = 0; k < d; ++k)
           x[a * d + k] = c.x[k][a];
       }
-      writer_->append_profile("colloid_positions", step, t, ids, x, d);
+      if (writer_)
+        writer_->append_profile("colloid_positions", step, t, ids, x, d);
     }
     if (momentum_) {
       const auto p = total_momentum(sim_);
@@ -161,11 +163,16 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
       check_fluid_count(scene, info, file);
       sim.restore(read_fluid(file, info, comm), info.step);
     });
-    if (scene.colloids)
+    if (scene.colloids) {
       run::collectively(comm, [&] {
-        sim.restore_colloids(io::read_colloids(file, *scene.colloids, scene.run.dimensions,
-                                               scene.fluid.density, scene.run.seed, comm));
+        sim.restore_colloids(read_colloids(file, *scene.colloids, scene.run.dimensions,
+                                           scene.fluid.density, scene.run.seed, comm));
       });
+      // sim.colloids() holds every colloid on every rank (gather them when they are owned by
+      // slabs).
+      check_fluid_outside_colloids(sim.fluid(), sim.colloids(), sim.box(), scene.colloids->epsilon,
+                                   scene.fluid.kT, file, comm);
+    }
   }
   run::Log &log = shell.open(restarting ? sim.step() : -1);
   for (const auto &line : describe_scene(scene, comm))
@@ -179,7 +186,11 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
     writer = std::make_unique<io::ObservablesWriter>(shell.output_file("observables"), scene.text);
   Observer observer(sim, std::move(writer));
   std::optional<TrajectoryWriter> trajectory;
-  const colloids::Colloids *colloids = scene.colloids ? &sim.colloids() : nullptr;
+  // The trajectory and checkpoints hold every colloid: gathered from their owners when written.
+  colloids::Colloids all_colloids;
+  const colloids::Colloids *colloids = scene.colloids ? &all_colloids : nullptr;
+  if (colloids)
+    all_colloids = sim.gather_colloids();
   if (scene.output.trajectory_every > 0) {
     const std::string file = shell.output_file("trajectory");
     trajectory.emplace(file, scene.text, sim.box(), particle_count(scene),
@@ -205,8 +216,10 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
       info.walls_y = sim.box().walls_y;
       std::vector<io::SpeciesFields> species{fluid_fields(sim.fluid())};
       colloids::Colloids none;
-      if (scene.colloids)
-        species.push_back(io::colloid_fields(sim.colloids(), none, comm));
+      if (colloids) {
+        all_colloids = sim.gather_colloids();
+        species.push_back(colloid_fields(all_colloids, none, comm));
+      }
       const double bytes = io::write_checkpoint(path, info, species, comm);
       const double s = watch.seconds();
       char text[200];
@@ -225,8 +238,11 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
       invariants.check(sim);
       observer.sample();
     }
-    if (trajectory && shell.trajectory_due(sim.step()))
+    if (trajectory && shell.trajectory_due(sim.step())) {
+      if (colloids)
+        all_colloids = sim.gather_colloids();
       trajectory->write_frame(sim.step(), sim.time(), sim.fluid(), colloids);
+    }
     if (shell.stop_requested())
       break;
     if (shell.checkpoint_due(sim.step()))
@@ -235,6 +251,17 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
   }
   const double seconds = shell.loop_seconds();
   const auto steps = static_cast<std::uint64_t>(sim.step() - first);
+  if (scene.colloids && steps > 0) { // the cost of colloids owned by slabs, for cluster users
+    const double mine = static_cast<double>(sim.colloid_bytes_sent());
+    double largest = 0.0;
+    MPI_Reduce(&mine, &largest, 1, MPI_DOUBLE, MPI_MAX, 0, comm);
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "colloid messages: %.4g bytes per step from the busiest rank (ghosts, their "
+                  "forces, migration)",
+                  largest / static_cast<double>(steps));
+    log.line(text);
+  }
   const std::string last = save_checkpoint();
   shell.finish("step " + std::to_string(sim.step()), last);
   shell.loop_time(seconds, steps, "steps", std::to_string(n_particles) + " particles",

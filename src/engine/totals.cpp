@@ -5,12 +5,22 @@
 
 namespace narrows::engine {
 
-std::array<double, 3> total_momentum(const MpcdSimulation &sim) {
-  auto p = analysis::total_momentum(sim.fluid(), sim.comm()).value();
-  const auto &c = sim.colloids();
+namespace {
+
+// The colloids' momentum added to the fluid's p, in id order (the same sum on any number of
+// ranks).
+void add_colloid_momentum(const colloids::Colloids &c, std::array<double, 3> &p) {
   for (int k = 0; k < c.dim; ++k)
     for (std::size_t a = 0; a < c.size(); ++a)
       p[k] += c.mass[a] * c.v[k][a];
+}
+
+} // namespace
+
+std::array<double, 3> total_momentum(const MpcdSimulation &sim) {
+  auto p = analysis::total_momentum(sim.fluid(), sim.comm()).value();
+  if (sim.scene().colloids)
+    add_colloid_momentum(sim.gather_colloids(), p);
   return p;
 }
 
@@ -22,18 +32,19 @@ double total_energy(MpcdSimulation &sim) {
       kinetic += 0.5 * v * v;
   double e = 0.0;
   MPI_Allreduce(&kinetic, &e, 1, MPI_DOUBLE, MPI_SUM, sim.comm());
-  const auto &c = sim.colloids();
+  if (!sim.scene().colloids)
+    return e;
+  const colloids::Colloids c = sim.gather_colloids();
   for (int k = 0; k < c.dim; ++k)
     for (std::size_t a = 0; a < c.size(); ++a)
       e += 0.5 * c.mass[a] * c.v[k][a] * c.v[k][a];
-  if (auto *md = sim.md())
-    e += md->forces().compute(f, c, sim.comm(), true).total();
-  return e;
+  return e + sim.md()->potential_energy(f, sim.colloids()).total();
 }
 
 void SettlingSum::add(const MpcdSimulation &sim) {
-  const auto p = total_momentum(sim);
-  const auto &c = sim.colloids();
+  const colloids::Colloids c = sim.gather_colloids();
+  auto p = analysis::total_momentum(sim.fluid(), sim.comm()).value();
+  add_colloid_momentum(c, p);
   double mass = static_cast<double>(particle_count(sim.scene())); // fluid, m_f = 1
   for (std::size_t a = 0; a < c.size(); ++a)
     mass += c.mass[a];

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -350,6 +351,13 @@ template <int M, bool EveryBond> std::uint64_t Lattice::try_bulk(std::uint64_t c
   return done;
 }
 
+bool Lattice::asked_to_stop(const std::function<bool()> &interrupted) {
+  if (since_asked_ < (1u << 20))
+    return false;
+  since_asked_ = 0;
+  return interrupted && interrupted();
+}
+
 template <bool Observe, bool EveryBond>
 bool Lattice::run(double t_end, const std::function<bool()> &interrupted) {
   const std::uint64_t slots = bonds_ + (periodic_ ? 0 : 2);
@@ -403,19 +411,31 @@ bool Lattice::run(double t_end, const std::function<bool()> &interrupted) {
         }
       }
       t = to;
-      if (since_asked_ >= (1u << 20)) {
-        since_asked_ = 0;
-        if (interrupted && interrupted()) {
-          t_ = t;
-          return false;
-        }
+      if (asked_to_stop(interrupted)) {
+        t_ = t;
+        return false;
       }
     }
     if (!snap)
       break;
     // the configuration at the snapshot time
     snapshot();
+    // A snapshot interval below the resolution of t (a short kmc.time after a long warm-up of
+    // a lattice that no longer moves) would take the same snapshot for ever.
+    if (!(next_sample_ + sample_dt_ > next_sample_)) {
+      char line[200];
+      std::snprintf(line, sizeof line,
+                    "kmc: the snapshot interval %.3g cannot advance the time t = %.17g; lower "
+                    "kmc.warmup or raise kmc.time",
+                    sample_dt_, next_sample_);
+      throw invariant_error(line);
+    }
     next_sample_ += sample_dt_;
+    since_asked_ += n_.size(); // a snapshot costs about as much as one try per site
+    if (asked_to_stop(interrupted)) {
+      t_ = t;
+      return false;
+    }
   }
   t_ = std::max(t, t_end);
   return true;

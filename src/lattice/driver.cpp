@@ -179,87 +179,6 @@ ColloidParams colloid_params(const scene::Scene &scene) {
   return p;
 }
 
-// The colloid state in the checkpoint file beside the lattice: /colloid/{momentum, omega,
-// position, angle} (the centre moves with a moving disc; checkpoints of held discs written
-// before position and angle were stored have only the first two, and the scene's position).
-// With the colloid's averages, also /colloid/correlations/{layout, values}
-// (ColloidCorrelations::State), so a restarted run continues them.
-void write_colloid_state(const std::string &path, const FhpColloid &c,
-                         const ColloidCorrelations *stats) {
-  const io::h5::File f = io::h5::open_file(path, H5F_ACC_RDWR);
-  const io::h5::Group g = io::h5::create_group(f.get(), "colloid", path);
-  const MomentumUnits p = c.momentum();
-  io::h5::write_dataset<std::int64_t>(g.get(), "momentum", std::span<const std::int64_t>(p), path);
-  io::h5::write_scalar<double>(g.get(), "omega", c.omega(), path);
-  const std::array<double, 2> x = c.position();
-  io::h5::write_dataset<double>(g.get(), "position", std::span<const double>(x), path);
-  io::h5::write_scalar<double>(g.get(), "angle", c.angle(), path);
-  if (stats != nullptr) {
-    const ColloidCorrelations::State st = stats->state();
-    const io::h5::Group h = io::h5::create_group(g.get(), "correlations", path);
-    io::h5::write_dataset<std::int64_t>(h.get(), "layout", std::span<const std::int64_t>(st.layout),
-                                        path);
-    io::h5::write_dataset<double>(h.get(), "values", std::span<const double>(st.values), path);
-  }
-}
-
-// The colloid averages of a checkpoint, if it has them (empty layout otherwise).
-ColloidCorrelations::State read_colloid_correlations(const std::string &path) {
-  const io::h5::File f = io::h5::open_file(path);
-  ColloidCorrelations::State st;
-  const auto read = [&](const char *name, hid_t type, auto &out) {
-    if (H5Lexists(f.get(), "/colloid", H5P_DEFAULT) <= 0 ||
-        H5Lexists(f.get(), "/colloid/correlations", H5P_DEFAULT) <= 0 ||
-        H5Lexists(f.get(), name, H5P_DEFAULT) <= 0)
-      return false;
-    const hid_t d = H5Dopen2(f.get(), name, H5P_DEFAULT);
-    if (d < 0)
-      return false;
-    const hid_t space = H5Dget_space(d);
-    const hssize_t n = H5Sget_simple_extent_npoints(space);
-    H5Sclose(space);
-    out.resize(n > 0 ? static_cast<std::size_t>(n) : 0);
-    const bool ok = n > 0 && H5Dread(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) >= 0;
-    H5Dclose(d);
-    return ok;
-  };
-  if (!read("/colloid/correlations/layout", H5T_NATIVE_INT64, st.layout) ||
-      !read("/colloid/correlations/values", H5T_NATIVE_DOUBLE, st.values))
-    return {};
-  return st;
-}
-
-// Reads the dataset `name` of n values of `type` into `out`; false if it is missing.
-bool read_values(hid_t file, const char *name, hid_t type, void *out) {
-  if (H5Lexists(file, name, H5P_DEFAULT) <= 0)
-    return false;
-  const hid_t d = H5Dopen2(file, name, H5P_DEFAULT);
-  if (d < 0)
-    return false;
-  const bool ok = H5Dread(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out) >= 0;
-  H5Dclose(d);
-  return ok;
-}
-
-void read_colloid_state(const std::string &path, FhpColloid &c) {
-  const io::h5::File f = io::h5::open_file(path);
-  MomentumUnits p{};
-  double omega = 0.0, angle = 0.0;
-  std::array<double, 2> x{c.params().x, c.params().y};
-  const bool ok = H5Lexists(f.get(), "/colloid", H5P_DEFAULT) > 0 &&
-                  read_values(f.get(), "/colloid/momentum", H5T_NATIVE_INT64, p.data()) &&
-                  read_values(f.get(), "/colloid/omega", H5T_NATIVE_DOUBLE, &omega);
-  if (!ok)
-    throw input_error(path + ": no readable /colloid/{momentum, omega}; allowed: a checkpoint "
-                             "of a run with [colloid]");
-  const bool has_position = read_values(f.get(), "/colloid/position", H5T_NATIVE_DOUBLE, x.data());
-  if (!has_position && !c.params().held)
-    throw input_error(path + ": no /colloid/position (a checkpoint of a held disc) for a scene "
-                             "with colloid.held = false; allowed: a checkpoint of this scene");
-  read_values(f.get(), "/colloid/angle", H5T_NATIVE_DOUBLE, &angle);
-  c.set_state(p, omega, x, angle);
-}
-
 // The colloid's VACF and (virtual, for a held disc) D(t): log lines and /observables/colloid_*
 // (rank 0).
 void finish_colloid(const FhpColloid &colloid, const ColloidCorrelations &stats,
@@ -541,11 +460,15 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
   const std::string &restart_file = shell.restart_file();
   // The state, from the scene or the checkpoint (every rank agrees on a refusal) before
   // anything is written.
+  ColloidCheckpoint stored_colloid;
   if (restarting) {
     run::collectively(comm, [&] {
       read_lattice_checkpoint(restart_file, shell.restart_info(), lattice);
-      if (colloid)
-        read_colloid_state(restart_file, *colloid);
+      if (colloid) {
+        stored_colloid = read_colloid_checkpoint(restart_file, lattice, colloid->params());
+        colloid->set_state(stored_colloid.momentum, stored_colloid.omega, stored_colloid.position,
+                           stored_colloid.angle);
+      }
     });
   } else {
     lattice.initialise(scene.lgca->density, scene.lgca->amplitude);
@@ -599,7 +522,7 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
       log.line(
           "colloid VACF and D(t) start afresh (run.steps = " + std::to_string(scene.run.steps) +
           ", the checkpoint's run had " + std::to_string(stored_steps) + ": a new averaging run)");
-    else if (colloid_stats->restore(read_colloid_correlations(restart_file)))
+    else if (colloid_stats->restore(stored_colloid.correlations))
       log.line("colloid VACF and D(t) continue the averages of the checkpoint");
     else
       log.line("colloid VACF and D(t) start afresh (the checkpoint has no averages of these "
@@ -611,7 +534,7 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
       Stopwatch watch;
       const double bytes = write_lattice_checkpoint(path, lattice, scene.text, scene.canonical);
       if (colloid && shell.rank() == 0)
-        write_colloid_state(path, *colloid, colloid_stats.get());
+        write_colloid_checkpoint(path, *colloid, colloid_stats.get());
       char text[120];
       std::snprintf(text, sizeof text, "%.1f MB of lattice in %.3g s", bytes / 1e6,
                     watch.seconds());

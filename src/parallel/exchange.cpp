@@ -1,10 +1,9 @@
-// Migrate, halo and reverse for any structure-of-arrays species, over MPI_Alltoallv.
+// Migrate, copy, refresh and reverse for any structure-of-arrays species, over MPI_Alltoallv.
 #include "narrows/parallel/exchange.hpp"
 
 #include "narrows/core/error.hpp"
 
 #include <bit>
-#include <cmath>
 #include <limits>
 #include <string>
 
@@ -37,7 +36,8 @@ namespace {
 // Alltoallv of rows of `row` words: counts are in rows. Returns received rows in recv.
 void exchange_rows(MPI_Comm comm, int ranks, std::size_t row, const std::vector<int> &send_rows,
                    std::vector<int> &recv_rows, std::vector<int> &sdispl, std::vector<int> &rdispl,
-                   const std::vector<std::uint64_t> &send, std::vector<std::uint64_t> &recv) {
+                   const std::vector<std::uint64_t> &send, std::vector<std::uint64_t> &recv,
+                   std::uint64_t &bytes_sent) {
   recv_rows.assign(ranks, 0);
   MPI_Alltoall(send_rows.data(), 1, MPI_INT, recv_rows.data(), 1, MPI_INT, comm);
   std::vector<int> scount(ranks), rcount(ranks);
@@ -55,6 +55,9 @@ void exchange_rows(MPI_Comm comm, int ranks, std::size_t row, const std::vector<
   if (stotal > std::numeric_limits<int>::max() || rtotal > std::numeric_limits<int>::max())
     throw Error(ExitCode::other, "exchange of more than 2^31 words in one step");
   recv.resize(static_cast<std::size_t>(rtotal));
+  int me = 0;
+  MPI_Comm_rank(comm, &me);
+  bytes_sent += 8 * static_cast<std::uint64_t>(stotal - scount[me]);
   MPI_Alltoallv(send.data(), scount.data(), sdispl.data(), MPI_UINT64_T, recv.data(), rcount.data(),
                 rdispl.data(), MPI_UINT64_T, comm);
 }
@@ -125,7 +128,7 @@ void Exchange::migrate(const SoaView &s, const std::vector<std::size_t> &leavers
     }
   }
   exchange_rows(comm_, ranks_, F, send_counts_, recv_counts_, send_displs_, recv_displs_, send_,
-                recv_);
+                recv_, bytes_sent_);
   const std::size_t arrived = recv_.size() / (F ? F : 1);
   s.resize(n + arrived);
   for (std::size_t j = 0; j < arrived; ++j) {
@@ -140,70 +143,64 @@ void Exchange::migrate(const SoaView &s, const std::vector<std::size_t> &leavers
   }
 }
 
-Halo Exchange::halo(const SoaView &s, int x_field, double lo, double hi, double L, double width,
-                    int left, int right, double min_slab_width) {
-  if (width > min_slab_width)
-    throw input_error("halo width " + std::to_string(width) + " exceeds the narrowest slab (" +
-                      std::to_string(min_slab_width) +
-                      " cells); allowed: a width up to the slab width (use fewer ranks)");
+Halo Exchange::copy(const SoaView &s, const CopyList &list) {
   if (!s.halfwords.empty())
-    throw Error(ExitCode::other, "halo of 4-byte fields is not supported");
-  const std::size_t n = s.size(), F = s.fields();
-  const std::size_t row_len = F + 1; // + source index
-  const std::vector<double> &x = *s.reals[x_field];
-  const double span = hi - lo;
-  // Each selected particle becomes one row per receiving side.
-  struct Pick {
-    std::size_t i;
-    int to;
-    double x;
-  };
-  std::vector<Pick> picks;
-  for (std::size_t i = 0; i < n; ++i) {
-    double u = std::fmod(x[i] - lo, L); // position in the slab, unwrapped
-    if (u < 0)
-      u += L;
-    const double xs = lo + u;
-    if (u <= width) // within the width of the left edge (inclusive): for the left neighbour
-      picks.push_back({i, left, rank_ == 0 ? xs + L : xs});
-    if (span - u <= width) // near the right edge (inclusive: a particle exactly at the width)
-      picks.push_back({i, right, rank_ == ranks_ - 1 ? xs - L : xs});
-  }
+    throw Error(ExitCode::other, "copies of 4-byte fields are not supported");
+  const std::size_t F = s.fields(), row_len = F + 1; // + source index
   std::size_t total = 0;
   auto next = plan_rows(
-      ranks_, picks.size(), [&](std::size_t j) { return picks[j].to; }, send_counts_, total);
+      ranks_, list.dest.size(), [&](std::size_t j) { return list.dest[j]; }, send_counts_, total);
   send_.resize(total * row_len);
-  for (const Pick &p : picks) {
-    std::uint64_t *row = &send_[next[p.to]++ * row_len];
+  for (std::size_t j = 0; j < list.index.size(); ++j) {
+    const std::size_t i = list.index[j];
+    std::uint64_t *row = &send_[next[list.dest[j]]++ * row_len];
     std::size_t f = 0;
-    for (std::size_t a = 0; a < s.reals.size(); ++a)
-      row[f++] =
-          std::bit_cast<std::uint64_t>(static_cast<int>(a) == x_field ? p.x : (*s.reals[a])[p.i]);
+    for (auto *a : s.reals)
+      row[f++] = std::bit_cast<std::uint64_t>((*a)[i]);
     for (auto *a : s.words)
-      row[f++] = (*a)[p.i];
-    row[f] = p.i;
+      row[f++] = (*a)[i];
+    row[f] = i;
   }
   exchange_rows(comm_, ranks_, row_len, send_counts_, recv_counts_, send_displs_, recv_displs_,
-                send_, recv_);
+                send_, recv_, bytes_sent_);
+  const std::size_t n = s.size(), g = recv_.size() / row_len;
+  s.resize(n + g);
   Halo h;
-  const std::size_t g = recv_.size() / row_len;
-  h.reals.assign(s.reals.size(), std::vector<double>(g));
-  h.words.assign(s.words.size(), std::vector<std::uint64_t>(g));
   h.source_rank.resize(g);
   h.source_index.resize(g);
   std::size_t j = 0;
   for (int r = 0; r < ranks_; ++r)
-    for (int k = 0; k < recv_counts_[r]; ++k, ++j) {
+    for (int q = 0; q < recv_counts_[r]; ++q, ++j) {
       const std::uint64_t *row = &recv_[j * row_len];
       std::size_t f = 0;
-      for (auto &a : h.reals)
-        a[j] = std::bit_cast<double>(row[f++]);
-      for (auto &a : h.words)
-        a[j] = row[f++];
+      for (auto *a : s.reals)
+        (*a)[n + j] = std::bit_cast<double>(row[f++]);
+      for (auto *a : s.words)
+        (*a)[n + j] = row[f++];
       h.source_rank[j] = r;
       h.source_index[j] = row[f];
     }
   return h;
+}
+
+void Exchange::refresh(const std::vector<std::vector<double> *> &fields, const CopyList &list,
+                       std::size_t first_ghost) {
+  const std::size_t F = fields.size();
+  std::size_t total = 0;
+  auto next = plan_rows(
+      ranks_, list.dest.size(), [&](std::size_t j) { return list.dest[j]; }, send_counts_, total);
+  send_.resize(total * F);
+  for (std::size_t j = 0; j < list.index.size(); ++j) {
+    std::uint64_t *row = &send_[next[list.dest[j]]++ * F];
+    for (std::size_t f = 0; f < F; ++f)
+      row[f] = std::bit_cast<std::uint64_t>((*fields[f])[list.index[j]]);
+  }
+  exchange_rows(comm_, ranks_, F, send_counts_, recv_counts_, send_displs_, recv_displs_, send_,
+                recv_, bytes_sent_);
+  const std::size_t g = F ? recv_.size() / F : 0;
+  for (std::size_t j = 0; j < g; ++j)
+    for (std::size_t f = 0; f < F; ++f)
+      (*fields[f])[first_ghost + j] = std::bit_cast<double>(recv_[j * F + f]);
 }
 
 void Exchange::reverse(const Halo &h, const std::vector<std::int64_t> &per_ghost, int k,
@@ -220,7 +217,7 @@ void Exchange::reverse(const Halo &h, const std::vector<std::int64_t> &per_ghost
       row[1 + j] = static_cast<std::uint64_t>(per_ghost[g * k + j]);
   }
   exchange_rows(comm_, ranks_, row_len, send_counts_, recv_counts_, send_displs_, recv_displs_,
-                send_, recv_);
+                send_, recv_, bytes_sent_);
   for (std::size_t j = 0; j < recv_.size() / row_len; ++j) {
     const std::uint64_t *row = &recv_[j * row_len];
     for (int q = 0; q < k; ++q)

@@ -8,6 +8,7 @@
 
 #include "canonical_toml.hpp"
 #include "narrows/core/error.hpp"
+#include "parse_continuum.hpp"
 #include "parse_kmc.hpp"
 #include "parse_lgca.hpp"
 
@@ -67,6 +68,9 @@ const std::vector<Section> &schema() {
        {"model", "size", "density", "initial", "amplitude", "walls", "body_force", "obstacles",
         "block"}},
       {"tagged", {"max_lag", "replicas"}},
+      {"continuum",
+       {"model", "flux", "rates", "parameters", "c", "c_prime", "v_cm", "length", "cells",
+        "diffusion", "boundary", "reservoirs", "initial", "time", "samples", "cfl", "limiter"}},
       {"colloid",
        {"position", "radius", "mass", "velocity", "held", "max_lag", "displacement_lag",
         "displacement_every"}},
@@ -97,6 +101,8 @@ std::vector<std::string> engine_observables(Engine engine) {
     return {"current", "density_profile", "pair_correlation", "shock_position", "charge_profile"};
   if (engine == Engine::lgca)
     return {"shear_wave", "density", "velocity", "vacf", "colloid_vacf", "colloid_diffusion"};
+  if (engine == Engine::continuum)
+    return {"density", "shock_position"};
   return std::vector<std::string>(std::begin(all_observables), std::end(all_observables));
 }
 
@@ -106,6 +112,8 @@ std::vector<std::string> engine_sections(Engine engine) {
     return {"run", "kmc", "output"};
   if (engine == Engine::lgca)
     return {"run", "lattice", "tagged", "colloid", "output"};
+  if (engine == Engine::continuum)
+    return {"run", "continuum", "output"};
   return {"run", "domain", "fluid", "body_force", "walls", "thermostat", "colloids", "output"};
 }
 
@@ -601,6 +609,8 @@ void check_keys(const Ctx &c, const value *sec, const char *name) {
 const char *engine_of(const std::string &section) {
   if (section == "kmc")
     return "kmc";
+  if (section == "continuum")
+    return "continuum";
   if (section == "lattice" || section == "tagged" || section == "colloid")
     return "lgca";
   return "mpcd";
@@ -618,13 +628,10 @@ Engine parse_engine(const Ctx &c, const value *run) {
     return Engine::kmc;
   if (s == "lgca")
     return Engine::lgca;
-  if (std::find(names.begin(), names.end(), s) != names.end())
-    c.fail("run.engine", "run.engine = " + repr(*v) +
-                             " is not available yet in this version; allowed (available): mpcd, "
-                             "lgca, kmc");
-  std::string msg = "run.engine = " + repr(*v) +
-                    " is not a known engine; allowed: mpcd, lgca, kmc (" +
-                    "continuum is not available yet in this version)";
+  if (s == "continuum")
+    return Engine::continuum;
+  std::string msg =
+      "run.engine = " + repr(*v) + " is not a known engine; allowed: mpcd, lgca, kmc, continuum";
   const std::string hint = closest(s, names);
   if (!hint.empty())
     msg += "; did you mean \"" + hint + "\"?";
@@ -654,7 +661,7 @@ void parse_run(const Ctx &c, const value *run, Run &out) {
   if (const value *v = find(run, "steps"))
     out.steps = as_integer(c, *v, "run.steps", steps_allowed,
                            [](std::int64_t n) { return n >= 0 && n <= 9999999999; });
-  else if (out.engine != Engine::kmc)
+  else if (out.engine != Engine::kmc && out.engine != Engine::continuum)
     c.missing("run.steps", steps_allowed);
 }
 
@@ -1117,7 +1124,8 @@ void parse_output(const Ctx &c, const value *o, Engine engine, Output &out) {
         as_integer(c, *v, "output.trajectory_subsample",
                    "an integer >= 1 (frames hold the fluid particles whose id is a multiple of it)",
                    [](std::int64_t n) { return n >= 1; });
-  if ((engine == Engine::kmc || engine == Engine::lgca) && out.trajectory_every > 0)
+  if ((engine == Engine::kmc || engine == Engine::lgca || engine == Engine::continuum) &&
+      out.trajectory_every > 0)
     c.fail("output.trajectory_every",
            "output.trajectory_every = " + std::to_string(out.trajectory_every) +
                " is for particle engines; allowed with run.engine = \"" + to_string(engine) +
@@ -1280,7 +1288,7 @@ Scene parse_scene(const std::string &text, const std::string &file,
   parse_run(c, run, s.run);
   if (s.run.engine == Engine::kmc) {
     for (const char *name : {"domain", "fluid", "body_force", "walls", "colloids", "thermostat",
-                             "lattice", "tagged", "colloid"})
+                             "lattice", "tagged", "colloid", "continuum"})
       if (section(c, root, name) != nullptr)
         c.fail(name, std::string("section [") + name + "] is for engine " + engine_of(name) +
                          "; allowed with run.engine = \"kmc\": [run], [kmc], [output]");
@@ -1291,9 +1299,20 @@ Scene parse_scene(const std::string &text, const std::string &file,
     s.output.observables = {"current", "density_profile"};
     if (s.kmc->samples > 0)
       s.output.observables.insert(s.output.observables.end(), {"shock_position", "charge_profile"});
+  } else if (s.run.engine == Engine::continuum) {
+    for (const char *name : {"domain", "fluid", "body_force", "walls", "colloids", "thermostat",
+                             "kmc", "lattice", "tagged", "colloid"})
+      if (section(c, root, name) != nullptr)
+        c.fail(name, std::string("section [") + name + "] is for engine " + engine_of(name) +
+                         "; allowed with run.engine = \"continuum\": [run], [continuum], [output]");
+    check_keys(c, section(c, root, "continuum"), "continuum");
+    s.continuum = detail::parse_continuum(
+        section(c, root, "continuum"),
+        [&c](const std::string &key, const std::string &message) { c.fail(key, message); });
+    s.output.observables = {"density", "shock_position"};
   } else if (s.run.engine == Engine::lgca) {
     for (const char *name :
-         {"domain", "fluid", "body_force", "walls", "colloids", "thermostat", "kmc"})
+         {"domain", "fluid", "body_force", "walls", "colloids", "thermostat", "kmc", "continuum"})
       if (section(c, root, name) != nullptr)
         c.fail(name, std::string("section [") + name + "] is for engine " + engine_of(name) +
                          "; allowed with run.engine = \"lgca\": [run], [lattice], [tagged], "
@@ -1318,7 +1337,7 @@ Scene parse_scene(const std::string &text, const std::string &file,
       s.output.observables.insert(s.output.observables.end(),
                                   {"colloid_vacf", "colloid_diffusion"});
   } else {
-    for (const char *name : {"kmc", "lattice", "tagged", "colloid"})
+    for (const char *name : {"kmc", "lattice", "tagged", "colloid", "continuum"})
       if (section(c, root, name) != nullptr)
         c.fail(name, std::string("section [") + name + "] needs run.engine = \"" + engine_of(name) +
                          "\"; allowed with run.engine = \"" + std::string(to_string(s.run.engine)) +

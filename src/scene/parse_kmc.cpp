@@ -21,27 +21,31 @@ namespace {
 
 const std::string rate_allowed = "a rate >= 0";
 
-void parse_bulk_rates(const Checker &c, const toml::value &v, Kmc &out) {
+} // namespace
+
+void parse_bulk_rates(const Checker &c, const toml::value &v, Kmc &out, const std::string &name) {
   const std::string allowed_keys =
       "pair transitions \"ab->cd\" with states 0, 1, 2 (e.g. \"10->01\") or the seed's labels "
       "w_ij (\"w24\", i = 3 n'_k + n'_(k+1) + 1 target, j initial)";
   if (!v.is_table())
-    c.wrong_type("kmc.rates", v, "a table { \"10->01\" = 1.0, ... } of " + allowed_keys);
+    c.wrong_type(name, v, "a table { \"10->01\" = 1.0, ... } of " + allowed_keys);
   std::map<int, std::string> seen;
   for (const auto &[k, x] : sorted(v)) {
-    const std::string key = "kmc.rates.\"" + k + "\"";
+    const std::string key = name + ".\"" + k + "\"";
     const auto t = kmc::parse_pair_key(k);
     if (!t)
       c.fail(key, "unknown transition " + key + "; allowed: " + allowed_keys);
     const int idx = t->first * 9 + t->second;
     if (seen.count(idx))
-      c.fail(key, key + " names the same transition as kmc.rates.\"" + seen[idx] + "\" (" +
+      c.fail(key, key + " names the same transition as " + name + ".\"" + seen[idx] + "\" (" +
                       kmc::pair_name(t->first, t->second) + " = " +
                       kmc::seed_label(t->first, t->second) + "); allowed: each transition once");
     seen[idx] = k;
     out.rates[idx] = c.number(*x, key, rate_allowed, [](double r) { return r >= 0.0; });
   }
 }
+
+namespace {
 
 void parse_site_rates(const Checker &c, const toml::value &v, bool left, Kmc &out) {
   const std::string name = left ? "kmc.left" : "kmc.right";
@@ -156,15 +160,17 @@ bool parse_initial(const Checker &c, const toml::value &v, Kmc &out) {
 const char *const family2_names[] = {"h1", "h2", "h3", "h4", "h5", "h6", "r1", "r2",
                                      "r3", "r4", "r5", "r6", "r7", "r8", "r9"};
 
-void parse_family2(const Checker &c, const toml::value &v, Kmc &out) {
+} // namespace
+
+void parse_family2(const Checker &c, const toml::value &v, Kmc &out, const std::string &name) {
   const std::string allowed_keys = "c (> 0, required) and rates h1-h6, r1-r9 (>= 0, default 0)";
   if (!v.is_table())
-    c.wrong_type("kmc.parameters", v, "a table of " + allowed_keys);
+    c.wrong_type(name, v, "a table of " + allowed_keys);
   std::array<double, 6> h{};
   std::array<double, 9> r{};
   bool has_c = false;
   for (const auto &[k, x] : sorted(v)) {
-    const std::string key = "kmc.parameters." + k;
+    const std::string key = name + "." + k;
     if (k == "c") {
       out.c = c.number(*x, key, "a number > 0 (ratio of B to A, eq 2.81)",
                        [](double y) { return y > 0.0; });
@@ -176,7 +182,7 @@ void parse_family2(const Checker &c, const toml::value &v, Kmc &out) {
       if (k == family2_names[i])
         idx = i;
     if (idx < 0)
-      c.fail(key, "unknown key '" + key + "'; allowed keys in kmc.parameters: " + allowed_keys);
+      c.fail(key, "unknown key '" + key + "'; allowed keys in " + name + ": " + allowed_keys);
     const double val = c.number(*x, key, rate_allowed, [](double y) { return y >= 0.0; });
     if (idx < 6)
       h[idx] = val;
@@ -184,23 +190,21 @@ void parse_family2(const Checker &c, const toml::value &v, Kmc &out) {
       r[idx - 6] = val;
   }
   if (!has_c)
-    c.fail("kmc.parameters.c",
-           "missing required key 'kmc.parameters.c'; allowed: a number > 0 (eq 2.81)");
+    c.fail(name + ".c", "missing required key '" + name + ".c'; allowed: a number > 0 (eq 2.81)");
   out.rates = kmc::family2_rates(h, r, out.c);
 }
 
 // Family 1 allows only the ten transitions of eq 2.5 (those keeping n_k + n_(k+1)).
-void check_family1_rates(const Checker &c, const Kmc &out) {
+void check_family1_rates(const Checker &c, const Kmc &out, const std::string &name,
+                         const std::string &with) {
   for (int from = 0; from < 9; ++from)
     for (int to = 0; to < 9; ++to)
       if (out.rates[from * 9 + to] > 0.0 && from / 3 + from % 3 != to / 3 + to % 3)
-        c.fail("kmc.rates",
-               "kmc.rates gives " + kmc::pair_name(from, to) + " (" + kmc::seed_label(from, to) +
-                   "), which is not a transition of family 1; allowed with kmc.preset = "
-                   "\"family1\": w24, w42, w37, w73, w86, w68, w35, w53, w57, w75 (eq 2.5)");
+        c.fail(name, name + " gives " + kmc::pair_name(from, to) + " (" +
+                         kmc::seed_label(from, to) +
+                         "), which is not a transition of family 1; allowed with " + with +
+                         ": w24, w42, w37, w73, w86, w68, w35, w53, w57, w75 (eq 2.5)");
 }
-
-} // namespace
 
 Kmc parse_kmc(const toml::value *sec, const KmcFail &fail) {
   const Checker c(fail);
@@ -254,18 +258,18 @@ Kmc parse_kmc(const toml::value *sec, const KmcFail &fail) {
     if (params == nullptr)
       c.fail("kmc.parameters", "missing required key 'kmc.parameters' for kmc.preset = "
                                "\"family2\"; allowed: a table with c and rates h1-h6, r1-r9");
-    parse_family2(c, *params, out);
+    parse_family2(c, *params, out, "kmc.parameters");
   } else {
     if (params != nullptr)
       c.fail("kmc.parameters",
              "kmc.parameters needs kmc.preset = \"family2\"; allowed otherwise: kmc.rates");
     if (const toml::value *v = find(sec, "rates"))
-      parse_bulk_rates(c, *v, out);
+      parse_bulk_rates(c, *v, out, "kmc.rates");
     else
       c.fail("kmc.rates", "missing required key 'kmc.rates'; allowed: a table of pair "
                           "transition rates, e.g. rates = { \"10->01\" = 1.0 }");
     if (out.preset == KmcPreset::family1)
-      check_family1_rates(c, out);
+      check_family1_rates(c, out, "kmc.rates", "kmc.preset = \"family1\"");
   }
   if (const toml::value *v = find(sec, "fugacity")) {
     const std::string allowed = "a number z >= 0 or an array [z_left, z_right] of two (a shock); "

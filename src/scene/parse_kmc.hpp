@@ -17,4 +17,13 @@ using KmcFail = SectionFail;
 
 Kmc parse_kmc(const toml::value *section, const KmcFail &fail);
 
+// Pieces shared with [continuum] (its lattice-gas fluxes take the kmc presets' rates); `name`
+// is the key in messages ("kmc.rates", "continuum.parameters").
+void parse_bulk_rates(const Checker &c, const toml::value &v, Kmc &out, const std::string &name);
+void parse_family2(const Checker &c, const toml::value &v, Kmc &out, const std::string &name);
+// Refuses a rate that is not one of family 1's ten transitions (`with`: the setting that asks
+// for family 1, for the message).
+void check_family1_rates(const Checker &c, const Kmc &out, const std::string &name,
+                         const std::string &with);
+
 } // namespace narrows::scene::detail

@@ -75,7 +75,7 @@ add unknown_collision "$(replace_line collision 'collision = "srdd"')"
 add missing_fluid "$(good_scene | sed '/^\[fluid\]/,/^kT/d')"
 add missing_steps "$(replace_line steps '')"
 add syntax_error "$(replace_line dt 'dt = = 0.1')"
-add unknown_engine "$(replace_line engine 'engine = "continuum"')"
+add unknown_engine "$(replace_line engine 'engine = "lbm"')"
 add walls_slip_not_boolean "$(good_scene; echo; echo '[walls]'; echo 'slip = 1')"
 add steps_float "$(replace_line steps 'steps = 2.5')"
 # [colloids] in the 8 x 8 box (with walls where the wall potential is involved)

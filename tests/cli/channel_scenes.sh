@@ -6,7 +6,7 @@ set -u
 source "$(dirname "$0")/common.bash"
 
 for scene in "$src"/run/*.toml; do
-  grep -q 'engine = "\(kmc\|lgca\)"' "$scene" && continue
+  grep -q 'engine = "\(kmc\|lgca\|continuum\)"' "$scene" && continue
   name=$(basename "$scene" .toml)
   runs "$name: check" "$narrows" check "$scene" > "$tmp/$name.check" 2>&1
   grep -q '^\[walls\]' "$scene" || continue

@@ -72,6 +72,10 @@ runs "first part" "${mpi[@]}" -n 2 "$narrows" run "$tmp/c.toml" --set run.steps=
 runs --err "$tmp/err" "restart" "$narrows" run "$tmp/c.toml" --restart "$tmp/part" --out "$tmp/part" > /dev/null
 check "restart (2 ranks to 30, 1 rank to 60) bitwise equal to the uninterrupted run" \
   '$py "$tmp/compare.py" "$tmp/one/checkpoint-0000000060.h5" "$tmp/part/checkpoint-0000000060.h5"'
+runs "first part on 1 rank" "$narrows" run "$tmp/c.toml" --set run.steps=30 --out "$tmp/part3" > /dev/null 2>&1
+runs "restart on 3 ranks" "${mpi[@]}" -n 3 "$narrows" run "$tmp/c.toml" --restart "$tmp/part3" --out "$tmp/part3" > /dev/null 2>&1
+check "restart (1 rank to 30, 3 ranks to 60: colloids handed to their slabs' owners) bitwise equal" \
+  '$py "$tmp/compare.py" "$tmp/one/checkpoint-0000000060.h5" "$tmp/part3/checkpoint-0000000060.h5"'
 sed 's/count = 3/count = 2/' "$tmp/c.toml" > "$tmp/c2.toml"
 refused "a scene with another colloid count" "colloids.count" \
   "$narrows" run "$tmp/c2.toml" --restart "$tmp/part/checkpoint-0000000030.h5" --out "$tmp/bad2"

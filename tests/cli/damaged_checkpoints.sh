@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Damaged checkpoints are refused (issue 18, items 2 and 6): a single flipped bit in the stored
-# data of every dataset of an mpcd checkpoint with colloids, of an lgca and of a kmc checkpoint
-# is refused with exit 2 and one line naming the file and the dataset, on 1, 2 and 3 ranks, and
+# data of every dataset of an mpcd checkpoint with colloids, of an lgca checkpoint (with a
+# colloid: /colloid/*) and of a kmc checkpoint is refused with exit 2 and one line naming the file and the dataset, on 1, 2 and 3 ranks, and
 # the damaged file is left as it was. A checkpoint without checksums (as narrows wrote them
 # before) is accepted with a warning, and its state is validated: a position outside the box,
 # a NaN velocity, a duplicate id, a seed or box that differ from the stored scene are refused
@@ -122,6 +122,55 @@ $py "$tmp/flip.py" "$kck" 0.5 6 "$tmp/badk.h5" /kmc/mean
 refused "kmc flip" "damaged checkpoint: /kmc/mean does not match its checksum" \
   timeout 60 "$narrows" run "$tmp/k.toml" --restart "$tmp/badk.h5" --out "$tmp/kr"
 
+# lgca colloid checkpoints: a flip in every /colloid dataset (the disc and its averages) is
+# refused naming the dataset, on 1, 2 and 3 ranks.
+cat > "$tmp/lc.toml" <<'TOML'
+[run]
+engine = "lgca"
+seed = 5
+steps = 40
+[lattice]
+model = "fhp-saturated"
+size = [32, 32]
+density = 0.5
+initial = "equilibrium"
+[colloid]
+position = [16.0, 13.0]
+radius = 2.5
+mass = 100.0
+held = false
+max_lag = 10
+displacement_lag = 20
+displacement_every = 5
+[output]
+every = 20
+observables = ["colloid_vacf", "colloid_diffusion"]
+progress = false
+TOML
+"$narrows" run "$tmp/lc.toml" --out "$tmp/lc" > /dev/null 2> "$tmp/err"
+lgood=$tmp/lc/checkpoint-0000000040.h5
+check "lgca colloid checkpoint written" '[ -s "$lgood" ]'
+cdatasets=(/colloid/momentum /colloid/omega /colloid/position /colloid/angle
+  /colloid/correlations/layout /colloid/correlations/values)
+flips=()
+for i in "${!cdatasets[@]}"; do flips+=("$tmp/badc$i.h5" "${cdatasets[i]}"); done
+runs "write the damaged lgca colloid copies" $py "$tmp/flip.py" "$lgood" 0.6 3 "${flips[@]}"
+for i in "${!cdatasets[@]}"; do
+  ds=${cdatasets[i]}
+  cp "$tmp/badc$i.h5" "$tmp/badc.h5" # the messages name badc.h5
+  sum=$(md5sum < "$tmp/badc.h5")
+  ranks=$((ranks % 3 + 1))
+  refused "lgca colloid flip in $ds, $ranks ranks" \
+    "badc.h5: damaged checkpoint: $ds does not match its checksum" \
+    timeout 60 "${mpi[@]}" -n $ranks "$narrows" run "$tmp/lc.toml" --restart "$tmp/badc.h5" \
+    --set run.steps=60 --out "$tmp/lcr$ranks"
+  check "lgca colloid flip in $ds: the damaged file is left as it was" \
+    '[ "$(md5sum < "$tmp/badc.h5")" = "$sum" ]'
+done
+timeout 60 "${mpi[@]}" -n 3 "$narrows" run "$tmp/lc.toml" --restart "$lgood" --set run.steps=60 \
+  --out "$tmp/lcok" > /dev/null 2> "$tmp/err_lcok"
+check "undamaged lgca colloid checkpoint restarts on 3 ranks" '[ $? -eq 0 ] && [ ! -s "$tmp/err_lcok" ]'
+
 # Checkpoints without checksums: accepted with a warning, their state validated.
 # refused_after_warning NAME PATTERN COMMAND...: exit 2, and besides the no-checksum warning one
 # line on stderr matching PATTERN.
@@ -137,7 +186,8 @@ refused_after_warning() {
 }
 cat > "$tmp/legacy.py" <<'PY'
 # legacy.py IN EDIT1 OUT1 [EDIT2 OUT2 ...]: each OUTk = IN without checksums (as older narrows
-# wrote), then EDITk applied. One python start for all the copies.
+# wrote), then EDITk applied (to the fluid, or to the disc of an lgca colloid checkpoint). One
+# python start for all the copies.
 import shutil, sys, h5py, numpy as np
 src = sys.argv[1]
 for edit, dst in zip(sys.argv[2::2], sys.argv[3::2]):
@@ -147,6 +197,24 @@ for edit, dst in zip(sys.argv[2::2], sys.argv[3::2]):
           if "checksum" in obj.attrs:
               del obj.attrs["checksum"]
       f.visititems(strip)
+      def edit_ds(name, fn):
+          v = f[name][...]; fn(v); f[name][...] = v
+      if "/colloid" in f:  # an lgca checkpoint with a disc: its state
+          if edit == "outside":
+              edit_ds("/colloid/position", lambda v: v.__setitem__(1, 1e300))
+          elif edit == "negative":
+              edit_ds("/colloid/position", lambda v: v.__setitem__(0, -0.5))
+          elif edit == "omega":
+              f["/colloid/omega"][()] = np.nan
+          elif edit == "angle":
+              f["/colloid/angle"][()] = np.inf
+          elif edit == "values":
+              edit_ds("/colloid/correlations/values", lambda v: v.__setitem__(7, np.nan))
+          elif edit == "layout":
+              edit_ds("/colloid/correlations/layout", lambda v: v.__setitem__(5, -3))
+          elif edit == "moved":
+              edit_ds("/colloid/position", lambda v: v.__setitem__(0, v[0] + 1.0))
+          continue
       pos, vel, ids = (f["/particles/fluid/%s/value" % k] for k in ("position", "velocity", "id"))
       n = ids.shape[0]
       if edit == "outside":
@@ -194,4 +262,36 @@ for edit in "${edits[@]}"; do
       --set run.steps=6 --out "$tmp/v$n"
   done
 done
+# lgca colloid checkpoints without checksums (as narrows wrote them before): accepted with a
+# warning; a disc state no run can have written is refused naming the dataset and row.
+cedits=(outside:"/colloid/position row 1 = 1.0000000000000001e+300; allowed: 0 <= value < 27.71"
+  negative:"/colloid/position row 0 = -0.5; allowed: 0 <= value < 32 (the lattice's size_x)"
+  omega:"/colloid/omega row 0 = nan; allowed: a finite number"
+  angle:"/colloid/angle row 0 = inf; allowed: a finite number"
+  values:"/colloid/correlations/values row 7 = nan; allowed: a finite number"
+  layout:"/colloid/correlations/layout row 5 = -3; allowed: at least 0")
+copies=(none "$tmp/lcleg.h5")
+for edit in "${cedits[@]}"; do copies+=("${edit%%:*}" "$tmp/lc_${edit%%:*}.h5"); done
+runs "write the lgca colloid copies without checksums" $py "$tmp/legacy.py" "$lgood" "${copies[@]}"
+timeout 60 "$narrows" run "$tmp/lc.toml" --restart "$tmp/lcleg.h5" --set run.steps=60 \
+  --out "$tmp/lcl" > /dev/null 2> "$tmp/err_lcl"
+check "lgca colloid checkpoint without checksums: accepted" '[ $? -eq 0 ]'
+check "lgca colloid checkpoint without checksums: a warning says so" \
+  'grep -q "/colloid carries no checksums" "$tmp/err_lcl"'
+for edit in "${cedits[@]}"; do
+  name=${edit%%:*} pattern=${edit#*:}
+  ranks=$((ranks % 2 + 2))
+  for n in 1 $ranks; do
+    refused_after_warning "lgca colloid $name, $n ranks" "lc_$name.h5: $pattern" \
+      timeout 60 "${mpi[@]}" -n $n "$narrows" run "$tmp/lc.toml" --restart "$tmp/lc_$name.h5" \
+      --set run.steps=60 --out "$tmp/lcv$n"
+  done
+done
+# A held disc is where the scene put it.
+"$narrows" run "$tmp/lc.toml" --set colloid.held=true --out "$tmp/lh" > /dev/null 2> "$tmp/err"
+$py "$tmp/legacy.py" "$tmp/lh/checkpoint-0000000040.h5" moved "$tmp/lc_moved.h5"
+refused_after_warning "lgca held colloid moved, 2 ranks" \
+  "/colloid/position row 0 = 17; allowed: 16 (colloid.held = true" \
+  timeout 60 "${mpi[@]}" -n 2 "$narrows" run "$tmp/lc.toml" --set colloid.held=true \
+  --restart "$tmp/lc_moved.h5" --set run.steps=60 --out "$tmp/lhm"
 finish damaged_checkpoints

@@ -14,9 +14,11 @@ a checkpoint whose data were damaged that is not refused (exit 2).
 
 Usage: campaign.py NARROWS SOURCE_DIR [--full] [--seed N] [--jobs J]
   quick (default): 60 of the ~6000 scene mutations, 6 short runs, 3 data bit flips per
-  checkpoint (about a minute on 2 cores; the ctest);
-  --full: 1000 scene mutations, 120 short runs, 25 data bit flips per checkpoint (100 over the
-  four engines; under 15 minutes here). --seed picks another sample.
+  checkpoint and 4 in /colloid/* of the lgca colloid checkpoint (about a minute on 2 cores;
+  the ctest);
+  --full: 1000 scene mutations, 120 short runs, 25 data bit flips per checkpoint (125 over the
+  five: mpcd, mpcd with colloids, lgca, lgca with a colloid, kmc) and 100 in /colloid/* (under
+  15 minutes here). --seed picks another sample.
 Prints the counts: cases, refused, accepted, invariant stops, stopped at the budget, crashes,
 hangs, damaged restarts not refused.
 """
@@ -196,6 +198,8 @@ def main():
     ap.add_argument("--seed", type=int, default=18)
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--flips", type=int, default=None, help="data bit flips per checkpoint")
+    ap.add_argument("--colloid-flips", type=int, default=None,
+                    help="data bit flips in /colloid/* of the lgca colloid checkpoint")
     ap.add_argument("--verbose", action="store_true", help="print every case")
     a = ap.parse_args()
     narrows = os.path.abspath(a.narrows)
@@ -252,7 +256,10 @@ def main():
         # ---- damaged checkpoints ----
         flips = a.flips if a.flips is not None else (25 if a.full else 3)
         engines = ["quickstart.toml", "colloids_conservation.toml", "lgca_shear_wave.toml",
-                   "kmc_family1_product.toml"]
+                   "lgca_colloid_moving.toml", "kmc_family1_product.toml"]
+        # flips in the disc's state and averages of the lgca colloid checkpoint only (/colloid/*)
+        colloid_flips = a.colloid_flips if a.colloid_flips is not None else \
+            (100 if a.full else 4)
         good = {}
         short_scene = {}  # the scene of each checkpoint, shortened in its text
         for scene in engines:
@@ -292,25 +299,32 @@ def main():
             return (f"restart {scene} from {label}", outcome, f"(exit {code}) {tail}")
 
         jobs = []
+
+        def data_flip(scene, ckpt, ranges, label):
+            """A copy of ckpt with a bit of a dataset's stored data flipped: must be refused."""
+            name, off, length = rng.choice(ranges)
+            byte, bit = off + rng.randrange(length), rng.randrange(8)
+            bad = os.path.join(tmp, label + ".h5")
+            shutil.copy(ckpt, bad)
+            flip_bit(bad, byte, bit)
+            jobs.append((scene, bad, f"bit {bit} of byte {byte} ({name})", True))
+
         for scene, ckpt in good.items():
             jobs.append((scene, ckpt, "its undamaged checkpoint", None))
         for n, (scene, ckpt) in enumerate(good.items()):
             ranges = data_ranges(ckpt)
             size = os.path.getsize(ckpt)
             for k in range(flips):
-                # a bit of a dataset's stored data: must be refused
-                name, off, length = rng.choice(ranges)
-                byte, bit = off + rng.randrange(length), rng.randrange(8)
-                bad = os.path.join(tmp, f"flip{n}-{k}.h5")
-                shutil.copy(ckpt, bad)
-                flip_bit(bad, byte, bit)
-                jobs.append((scene, bad, f"bit {bit} of byte {byte} ({name})", True))
+                data_flip(scene, ckpt, ranges, f"flip{n}-{k}")
                 # a bit anywhere (may be unused space): no crash, no hang
                 bad = os.path.join(tmp, f"any{n}-{k}.h5")
                 shutil.copy(ckpt, bad)
                 byte = rng.randrange(min(size, 1 << 16) if k % 2 else size)
                 flip_bit(bad, byte, rng.randrange(8))
                 jobs.append((scene, bad, f"a bit of byte {byte} anywhere", False))
+            colloid = [r for r in ranges if r[0].startswith("colloid/")]
+            for k in range(colloid_flips if colloid else 0):
+                data_flip(scene, ckpt, colloid, f"colloid{n}-{k}")
             cut = os.path.join(tmp, f"cut{n}.h5")
             with open(ckpt, "rb") as f, open(cut, "wb") as g:
                 g.write(f.read(size // 2))

@@ -338,10 +338,10 @@ TEST(SceneErrors, BadSetValueNamesSet) {
   bad(minimal_scene, {"--set 'domain.size=[8,8]'", "domain.size"}, {"domain.size=[8,8]"});
 }
 
-TEST(SceneErrors, EngineNotAvailableYet) {
+TEST(SceneErrors, UnknownEngineAndSectionsOfAnotherEngine) {
   bad(with("run", "engine = \"continuum\""),
-      {"run.engine = \"continuum\"", "not available yet", "mpcd"});
-  bad(with("run", "engine = \"lbm\""), {"run.engine = \"lbm\"", "mpcd"});
+      {"section [domain] is for engine mpcd", "[run], [continuum], [output]"});
+  bad(with("run", "engine = \"lbm\""), {"run.engine = \"lbm\"", "mpcd", "continuum"});
 }
 
 TEST(SceneErrors, WallsKeys) {

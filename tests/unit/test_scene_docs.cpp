@@ -26,7 +26,7 @@ namespace {
 using namespace narrows;
 using namespace narrows::scene;
 
-const std::vector<Engine> engines{Engine::mpcd, Engine::lgca, Engine::kmc};
+const std::vector<Engine> engines{Engine::mpcd, Engine::lgca, Engine::kmc, Engine::continuum};
 
 struct Documented {
   std::set<std::string> keys, sub_keys, observables;
@@ -65,6 +65,8 @@ std::map<Engine, Documented> read_docs(const std::string &path) {
         scope = {Engine::lgca};
       else if (line == "## Engine kmc")
         scope = {Engine::kmc};
+      else if (line == "## Engine continuum")
+        scope = {Engine::continuum};
       continue;
     }
     if (line.rfind("### ", 0) == 0) {
@@ -103,6 +105,15 @@ Table minimal(Engine e) {
              {{"length", "10"},
               {"rates", "{ \"10->01\" = 1.0 }"},
               {"initial", "{ kind = \"product\", probabilities = [0.5, 0.5, 0.0] }"},
+              {"time", "1.0"}}}};
+  if (e == Engine::continuum)
+    return {{"run", {{"engine", "\"continuum\""}}},
+            {"continuum",
+             {{"model", "\"conservation-law\""},
+              {"flux", "\"burgers\""},
+              {"length", "10.0"},
+              {"cells", "10"},
+              {"initial", "{ kind = \"riemann\", left = 1.0, right = 0.0 }"},
               {"time", "1.0"}}}};
   if (e == Engine::lgca)
     return {{"run", {{"engine", "\"lgca\""}, {"steps", "1"}}},
@@ -223,13 +234,15 @@ TEST(SceneDocs, EveryAcceptedKeyIsDocumentedAndEveryDocumentedKeyIsAccepted) {
   }
 }
 
-// kmc has no steps (it runs kmc.time per replica): run.steps is optional there, still accepted,
-// and required by the stepping engines.
-TEST(SceneDocs, RunStepsIsOptionalForKmcOnly) {
-  Table kmc = minimal(Engine::kmc);
-  EXPECT_EQ(refusal(kmc), "");
-  kmc["run"]["steps"] = "5";
-  EXPECT_EQ(refusal(kmc), "");
+// kmc and continuum have no run.steps (they run kmc.time per replica, continuum.time): run.steps
+// is optional there, still accepted, and required by the stepping engines.
+TEST(SceneDocs, RunStepsIsOptionalForKmcAndContinuumOnly) {
+  for (Engine e : {Engine::kmc, Engine::continuum}) {
+    Table t = minimal(e);
+    EXPECT_EQ(refusal(t), "") << to_string(e);
+    t["run"]["steps"] = "5";
+    EXPECT_EQ(refusal(t), "") << to_string(e);
+  }
   for (Engine e : {Engine::mpcd, Engine::lgca}) {
     Table t = minimal(e);
     t["run"].erase("steps");

@@ -9,7 +9,8 @@
 
 namespace narrows::colloids {
 
-// Every rank holds every colloid (see forces.hpp for why); they are kept in id order.
+// Between MPCD steps a rank holds the colloids it owns (ownership.hpp), in id order; within a
+// step ghost copies of other ranks' colloids follow them (ghosts.hpp).
 struct Colloids {
   int dim = 2;
   std::array<std::vector<double>, 3> x, v, omega; // components k < dim (omega: all 3, zero)

@@ -23,23 +23,25 @@ double add_colloid_fluid_wca(const CellList &cells, const mpcd::Fluid &f, const 
                              FluidForces &on_fluid, std::vector<std::int64_t> &on_colloids);
 
 // Colloid-colloid 48-24, n = 24 and sigma_cc = r_a + r_b (seed 000 eq 3.43), from a cell list
-// of the colloids (`cells` sized, rebuilt here; `cell_of` and `partners` scratch). The energy
-// is summed over the partners b > a of each a in increasing b, the order of a double loop.
+// of the colloids (`cells` sized, rebuilt here; `cell_of` and `partners` scratch). Forces go to
+// the first `owned` rows only (the rest are ghost copies: ghosts.hpp). The energy is summed
+// over the partners b > a of each a in increasing b, the order of a double loop.
 template <int D, bool WallsY>
 double add_colloid_colloid_4824(CellList &cells, std::vector<int> &cell_of,
                                 std::vector<std::uint32_t> &partners, const Colloids &c,
-                                const mpcd::Box &box, double eps, bool want_energy,
-                                std::vector<std::int64_t> &on_colloids);
+                                std::size_t owned, const mpcd::Box &box, double eps,
+                                bool want_energy, std::vector<std::int64_t> &on_colloids);
 
 // Integrated LJ walls at y = 0 and y = L_y (seed 000 eq 3.35-3.37), sigma_w = sigma_wall or
-// 2 r_a; invariant_error for a colloid outside the channel. Returns the energy.
+// 2 r_a, on the first `owned` rows; invariant_error for a colloid outside the channel. Returns
+// the energy.
 template <int D>
-double add_wall_lj(const Colloids &c, const mpcd::Box &box, double eps, double sigma_wall,
-                   double wall_q, std::vector<std::int64_t> &on_colloids);
+double add_wall_lj(const Colloids &c, std::size_t owned, const mpcd::Box &box, double eps,
+                   double sigma_wall, double wall_q, std::vector<std::int64_t> &on_colloids);
 
-// Gravity: the force M_a g on every colloid (the field g of seed 000 eq 4.4).
+// Gravity: the force M_a g on the first `owned` rows (the field g of seed 000 eq 4.4).
 template <int D>
-void add_gravity(const Colloids &c, const std::array<double, 3> &g,
+void add_gravity(const Colloids &c, std::size_t owned, const std::array<double, 3> &g,
                  std::vector<std::int64_t> &on_colloids);
 
 } // namespace narrows::colloids

@@ -9,12 +9,12 @@
 // owning the contact; event-driven hard-sphere collisions are not a force term but replace the
 // velocity-Verlet sub-steps of md_integrator.hpp (a branch of the MPCD step on its plan).
 //
-// Parallel model (today): every rank holds all colloids. Each rank adds the forces of its own
-// fluid particles on every colloid; one MPI_Allreduce of those integers gives every rank the
-// exact total, and the colloid-colloid, wall and gravity terms are the same on every rank. When
-// colloids become owned by slabs (issue 16 item 4), that Allreduce becomes a reverse of the
-// forces on ghost copies (parallel::Exchange::reverse, fixed point already), and the pair
-// terms run over owned plus ghost colloids.
+// Parallel model: colloids are owned by slabs (ownership.hpp); the rows of the colloid arrays
+// after the owned ones are ghost copies of other ranks' colloids (ghosts.hpp). Each rank adds
+// the forces of its own fluid particles on its owned and ghost colloids, and the ghosts'
+// shares go back to their owners (reverse, integers: exact); the colloid-colloid, wall and
+// gravity terms are added to the owned rows only, so each force is complete on its owner and
+// bitwise the same as on one rank.
 #pragma once
 
 #include "narrows/colloids/colloids.hpp"
@@ -42,12 +42,26 @@ struct PotentialEnergy {
   double total() const { return colloid_fluid + colloid_colloid + wall; }
 };
 
-// A linked cell list over the whole box, cells at least `cut` wide along each axis.
+// A linked cell list over the whole box, cells at least `cut` wide along each axis. A rank's
+// particles fill only the cells near its slab: clear() empties just the cells filled since the
+// last clear, so a rebuild costs O(particles), not O(cells of the box).
 struct CellList {
   std::array<int, 3> cells{1, 1, 1};
   std::array<double, 3> inv_cell{1.0, 1.0, 1.0};
   std::vector<std::int32_t> head, next;
+  std::vector<std::size_t> filled; // cells whose head is set
   void size_for(const mpcd::Box &box, double cut);
+  void clear() {
+    for (const std::size_t c : filled)
+      head[c] = -1;
+    filled.clear();
+  }
+  void push(std::size_t cell, std::int32_t i) {
+    if (head[cell] < 0)
+      filled.push_back(cell);
+    next[static_cast<std::size_t>(i)] = head[cell];
+    head[cell] = i;
+  }
 };
 
 // Forces of the colloids on local fluid particles: [i * dim + k] in fixed point, set only for
@@ -59,17 +73,28 @@ struct FluidForces {
   void clear(int dim);
 };
 
+class ColloidGhosts;
+
 class ForceField {
 public:
   ForceField(const ForceParams &params, const mpcd::Box &box);
 
-  // Every term at the current positions (collective over comm): afterwards colloid_force() and
-  // fluid_force() hold the forces. With want_energy, also returns the potential energy.
-  // comm = MPI_COMM_NULL: this process alone, without MPI (unit tests).
+  // Every term at the current positions (collective over comm): afterwards colloid_force() of
+  // the owned rows (those before ghosts->owned(); all without ghosts) and fluid_force() hold
+  // the forces. With want_energy, also returns the potential energy, summed over comm.
+  // comm = MPI_COMM_NULL and no ghosts: this process alone, without MPI (unit tests).
+  PotentialEnergy compute(const mpcd::Fluid &fluid, const Colloids &colloids, ColloidGhosts *ghosts,
+                          MPI_Comm comm, bool want_energy = false);
   PotentialEnergy compute(const mpcd::Fluid &fluid, const Colloids &colloids, MPI_Comm comm,
-                          bool want_energy = false);
+                          bool want_energy = false) {
+    return compute(fluid, colloids, nullptr, comm, want_energy);
+  }
 
-  // Total force on colloid i, component k, in fixed point (fixed_point.hpp).
+  // Sizes the cell lists for colloids of radius up to r_max (compute() does so from the rows it
+  // is given; a rank that may hold no colloid sizes them for the largest of all).
+  void size_cells(double r_max);
+
+  // Total force on (owned) colloid i, component k, in fixed point (fixed_point.hpp).
   std::int64_t colloid_force(std::size_t i, int k) const { return colloid_[i * dim_ + k]; }
   // Force of the colloids on local fluid particle i, component k, in fixed point.
   std::int64_t fluid_force(std::size_t i, int k) const {
@@ -83,8 +108,8 @@ public:
 
 private:
   template <int D, bool WallsY>
-  PotentialEnergy compute(const mpcd::Fluid &f, const Colloids &c, MPI_Comm comm, bool want_energy);
-  void size_cells(const Colloids &c);
+  PotentialEnergy compute(const mpcd::Fluid &f, const Colloids &c, ColloidGhosts *ghosts,
+                          MPI_Comm comm, bool want_energy);
 
   ForceParams params_;
   mpcd::Box box_;
@@ -95,7 +120,7 @@ private:
   std::vector<int> colloid_cell_;       // [a * dim + k]: cell coordinate of colloid a
   std::vector<std::uint32_t> partners_; // scratch of the 48-24 term
   FluidForces fluid_;
-  std::vector<std::int64_t> colloid_, colloid_local_;
+  std::vector<std::int64_t> colloid_;
 };
 
 } // namespace narrows::colloids

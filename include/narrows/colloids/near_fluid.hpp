@@ -17,11 +17,15 @@
 
 namespace narrows::colloids {
 
-// Lists in `index` (flags in `flag`) the particles of f near a colloid this step, from the cell
-// list `cells` of f (built by the force evaluation just before).
+// The largest possible path |v| dt + |a| dt^2/2 of any particle of f this step.
+double fluid_reach(const mpcd::Fluid &f, double dt, double fluid_accel);
+
+// Lists in `index` (flags in `flag`) the particles of f near a colloid of c (owned and ghost
+// rows, margin[a] for each) this step, from the cell list `cells` of f (built by the force
+// evaluation just before); max_reach = fluid_reach(f, dt, fluid_accel).
 void select_near_fluid(const CellList &cells, const mpcd::Fluid &f, const Colloids &c,
                        const mpcd::Box &box, const std::vector<double> &margin, double dt,
-                       double fluid_accel, std::vector<std::uint8_t> &flag,
+                       double fluid_accel, double max_reach, std::vector<std::uint8_t> &flag,
                        std::vector<std::uint32_t> &index);
 
 } // namespace narrows::colloids

@@ -32,9 +32,10 @@ class MpcdSimulation {
 public:
   // Builds the slabs, the plan and, if `allocate`, this rank's cell grid and its part of the
   // initial state: the particles of its own cells (mpcd::init_fluid: ids 0..N-1, each drawn
-  // from (seed, id), the same state on any number of ranks, zero total momentum) and all
-  // colloids. Without it only the plan exists (for `narrows info` and `check`). Throws
-  // bad_input if the scene cannot run on the ranks of comm (check_ranks).
+  // from (seed, id), the same state on any number of ranks, zero total momentum) and the
+  // colloids whose centres lie in its slab (colloids/ownership.hpp). Without it only the plan
+  // exists (for `narrows info` and `check`). Throws bad_input if the scene cannot run on the ranks
+  // of comm (check_ranks).
   MpcdSimulation(const scene::Scene &scene, MPI_Comm comm, bool allocate = true);
   MpcdSimulation(const MpcdSimulation &) = delete;
   MpcdSimulation &operator=(const MpcdSimulation &) = delete;
@@ -42,16 +43,13 @@ public:
   // One MPCD step: every stage of the plan in order, then the step counter advances.
   void advance();
 
-  // Continues from a checkpoint: the fluid becomes `fluid` (any block of the particles: the
-  // next advance() migrates them to their slab owners), the step counter `step`. For a
-  // simulation built with allocate = false, this also builds this rank's cell grid.
-  void restore(mpcd::Fluid &&fluid, std::int64_t step) {
-    grid_ = mpcd::CellGrid(box_, slabs_.first_column(), slabs_.local_columns());
-    fluid_ = std::move(fluid);
-    step_ = step;
-  }
-  // With [colloids], a restart also restores them (all of them, on every rank, in id order).
-  void restore_colloids(colloids::Colloids &&c) { colloids_ = std::move(c); }
+  // Continues from a checkpoint: the fluid becomes `fluid` (any block of the particles, sent
+  // to their slab owners here; collective), the step counter `step`. For a simulation built
+  // with allocate = false, this also builds this rank's cell grid.
+  void restore(mpcd::Fluid &&fluid, std::int64_t step);
+  // With [colloids], a restart also restores them: `all` holds every colloid; this rank keeps
+  // those it owns.
+  void restore_colloids(colloids::Colloids &&all);
 
   std::int64_t step() const { return step_; }
   double time() const { return static_cast<double>(step_) * scene_.fluid.dt; }
@@ -60,9 +58,14 @@ public:
   const mpcd::Box &box() const { return box_; }
   mpcd::Fluid &fluid() { return fluid_; }
   const mpcd::Fluid &fluid() const { return fluid_; }
-  // All colloids (every rank holds all of them); empty without [colloids].
+  // The colloids this rank owns (those whose centres lie in its slab), in id order; empty
+  // without [colloids].
   colloids::Colloids &colloids() { return colloids_; }
   const colloids::Colloids &colloids() const { return colloids_; }
+  // All colloids in id order, on every rank (collective): for observables and output.
+  colloids::Colloids gather_colloids() const;
+  // Bytes this rank sent for colloids (ghosts, their forces, migration) since the start.
+  std::uint64_t colloid_bytes_sent() const;
   // The MD integrator with [colloids] (nullptr without).
   colloids::MdIntegrator *md() { return md_ ? &*md_ : nullptr; }
   const MpcdPlan &plan() const { return plan_; }

@@ -31,7 +31,8 @@ class TrajectoryWriter {
 public:
   // Collective. Rank 0 creates `h5_path` (truncating) and writes the header; the XDMF file is
   // h5_path with .h5 replaced by .xdmf. The fluid has ids 0 .. total - 1. With `colloids`
-  // (every rank holds them all), their frames go to /particles/colloids.
+  // (all of them on every rank: MpcdSimulation::gather_colloids), their frames go to
+  // /particles/colloids.
   TrajectoryWriter(const std::string &h5_path, const std::string &scene_text, const mpcd::Box &box,
                    std::uint64_t total, std::uint64_t subsample, MPI_Comm comm,
                    const colloids::Colloids *colloids = nullptr);

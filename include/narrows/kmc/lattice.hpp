@@ -85,9 +85,9 @@ public:
   Lattice(const scene::Kmc &model, std::uint64_t seed, std::uint64_t replica,
           LatticeOptions options = {});
 
-  // Advances to time t_end. If `interrupted` is given it is asked about every 2^20 tries; when
-  // it answers true the run stops there and returns false (the replica is then unfinished and
-  // should be dropped).
+  // Advances to time t_end. If `interrupted` is given it is asked about every 2^20 tries (or
+  // their worth of snapshots); when it answers true the run stops there and returns false (the
+  // replica is then unfinished and should be dropped).
   bool run_until(double t_end, const std::function<bool()> &interrupted = {});
   // Starts the observation window now; `window` (its planned length) sets the snapshot
   // interval so that a short window still gets >= 1000 snapshots.
@@ -128,6 +128,9 @@ private:
   template <int M, bool EveryBond> std::uint64_t try_bulk(std::uint64_t count);
   std::uint64_t edge_try(std::uint64_t slot, std::uint64_t f); // slots >= L - 1
   std::uint64_t poisson(double mean);
+  // Asks `interrupted` once the work since it was last asked reaches 2^20 tries (a snapshot
+  // counts as one try per site).
+  bool asked_to_stop(const std::function<bool()> &interrupted);
   void snapshot();
   void flush_histogram();
   void add_recent(); // recent_ into hist1_/hist2_

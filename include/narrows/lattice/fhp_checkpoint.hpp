@@ -6,8 +6,11 @@
 #pragma once
 
 #include "narrows/io/checkpoint.hpp"
+#include "narrows/lattice/colloid_correlations.hpp"
+#include "narrows/lattice/fhp_colloid.hpp"
 #include "narrows/lattice/fhp_lattice.hpp"
 
+#include <array>
 #include <string>
 
 namespace narrows::lattice {
@@ -22,5 +25,31 @@ double write_lattice_checkpoint(const std::string &path, const FhpLattice &latti
 // (collective). input_error if the stored lattice does not have the lattice's size.
 void read_lattice_checkpoint(const std::string &path, const io::CheckpointInfo &info,
                              FhpLattice &lattice);
+
+// ---- the disc of [colloid] -----------------------------------------------------------------
+// Beside the lattice in the same file: /colloid/{momentum [2] int64, omega, position [2],
+// angle} and, with the colloid's averages, /colloid/correlations/{layout [6] int64, values}
+// (ColloidCorrelations::State). Every dataset carries a `checksum` attribute: io::bytes_hash
+// of its bytes, as the small datasets of io/checkpoint.cpp. Rank 0 writes, into the complete
+// lattice checkpoint.
+void write_colloid_checkpoint(const std::string &path, const FhpColloid &colloid,
+                              const ColloidCorrelations *stats);
+
+struct ColloidCheckpoint {
+  MomentumUnits momentum{};
+  double omega = 0.0, angle = 0.0;
+  std::array<double, 2> position{};
+  ColloidCorrelations::State correlations; // empty layout: the checkpoint has no averages
+};
+
+// The disc's state in checkpoint `path` (every rank reads it; wrap the call in
+// run::collectively). input_error with one line naming the file and the dataset if a dataset
+// is missing, does not match its checksum (a checkpoint written before the checksums existed
+// has none: a warning on stderr, rank 0), or holds what no run can have written, naming the
+// first bad row: a number that is not finite, a centre outside the lattice ([0, size_x) x
+// [0, size_y sqrt(3)/2)), a held disc away from colloid.position or turned, averages with a
+// negative count or layout entry.
+ColloidCheckpoint read_colloid_checkpoint(const std::string &path, const FhpLattice &lattice,
+                                          const ColloidParams &params);
 
 } // namespace narrows::lattice

@@ -1,6 +1,7 @@
 // Moving particles of any structure-of-arrays species between ranks: migrate (ownership
-// changed), halo (copies of particles near a slab edge for the neighbouring rank), reverse
-// (sum per-copy quantities back to the owners, in fixed point so the sum is exact).
+// changed), copy (ghost copies of listed rows for other ranks) and refresh (their values
+// again), reverse (sum per-copy quantities back to the owners, in fixed point so the sum is
+// exact).
 #pragma once
 
 #include <mpi.h>
@@ -21,14 +22,22 @@ struct SoaView {
   void resize(std::size_t n) const;
 };
 
-// Ghost copies received by halo(): their rows (same layout as the species), and for each one
-// where it came from, so reverse() can send per-copy sums back.
+// Where each ghost copy made by copy() came from, so reverse() can send per-copy sums back.
 struct Halo {
-  std::vector<std::vector<double>> reals;
-  std::vector<std::vector<std::uint64_t>> words;
   std::vector<int> source_rank;            // per ghost
   std::vector<std::uint64_t> source_index; // per ghost: index in the owner's arrays
   std::size_t size() const { return source_rank.size(); }
+};
+
+// Rows to copy to other ranks: row index[j] goes to rank dest[j] (a row may be listed for
+// several ranks, never twice for the same one).
+struct CopyList {
+  std::vector<std::size_t> index;
+  std::vector<int> dest;
+  void clear() {
+    index.clear();
+    dest.clear();
+  }
 };
 
 class Exchange {
@@ -44,12 +53,18 @@ public:
   void migrate(const SoaView &species, const std::vector<std::size_t> &leavers,
                const std::vector<int> &leaver_dest);
 
-  // Copies of the particles whose x lies within `width` of the slab [lo, hi) edges go to the
-  // neighbouring ranks (left, right). Periodic along x with length L: a copy that crosses the
-  // periodic end has its x shifted by +-L so it lies next to the receiving slab. `x_field` is
-  // the index of x among species.reals. Throws if width exceeds the width of any slab.
-  Halo halo(const SoaView &species, int x_field, double lo, double hi, double L, double width,
-            int left, int right, double min_slab_width);
+  // Ghost copies of the rows `list` names, appended to the arrays of `species` themselves
+  // (rows size() .. size() + ghosts - 1, ordered by source rank, then by the sender's order).
+  // Returns where each came from, for refresh() and reverse().
+  Halo copy(const SoaView &species, const CopyList &list);
+
+  // Sends the current values of `fields` of the rows of `list` again, to the same ghost rows
+  // (from `first_ghost` on, in the order copy() made): the same list and fields on every rank.
+  void refresh(const std::vector<std::vector<double> *> &fields, const CopyList &list,
+               std::size_t first_ghost);
+
+  // Bytes this rank has sent through MPI_Alltoallv since construction (a figure for benchmarks).
+  std::uint64_t bytes_sent() const { return bytes_sent_; }
 
   // For each ghost of `halo`, `per_ghost[g * k + j]` (k values per ghost) is added to
   // `per_owner[i * k + j]` of its owner particle i. Exact and order-independent.
@@ -66,6 +81,7 @@ private:
   std::vector<std::uint64_t> send_, recv_;
   std::vector<std::size_t> leavers_;
   std::vector<int> leaver_dest_;
+  std::uint64_t bytes_sent_ = 0;
 };
 
 } // namespace narrows::parallel

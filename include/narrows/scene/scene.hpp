@@ -187,6 +187,35 @@ struct LgcaColloid {
   std::int64_t displacement_every = 100; // ... at lags that are multiples of this
 };
 
+// Engine "continuum", model "conservation-law": rho_t + J(rho)_x = D rho_xx in 1D by finite
+// volumes (continuum/). The lattice-gas fluxes are those of the kmc presets (kmc/preset.hpp):
+// `lattice_gas` holds their rates (tasep and family2: preset family2, tasep with c = 0).
+enum class ContinuumModel { conservation_law };
+enum class ContinuumFlux { burgers, tasep, family1, family2, colloid_chain };
+enum class ContinuumBoundary { open, periodic };
+enum class ContinuumInitial { riemann, profile, sine, cells };
+enum class ContinuumLimiter { mc, minmod };
+
+struct Continuum {
+  ContinuumModel model = ContinuumModel::conservation_law;
+  ContinuumFlux flux = ContinuumFlux::burgers;
+  Kmc lattice_gas;                            // tasep, family1, family2: rates and preset
+  double c = 5.71, c_prime = 0.019, v_cm = 0; // colloid-chain: J = rho (c rho + c' - v_cm)
+  double length = 0.0;                        // domain [0, length]
+  std::int64_t cells = 0;
+  double diffusion = 0.0; // D
+  ContinuumBoundary boundary = ContinuumBoundary::open;
+  std::array<double, 2> reservoirs{}; // open: densities held left of 0 and right of length
+  ContinuumInitial initial = ContinuumInitial::riemann;
+  double left = 0.0, right = 0.0, position = 0.0; // riemann: left | right at position
+  std::vector<double> profile; // profile: values at equally spaced points; cells: cell averages
+  double mean = 0.0, amplitude = 0.0; // sine: mean + amplitude sin(2 pi x / length)
+  double time = 0.0;                  // simulated time
+  std::int64_t samples = 100;         // observable samples over `time` (+ t = 0)
+  double cfl = 0.4;                   // Courant number of the time step
+  ContinuumLimiter limiter = ContinuumLimiter::mc;
+};
+
 struct Scene {
   std::string file;      // where it came from, for messages
   std::string text;      // the scene as read (stored in output files)
@@ -203,6 +232,7 @@ struct Scene {
   std::optional<Lgca> lgca;           // engine lgca only
   std::optional<Tagged> tagged;       // engine lgca, [tagged] given
   std::optional<LgcaColloid> colloid; // engine lgca, [colloid] given
+  std::optional<Continuum> continuum; // engine continuum only
 };
 
 // Names used in messages and files.

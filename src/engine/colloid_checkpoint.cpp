@@ -1,5 +1,5 @@
-// Writing and reading the replicated colloid species of a checkpoint.
-#include "narrows/io/colloid_checkpoint.hpp"
+// Writing and reading the colloid species of a checkpoint (all colloids, in id order).
+#include "narrows/engine/colloid_checkpoint.hpp"
 
 #include "narrows/colloids/placement.hpp"
 #include "narrows/core/error.hpp"
@@ -9,13 +9,13 @@
 #include <numeric>
 #include <vector>
 
-namespace narrows::io {
+namespace narrows::engine {
 
 namespace {
 
 // The stored fields of c: position, velocity, id, and (sizes) radius and mass.
-SpeciesFields fields_of(colloids::Colloids &c, bool sizes = true) {
-  SpeciesFields s;
+io::SpeciesFields fields_of(colloids::Colloids &c, bool sizes = true) {
+  io::SpeciesFields s;
   s.name = "colloids";
   s.dim = c.dim;
   s.vectors.push_back({"position", {&c.x[0], &c.x[1], &c.x[2]}});
@@ -30,7 +30,7 @@ SpeciesFields fields_of(colloids::Colloids &c, bool sizes = true) {
 
 } // namespace
 
-SpeciesFields colloid_fields(colloids::Colloids &c, colloids::Colloids &empty, MPI_Comm comm) {
+io::SpeciesFields colloid_fields(colloids::Colloids &c, colloids::Colloids &empty, MPI_Comm comm) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   if (rank == 0)
@@ -46,10 +46,10 @@ colloids::Colloids read_colloids(const std::string &path, const scene::Colloids 
   block.dim = dim;
   block.resize(0);
   // Checkpoints written before radius and mass were stored: both follow from the scene.
-  const bool sizes = has_species_field(path, "colloids", "radius", comm) &&
-                     has_species_field(path, "colloids", "mass", comm);
-  SpeciesFields s = fields_of(block, sizes);
-  read_species(path, s, comm);
+  const bool sizes = io::has_species_field(path, "colloids", "radius", comm) &&
+                     io::has_species_field(path, "colloids", "mass", comm);
+  io::SpeciesFields s = fields_of(block, sizes);
+  io::read_species(path, s, comm);
 
   // Gather every rank's block everywhere: rows of 2 dim + 3 words (id, radius, mass).
   int ranks = 1;
@@ -86,7 +86,7 @@ colloids::Colloids read_colloids(const std::string &path, const scene::Colloids 
   c.resize(static_cast<std::size_t>(total));
   colloids::set_radii_and_masses(c, spec, density, seed);
   // Every rank holds all rows: the same refusal everywhere, naming the first bad row.
-  const auto edges = read_box_edges(path, "colloids", dim, comm);
+  const auto edges = io::read_box_edges(path, "colloids", dim, comm);
   std::vector<bool> seen(static_cast<std::size_t>(total), false);
   for (int i = 0; i < total; ++i) {
     const double *r = &all[static_cast<std::size_t>(i) * row];
@@ -130,4 +130,4 @@ colloids::Colloids read_colloids(const std::string &path, const scene::Colloids 
   return c;
 }
 
-} // namespace narrows::io
+} // namespace narrows::engine

@@ -1,7 +1,8 @@
-// Colloids in checkpoints: the species "colloids" (position, velocity, id, radius, mass). Every
-// rank holds all colloids, so rank 0 writes them and on reading every rank gets all of them
-// back. Radius and mass are stored so a restart restores them exactly; checkpoints from before
-// they were stored get them from the scene (colloids::set_radii_and_masses).
+// Colloids in checkpoints: the species "colloids" (position, velocity, id, radius, mass), all
+// rows in id order (gathered from their owners: MpcdSimulation::gather_colloids), so rank 0
+// writes them and on reading every rank gets all of them back and keeps its own. Radius and mass
+// are stored so a restart restores them exactly; checkpoints from before they were stored get them
+// from the scene (colloids::set_radii_and_masses).
 #pragma once
 
 #include "narrows/colloids/colloids.hpp"
@@ -13,11 +14,11 @@
 #include <cstdint>
 #include <string>
 
-namespace narrows::io {
+namespace narrows::engine {
 
 // The colloids as a species for write_checkpoint: all rows on rank 0, none elsewhere (`empty`
 // is the empty storage the other ranks point at).
-SpeciesFields colloid_fields(colloids::Colloids &c, colloids::Colloids &empty, MPI_Comm comm);
+io::SpeciesFields colloid_fields(colloids::Colloids &c, colloids::Colloids &empty, MPI_Comm comm);
 
 // All colloids of a checkpoint on every rank, in id order, radius and mass as stored (older
 // checkpoints: from the scene and `seed`) (collective). input_error if the species is missing,
@@ -25,4 +26,4 @@ SpeciesFields colloid_fields(colloids::Colloids &c, colloids::Colloids &empty, M
 colloids::Colloids read_colloids(const std::string &path, const scene::Colloids &spec, int dim,
                                  double density, std::uint64_t seed, MPI_Comm comm);
 
-} // namespace narrows::io
+} // namespace narrows::engine

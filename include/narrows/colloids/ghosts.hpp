@@ -1,0 +1,78 @@
+// Ghost copies of colloids owned by other ranks (issue 16 item 4): every colloid that can
+// interact with this rank's fluid or with the colloids it owns is present on it, as an owned
+// row or as a ghost row appended after the owned ones. Ghosts are exact copies (the same
+// position bits; pair geometry is the minimum image, as on one rank), forces on them go back to
+// their owners in fixed point (reverse), so the result is bitwise that of one rank.
+//
+// Rank r's region is the interval [first_r - e_r, end_r + e_r] along x around its slab of cell
+// columns [first_r, end_r); a colloid a is copied to every other rank whose region comes within
+// R_a = margin_a + 2^(1/24) (r_a + r_max) of its centre (the 48-24 range to the largest colloid,
+// which exceeds the WCA range r_a 2^(1/6), plus the colloid's own path this step). Two uses per
+// MPCD step:
+//   for forces at the start of a step: e_r = 1 (the fluid of a rank lies within half a cell of
+//   its slab after binning on the shifted grid; the owned colloids within it), margins 0;
+//   for the whole step: e_r = max(1 + fluid reach + 2 M, largest margin of r's own colloids),
+//   where the fluid reach is |v| dt + a dt^2 / 2 of r's fastest particle and M the largest
+//   margin of any colloid (a fluid particle kicked by a colloid gains at most about twice the
+//   colloid's speed). check_region() refuses a near fluid particle that ended outside it.
+// The regions of all ranks are gathered (2 numbers per rank and step), so a region may reach
+// beyond the neighbouring slab (thin slabs on many ranks).
+#pragma once
+
+#include "narrows/colloids/colloids.hpp"
+#include "narrows/mpcd/fluid.hpp"
+#include "narrows/parallel/exchange.hpp"
+#include "narrows/parallel/slabs.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace narrows::colloids {
+
+class ColloidGhosts {
+public:
+  ColloidGhosts(const parallel::Slabs &slabs, const mpcd::Box &box);
+
+  // False on one rank: then nothing is ever copied and every colloid is owned.
+  bool active() const { return slabs_.ranks() > 1; }
+  // Rows of c that are owned (the rest are ghosts) since the last add_*.
+  std::size_t owned() const { return owned_; }
+
+  // Appends the ghosts for forces at the current positions (collective).
+  void add_for_forces(Colloids &c);
+  // Appends the ghosts for a whole step; `margin` (one per owned row) grows by the ghosts'
+  // margins. `fluid_reach`: the largest path of this rank's fluid this step (collective).
+  void add_for_step(Colloids &c, std::vector<double> &margin, double fluid_reach);
+  // The ghosts' positions from their owners again (after the owners moved them; collective).
+  void refresh_positions(Colloids &c);
+  // Adds the per-row values of the ghost rows ([row * k + j]) to their owners' rows on the
+  // owning ranks, and zeroes the ghost rows (collective).
+  void reverse(std::vector<std::int64_t> &per_row, int k);
+  // Drops the ghost rows (and their margins).
+  void remove(Colloids &c, std::vector<double> *margin = nullptr);
+  // invariant_error if the near fluid left this rank's region of the step (a colloid it could
+  // meet may then have been missing here).
+  void check_region(const mpcd::Fluid &near) const;
+
+  // The largest radius of all colloids on all ranks (collective the first time; the radii are
+  // fixed for a run); c holds this rank's colloids.
+  double largest_radius(const Colloids &c);
+
+  // Bytes this rank sent for colloids (migration not included).
+  std::uint64_t bytes_sent() const { return exchange_.bytes_sent(); }
+
+private:
+  void add(Colloids &c, std::vector<double> *margin, double own_extent);
+
+  parallel::Slabs slabs_;
+  mpcd::Box box_;
+  parallel::Exchange exchange_;
+  std::size_t owned_ = 0;
+  double r_max_ = -1.0;        // the largest radius of all colloids (fixed for a run)
+  std::vector<double> extent_; // per rank: e_r of the last add
+  parallel::CopyList list_;    // owned rows and the ranks they were copied to
+  parallel::Halo halo_;        // where each ghost row came from
+  std::vector<std::int64_t> ghost_values_;
+};
+
+} // namespace narrows::colloids

@@ -1,0 +1,237 @@
+// Event-driven rough hard spheres: collision rule and time-ordered events.
+#include "narrows/colloids/hard_spheres.hpp"
+
+#include "narrows/colloids/pair_geometry.hpp"
+#include "narrows/mpcd/streaming.hpp"
+
+#include <cmath>
+#include <limits>
+#include <queue>
+#include <vector>
+
+namespace narrows::colloids {
+
+namespace {
+
+void cross(const double a[3], const double b[3], double out[3]) {
+  out[0] = a[1] * b[2] - a[2] * b[1];
+  out[1] = a[2] * b[0] - a[0] * b[2];
+  out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+double dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+// The impulse dp that reverses the contact velocity U of a pair with reduced mass m and reduced
+// moment of inertia i (eq 4.27): -2 m (U_n + U_t / (1 + m / i)), n the unit contact normal.
+void reversing_impulse(const double U[3], const double n[3], double m, double i, double dp[3]) {
+  const double un = dot(U, n);
+  const double tangential = 1.0 / (1.0 + m / i);
+  for (int k = 0; k < 3; ++k) {
+    const double normal = un * n[k];
+    dp[k] = -2.0 * m * (normal + (U[k] - normal) * tangential);
+  }
+}
+
+} // namespace
+
+double moment_of_inertia(const Colloids &c, std::size_t a) {
+  const double r = c.radius[a];
+  return (c.dim == 2 ? 0.5 : 0.4) * c.mass[a] * r * r;
+}
+
+void collide_rough(Colloids &c, std::size_t a, std::size_t b, const double d[3]) {
+  const double ra = c.radius[a], rb = c.radius[b];
+  const double ma = c.mass[a], mb = c.mass[b];
+  const double ia = moment_of_inertia(c, a), ib = moment_of_inertia(c, b);
+  double n[3] = {0.0, 0.0, 0.0}, du[3] = {0.0, 0.0, 0.0}, w[3], wxn[3];
+  const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  for (int k = 0; k < c.dim; ++k) {
+    n[k] = d[k] / len;
+    du[k] = c.v[k][a] - c.v[k][b];
+  }
+  for (int k = 0; k < 3; ++k)
+    w[k] = ra * c.omega[k][a] + rb * c.omega[k][b];
+  cross(w, n, wxn);
+  double U[3]; // eq 4.26 with d / R_ab = n at contact
+  for (int k = 0; k < 3; ++k)
+    U[k] = du[k] - wxn[k];
+  const double m = ma * mb / (ma + mb);                     // eq 4.28
+  const double i = ia * ib / (ra * ra * ib + rb * rb * ia); // eq 4.29
+  double dp[3], nxdp[3];
+  reversing_impulse(U, n, m, i, dp);
+  cross(n, dp, nxdp);
+  for (int k = 0; k < c.dim; ++k) { // eq 4.30-4.31
+    c.v[k][a] += dp[k] / ma;
+    c.v[k][b] -= dp[k] / mb;
+  }
+  for (int k = 0; k < 3; ++k) { // eq 4.32-4.33 (d / R_ab = n)
+    c.omega[k][a] -= ra / ia * nxdp[k];
+    c.omega[k][b] -= rb / ib * nxdp[k];
+  }
+}
+
+void collide_rough_wall(Colloids &c, std::size_t a, int side) {
+  // The wall is the partner b with infinite mass and inertia at rest: d = x_a - x_contact points
+  // along n, the reduced mass is M_a and the reduced inertia I_a / R_a^2.
+  const double r = c.radius[a], m = c.mass[a], ia = moment_of_inertia(c, a);
+  const double n[3] = {0.0, static_cast<double>(side), 0.0};
+  double w[3], wxn[3], U[3], dp[3], nxdp[3];
+  for (int k = 0; k < 3; ++k)
+    w[k] = r * c.omega[k][a];
+  cross(w, n, wxn);
+  for (int k = 0; k < 3; ++k)
+    U[k] = (k < c.dim ? c.v[k][a] : 0.0) - wxn[k];
+  reversing_impulse(U, n, m, ia / (r * r), dp);
+  cross(n, dp, nxdp);
+  for (int k = 0; k < c.dim; ++k)
+    c.v[k][a] += dp[k] / m;
+  for (int k = 0; k < 3; ++k)
+    c.omega[k][a] -= r / ia * nxdp[k];
+}
+
+double kinetic_energy(const Colloids &c) {
+  double e = 0.0;
+  for (std::size_t a = 0; a < c.size(); ++a) {
+    for (int k = 0; k < c.dim; ++k)
+      e += 0.5 * c.mass[a] * c.v[k][a] * c.v[k][a];
+    const double i = moment_of_inertia(c, a);
+    for (int k = 0; k < 3; ++k)
+      e += 0.5 * i * c.omega[k][a] * c.omega[k][a];
+  }
+  return e;
+}
+
+namespace {
+
+constexpr std::size_t wall_low = std::numeric_limits<std::size_t>::max();
+constexpr std::size_t wall_high = wall_low - 1;
+
+struct Event {
+  double t;
+  std::size_t a, b; // b: a colloid, or wall_low / wall_high
+  std::uint64_t stamp_a, stamp_b;
+  // Earliest first; ties in a fixed order of the colloids.
+  bool operator>(const Event &o) const {
+    if (t != o.t)
+      return t > o.t;
+    if (a != o.a)
+      return a > o.a;
+    return b > o.b;
+  }
+};
+
+class EventQueue {
+public:
+  EventQueue(Colloids &c, const mpcd::Box &box, double dt)
+      : c_(c), box_(box), dt_(dt), t_(c.size(), 0.0), stamp_(c.size(), 0) {}
+
+  // The position of colloid a at time t (not wrapped).
+  double x_at(std::size_t a, int k, double t) const {
+    return c_.x[k][a] + c_.v[k][a] * (t - t_[a]);
+  }
+  void move_to(std::size_t a, double t) {
+    for (int k = 0; k < c_.dim; ++k)
+      c_.x[k][a] = x_at(a, k, t);
+    t_[a] = t;
+  }
+
+  // d = x_a - x_b at time t (minimum image along periodic axes); returns |d|^2.
+  double separation_at(std::size_t a, std::size_t b, double t, double d[3]) const {
+    double r2 = 0.0;
+    d[0] = d[1] = d[2] = 0.0;
+    for (int k = 0; k < c_.dim; ++k) {
+      d[k] = x_at(a, k, t) - x_at(b, k, t);
+      if (!(k == 1 && box_.walls_y))
+        d[k] = minimum_image(d[k], box_.length[k]);
+      r2 += d[k] * d[k];
+    }
+    return r2;
+  }
+
+  // Every event of colloid a from time t on (eq 4.23-4.25; walls: the time to touch).
+  void predict(std::size_t a, double t) {
+    for (std::size_t b = 0; b < c_.size(); ++b) {
+      if (b == a)
+        continue;
+      double d[3], du2 = 0.0, bij = 0.0;
+      const double r2 = separation_at(a, b, t, d);
+      for (int k = 0; k < c_.dim; ++k) {
+        const double du = c_.v[k][a] - c_.v[k][b];
+        du2 += du * du;
+        bij += d[k] * du;
+      }
+      if (!(bij < 0.0))
+        continue; // not approaching
+      const double rab = c_.radius[a] + c_.radius[b];
+      const double kij = bij * bij - du2 * (r2 - rab * rab);
+      if (!(kij > 0.0))
+        continue; // passing by
+      const double tau = std::max(0.0, (-bij - std::sqrt(kij)) / du2);
+      push(t + tau, a, b);
+    }
+    if (box_.walls_y) {
+      const double y = x_at(a, 1, t), vy = c_.v[1][a], r = c_.radius[a];
+      if (vy < 0.0)
+        push(t + std::max(0.0, (y - r) / -vy), a, wall_low);
+      else if (vy > 0.0)
+        push(t + std::max(0.0, (box_.length[1] - r - y) / vy), a, wall_high);
+    }
+  }
+
+  HardSphereStats run() {
+    HardSphereStats stats;
+    for (std::size_t a = 0; a < c_.size(); ++a)
+      predict(a, 0.0);
+    while (!queue_.empty() && queue_.top().t <= dt_) {
+      const Event e = queue_.top();
+      queue_.pop();
+      if (e.stamp_a != stamp_[e.a] || (e.b < wall_high && e.stamp_b != stamp_[e.b]))
+        continue; // one of them collided since the prediction
+      move_to(e.a, e.t);
+      ++stamp_[e.a];
+      if (e.b >= wall_high) {
+        collide_rough_wall(c_, e.a, e.b == wall_low ? +1 : -1);
+        ++stats.wall_collisions;
+      } else {
+        move_to(e.b, e.t);
+        ++stamp_[e.b];
+        double d[3];
+        separation_at(e.a, e.b, e.t, d);
+        collide_rough(c_, e.a, e.b, d);
+        ++stats.pair_collisions;
+        predict(e.b, e.t);
+      }
+      predict(e.a, e.t);
+    }
+    for (std::size_t a = 0; a < c_.size(); ++a) {
+      move_to(a, dt_);
+      for (int k = 0; k < c_.dim; ++k)
+        if (!(k == 1 && box_.walls_y))
+          c_.x[k][a] = mpcd::wrap_periodic(c_.x[k][a], box_.length[k]);
+    }
+    return stats;
+  }
+
+private:
+  void push(double t, std::size_t a, std::size_t b) {
+    if (t > dt_)
+      return;
+    queue_.push({t, a, b, stamp_[a], b < wall_high ? stamp_[b] : 0});
+  }
+
+  Colloids &c_;
+  mpcd::Box box_;
+  double dt_;
+  std::vector<double> t_;            // per colloid: the time its position refers to
+  std::vector<std::uint64_t> stamp_; // per colloid: collisions so far (stale events differ)
+  std::priority_queue<Event, std::vector<Event>, std::greater<Event>> queue_;
+};
+
+} // namespace
+
+HardSphereStats advance_hard_spheres(Colloids &c, const mpcd::Box &box, double dt) {
+  EventQueue q(c, box, dt);
+  return q.run();
+}
+
+} // namespace narrows::colloids

@@ -1,0 +1,70 @@
+// The continuum engine's benchmark (see continuum/bench.hpp).
+#include "narrows/continuum/bench.hpp"
+
+#include "narrows/continuum/flux.hpp"
+#include "narrows/continuum/plan.hpp"
+#include "narrows/continuum/scheme.hpp"
+#include "narrows/core/timer.hpp"
+#include "narrows/kmc/rates.hpp"
+
+#include <cstdio>
+#include <vector>
+
+namespace narrows::continuum {
+
+void run_bench(std::ostream &out, double cells, bool json) {
+  struct Case {
+    const char *name;
+    scene::Continuum model;
+  };
+  scene::Continuum base;
+  base.cells = static_cast<std::int64_t>(cells);
+  base.length = 1.0;
+  base.boundary = scene::ContinuumBoundary::periodic;
+  base.initial = scene::ContinuumInitial::sine;
+  base.mean = 0.5;
+  base.amplitude = 0.2;
+  base.time = 1.0;
+  base.samples = 1;
+  std::vector<Case> cases{{"burgers", base}, {"family1", base}};
+  cases[1].model.flux = scene::ContinuumFlux::family1;
+  cases[1].model.lattice_gas.preset = scene::KmcPreset::family1;
+  auto &rates = cases[1].model.lattice_gas.rates;
+  rates[kmc::pair_code(0, 1) * 9 + kmc::pair_code(1, 0)] = 1.0; // w42: A hops right
+  rates[kmc::pair_code(1, 2) * 9 + kmc::pair_code(2, 1)] = 0.5; // w86, w68: B and vacancy
+  rates[kmc::pair_code(2, 1) * 9 + kmc::pair_code(1, 2)] = 0.5;
+  if (json)
+    out << "{\"continuum\": [";
+  bool first = true;
+  for (const auto &c : cases) {
+    const Plan p = make_plan(c.model);
+    const Flux flux(c.model);
+    Scheme scheme(flux, p.grid, 0.0, c.model.limiter);
+    std::vector<double> u = initial_cells(c.model);
+    scheme.step(u, p.dt); // warm-up
+    Stopwatch clock;
+    std::int64_t steps = 0;
+    while (clock.seconds() < 1.0 || steps < 3) {
+      scheme.step(u, p.dt);
+      ++steps;
+    }
+    const double rate = static_cast<double>(steps) * cells / clock.seconds();
+    if (json) {
+      out << (first ? "" : ", ") << "{\"case\": \"" << c.name << "\", \"cells\": " << cells
+          << ", \"cell_steps_per_s\": " << rate << "}";
+    } else {
+      char buf[200];
+      std::snprintf(
+          buf, sizeof buf,
+          "continuum %-8s %.3g cells: %.3g cell-steps/s on one core (%lld steps, SSP-RK2: "
+          "two flux sweeps each)",
+          c.name, cells, rate, static_cast<long long>(steps));
+      out << buf << '\n';
+    }
+    first = false;
+  }
+  if (json)
+    out << "]}\n";
+}
+
+} // namespace narrows::continuum

@@ -1,0 +1,283 @@
+// Validation of the [continuum] section: model, flux and its parameters, grid, boundary,
+// initial data, time and numerics. Unknown keys of [continuum] itself are refused by the
+// generic schema check in parse.cpp.
+#include "parse_continuum.hpp"
+#include "parse_kmc.hpp"
+#include "section_checker.hpp"
+
+#include "narrows/kmc/preset.hpp"
+#include "narrows/kmc/rates.hpp"
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace narrows::scene::detail {
+
+namespace {
+
+std::string choice_list(const std::vector<std::string> &names) {
+  std::string s;
+  for (const auto &n : names)
+    s += (s.empty() ? "\"" : ", \"") + n + "\"";
+  return s;
+}
+
+// The index of a string value among `names`, or a one-line refusal.
+std::size_t choice(const Checker &c, const toml::value &v, const std::string &key,
+                   const std::vector<std::string> &names) {
+  if (!v.is_string())
+    c.wrong_type(key, v, choice_list(names));
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (v.as_string().str == names[i])
+      return i;
+  c.fail(key, key + " = " + repr(v) + " is not known; allowed: " + choice_list(names));
+}
+
+bool finite(double) { return true; }
+
+// The densities a flux is defined for: charge sigma in [-1, 1] (family 1), particle density in
+// [0, 1] (tasep, family 2), any number (burgers, colloid-chain).
+struct Range {
+  double lo, hi;
+  std::string text;
+};
+Range density_range(ContinuumFlux f) {
+  if (f == ContinuumFlux::family1)
+    return {-1.0, 1.0, "a charge density from -1 to 1 (family 1)"};
+  if (f == ContinuumFlux::tasep || f == ContinuumFlux::family2)
+    return {0.0, 1.0, "a particle density from 0 to 1"};
+  return {-1e300, 1e300, "a finite number"};
+}
+
+double density(const Checker &c, const toml::value &v, const std::string &key, const Range &r) {
+  return c.number(v, key, r.text, [&r](double x) { return x >= r.lo && x <= r.hi; });
+}
+
+void parse_lattice_gas(const Checker &c, const toml::value *sec, Continuum &out) {
+  Kmc &m = out.lattice_gas;
+  const toml::value *rates = find(sec, "rates");
+  const toml::value *params = find(sec, "parameters");
+  if (out.flux == ContinuumFlux::family2) {
+    if (rates != nullptr)
+      c.fail("continuum.rates", "continuum.rates is given with continuum.flux = \"family2\", "
+                                "whose rates come from continuum.parameters (eq 2.86); allowed: "
+                                "continuum.parameters");
+    if (params == nullptr)
+      c.fail("continuum.parameters",
+             "missing required key 'continuum.parameters' for continuum.flux = \"family2\"; "
+             "allowed: a table with c and rates h1-h6, r1-r9 (as kmc.parameters)");
+    m.preset = KmcPreset::family2;
+    parse_family2(c, *params, m, "continuum.parameters");
+    return;
+  }
+  if (params != nullptr)
+    c.fail("continuum.parameters", "continuum.parameters needs continuum.flux = \"family2\"; "
+                                   "allowed otherwise: continuum.rates");
+  if (out.flux == ContinuumFlux::family1) {
+    if (rates == nullptr)
+      c.fail("continuum.rates", "missing required key 'continuum.rates' for continuum.flux = "
+                                "\"family1\"; allowed: family 1's pair rates as in kmc.rates, "
+                                "e.g. { w42 = 1.0, w24 = 0.2 }");
+    m.preset = KmcPreset::family1;
+    parse_bulk_rates(c, *rates, m, "continuum.rates");
+    check_family1_rates(c, m, "continuum.rates", "continuum.flux = \"family1\"");
+  } else { // tasep: ASEP hops of particles (state 1) into holes (state 0): family 2 without B
+    m.preset = KmcPreset::family2;
+    m.c = 0.0;
+    if (rates == nullptr)
+      m.rates[kmc::pair_code(1, 0) * 9 + kmc::pair_code(0, 1)] = 1.0;
+    else
+      parse_bulk_rates(c, *rates, m, "continuum.rates");
+    for (int from = 0; from < 9; ++from)
+      for (int to = 0; to < 9; ++to) {
+        const bool hop = (from == kmc::pair_code(1, 0) && to == kmc::pair_code(0, 1)) ||
+                         (from == kmc::pair_code(0, 1) && to == kmc::pair_code(1, 0));
+        if (m.rates[from * 9 + to] > 0.0 && !hop)
+          c.fail("continuum.rates",
+                 "continuum.rates gives " + kmc::pair_name(from, to) +
+                     ", which is not a hop of TASEP/ASEP; allowed with continuum.flux = "
+                     "\"tasep\": \"10->01\" (right, default 1) and \"01->10\" (left)");
+      }
+  }
+  bool any = false;
+  for (double r : m.rates)
+    any = any || r > 0.0;
+  if (!any)
+    c.fail("continuum.rates", "continuum.rates has no positive rate; allowed: at least one "
+                              "transition with a rate > 0");
+}
+
+void parse_initial(const Checker &c, const toml::value &v, const Range &range, Continuum &out) {
+  const std::string allowed = "{ kind = \"riemann\", left, right, position } or { kind = "
+                              "\"profile\" | \"cells\", values = [...] } or { kind = \"sine\", "
+                              "mean, amplitude }";
+  if (!v.is_table())
+    c.wrong_type("continuum.initial", v, allowed);
+  const toml::value *kind = find(&v, "kind");
+  if (kind == nullptr)
+    c.fail("continuum.initial.kind", "missing required key 'continuum.initial.kind'; allowed: "
+                                     "\"riemann\", \"profile\", \"sine\", \"cells\"");
+  const std::size_t k =
+      choice(c, *kind, "continuum.initial.kind", {"riemann", "profile", "sine", "cells"});
+  out.initial = static_cast<ContinuumInitial>(k);
+  const std::vector<std::vector<std::string>> keys{{"kind", "left", "right", "position"},
+                                                   {"kind", "values"},
+                                                   {"kind", "mean", "amplitude"},
+                                                   {"kind", "values"}};
+  const std::vector<std::string> &mine = keys[k];
+  for (const auto &[key, x] : sorted(v)) {
+    (void)x;
+    bool ok = false;
+    for (const auto &m : mine)
+      ok = ok || key == m;
+    if (!ok) {
+      std::string list;
+      for (const auto &m : mine)
+        list += (list.empty() ? "" : ", ") + m;
+      c.fail("continuum.initial." + key, "unknown key 'continuum.initial." + key + "' for kind = " +
+                                             repr(*kind) + "; allowed keys: " + list);
+    }
+  }
+  const auto required = [&](const char *name, const std::string &what) -> const toml::value & {
+    const toml::value *x = find(&v, name);
+    if (x == nullptr)
+      c.fail(std::string("continuum.initial.") + name, std::string("missing required key "
+                                                                   "'continuum.initial.") +
+                                                           name + "'; allowed: " + what);
+    return *x;
+  };
+  if (out.initial == ContinuumInitial::riemann) {
+    out.left = density(c, required("left", range.text), "continuum.initial.left", range);
+    out.right = density(c, required("right", range.text), "continuum.initial.right", range);
+    out.position = out.length / 2.0;
+    if (const toml::value *p = find(&v, "position")) {
+      const double L = out.length;
+      out.position = c.number(*p, "continuum.initial.position",
+                              "a number from 0 to continuum.length (the jump)",
+                              [L](double x) { return x >= 0.0 && x <= L; });
+    }
+  } else if (out.initial == ContinuumInitial::profile || out.initial == ContinuumInitial::cells) {
+    const bool cells = out.initial == ContinuumInitial::cells;
+    const std::string what = cells ? "an array of continuum.cells = " + std::to_string(out.cells) +
+                                         " values (" + range.text + "), the initial cell averages"
+                                   : "an array of 2 to 10000000 values (" + range.text +
+                                         "), at equally spaced points from 0 to continuum.length";
+    const toml::value &p = required("values", what);
+    if (!p.is_array() || p.as_array().size() < 2 || p.as_array().size() > 10000000 ||
+        (cells && static_cast<std::int64_t>(p.as_array().size()) != out.cells))
+      c.wrong_type("continuum.initial.values", p, what);
+    for (std::size_t i = 0; i < p.as_array().size(); ++i)
+      out.profile.push_back(density(c, p.as_array()[i],
+                                    "continuum.initial.values[" + std::to_string(i) + "]", range));
+  } else {
+    out.mean = density(c, required("mean", range.text), "continuum.initial.mean", range);
+    const double room = std::min(out.mean - range.lo, range.hi - out.mean);
+    const std::string what =
+        "a number with mean +- amplitude inside the flux's range (" + range.text + ")";
+    out.amplitude = c.number(required("amplitude", what), "continuum.initial.amplitude", what,
+                             [room](double a) { return std::abs(a) <= room; });
+  }
+}
+
+} // namespace
+
+Continuum parse_continuum(const toml::value *sec, const SectionFail &fail) {
+  const Checker c(fail);
+  if (sec == nullptr)
+    c.fail("continuum", "missing required section [continuum] (run.engine = \"continuum\"); "
+                        "required keys: model, flux, length, cells, initial, time");
+  Continuum out;
+  const auto required = [&](const char *name, const std::string &what) -> const toml::value & {
+    const toml::value *x = find(sec, name);
+    if (x == nullptr)
+      c.fail(std::string("continuum.") + name,
+             std::string("missing required key 'continuum.") + name + "'; allowed: " + what);
+    return *x;
+  };
+  choice(c, required("model", "\"conservation-law\""), "continuum.model", {"conservation-law"});
+  out.model = ContinuumModel::conservation_law;
+  const std::vector<std::string> fluxes{"burgers", "tasep", "family1", "family2", "colloid-chain"};
+  out.flux = static_cast<ContinuumFlux>(
+      choice(c, required("flux", choice_list(fluxes)), "continuum.flux", fluxes));
+
+  const bool lattice_gas = out.flux == ContinuumFlux::tasep || out.flux == ContinuumFlux::family1 ||
+                           out.flux == ContinuumFlux::family2;
+  if (lattice_gas)
+    parse_lattice_gas(c, sec, out);
+  else
+    for (const char *k : {"rates", "parameters"})
+      if (find(sec, k) != nullptr)
+        c.fail(std::string("continuum.") + k,
+               std::string("continuum.") + k +
+                   " sets the rates of a lattice-gas flux; allowed with continuum.flux = \"" +
+                   fluxes[static_cast<std::size_t>(out.flux)] + "\": none");
+  for (const auto &[name, field] :
+       {std::pair{"c", &out.c}, std::pair{"c_prime", &out.c_prime}, std::pair{"v_cm", &out.v_cm}})
+    if (const toml::value *v = find(sec, name)) {
+      if (out.flux != ContinuumFlux::colloid_chain)
+        c.fail(std::string("continuum.") + name,
+               std::string("continuum.") + name +
+                   " is a parameter of the colloid-chain flux (seed 000 eq 5.3); allowed with "
+                   "continuum.flux = \"" +
+                   fluxes[static_cast<std::size_t>(out.flux)] + "\": none");
+      *field = c.number(*v, std::string("continuum.") + name, "a finite number", finite);
+    }
+
+  const std::string len_allowed = "a number > 0 (the domain [0, length])";
+  out.length = c.number(required("length", len_allowed), "continuum.length", len_allowed,
+                        [](double x) { return x > 0.0; });
+  const std::string cells_allowed = "an integer from 4 to 100000000";
+  out.cells = c.integer(required("cells", cells_allowed), "continuum.cells", cells_allowed,
+                        [](std::int64_t n) { return n >= 4 && n <= 100000000; });
+  if (const toml::value *v = find(sec, "diffusion"))
+    out.diffusion = c.number(*v, "continuum.diffusion", "a number >= 0 (D of D rho_xx)",
+                             [](double x) { return x >= 0.0; });
+  if (const toml::value *v = find(sec, "boundary"))
+    out.boundary = choice(c, *v, "continuum.boundary", {"open", "periodic"}) == 0
+                       ? ContinuumBoundary::open
+                       : ContinuumBoundary::periodic;
+
+  const Range range = density_range(out.flux);
+  parse_initial(c,
+                required("initial", "{ kind = \"riemann\", left, right, position }, { kind "
+                                    "= \"profile\", values }, { kind = \"sine\", mean, "
+                                    "amplitude }"),
+                range, out);
+  // Reservoirs default to the initial data at the two ends.
+  if (out.initial == ContinuumInitial::riemann)
+    out.reservoirs = {out.left, out.right};
+  else if (out.initial == ContinuumInitial::profile || out.initial == ContinuumInitial::cells)
+    out.reservoirs = {out.profile.front(), out.profile.back()};
+  else
+    out.reservoirs = {out.mean, out.mean};
+  if (const toml::value *v = find(sec, "reservoirs")) {
+    const std::string allowed = "an array [left, right] of two densities (" + range.text + ")";
+    if (out.boundary != ContinuumBoundary::open)
+      c.fail("continuum.reservoirs", "continuum.reservoirs needs continuum.boundary = \"open\"; "
+                                     "allowed when periodic: none");
+    if (!v->is_array() || v->as_array().size() != 2)
+      c.wrong_type("continuum.reservoirs", *v, allowed);
+    for (int i = 0; i < 2; ++i)
+      out.reservoirs[i] =
+          density(c, v->as_array()[i], "continuum.reservoirs[" + std::to_string(i) + "]", range);
+  }
+
+  const std::string time_allowed = "a number > 0 (simulated time)";
+  out.time = c.number(required("time", time_allowed), "continuum.time", time_allowed,
+                      [](double x) { return x > 0.0; });
+  if (const toml::value *v = find(sec, "samples"))
+    out.samples = c.integer(*v, "continuum.samples",
+                            "an integer from 1 to 100000 (samples over continuum.time)",
+                            [](std::int64_t n) { return n >= 1 && n <= 100000; });
+  if (const toml::value *v = find(sec, "cfl"))
+    out.cfl = c.number(*v, "continuum.cfl", "a number > 0 and <= 0.5 (Courant number)",
+                       [](double x) { return x > 0.0 && x <= 0.5; });
+  if (const toml::value *v = find(sec, "limiter"))
+    out.limiter = choice(c, *v, "continuum.limiter", {"mc", "minmod"}) == 0
+                      ? ContinuumLimiter::mc
+                      : ContinuumLimiter::minmod;
+  return out;
+}
+
+} // namespace narrows::scene::detail

@@ -1,0 +1,166 @@
+#!/usr/bin/python3
+"""One shock two ways (issue 22, item 4, the kmc half): the three-state lattice gas (a kmc run
+with a shock, e.g. run/kmc_family2_shock.toml) against the conservation law of its preset's flux
+(seed 000 eq 2.60 / 2.126), solved by the continuum engine from the same Riemann data: the two
+densities are the kmc run's mean densities away from the shock, held as reservoirs.
+
+One PNG with three panels: density profiles at four times (kmc dots; continuum, sharp; the
+continuum shock smeared by the kmc shock's random walk, a Gaussian of variance 2 D_s t, dashed),
+the mean shock position against time (kmc, continuum, Rankine-Hugoniot, the seed's v_s), and
+its variance (kmc against 2 D_s t). A table of shock speed and diffusion constant from each
+source is printed and written next to the PNG (same name, .txt).
+
+Usage: tools/shock_report.py KMC_OUT/observables.h5 [--png FILE] [--block B] [--narrows PATH]
+"""
+import argparse
+import math
+import os
+import sys
+
+import h5py
+import numpy as np
+
+from continuum_run import find_narrows, kmc_flux_lines, run_continuum
+
+
+def block(x, b):
+    n = len(x) // b
+    return x[: n * b].reshape(n, b).mean(axis=1)
+
+
+def fit_slope(t, y, err):
+    """Weighted least-squares slope of y(t) and its standard error."""
+    w = 1.0 / np.maximum(err, 1e-12) ** 2
+    A = np.vstack([np.ones_like(t), t]).T
+    cov = np.linalg.inv(A.T @ (A * w[:, None]))
+    coef = cov @ (A.T @ (w * y))
+    return coef[1], math.sqrt(cov[1, 1])
+
+
+def smeared(profile, sigma):
+    """profile convolved with a Gaussian of standard deviation sigma (cells), ends held."""
+    if sigma <= 0:
+        return profile
+    half = int(math.ceil(4 * sigma))
+    g = np.exp(-0.5 * (np.arange(-half, half + 1) / sigma) ** 2)
+    g /= g.sum()
+    ext = np.concatenate([np.full(half, profile[0]), profile, np.full(half, profile[-1])])
+    return np.convolve(ext, g, mode="valid")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("kmc", help="observables.h5 of a kmc run with a shock (kmc.samples > 0)")
+    ap.add_argument("--png", default=None, help="output PNG (default: next to the kmc file)")
+    ap.add_argument("--block", type=int, default=10, help="sites per coarse-graining block")
+    ap.add_argument("--narrows", default=None, help="the narrows binary (default: build/narrows)")
+    args = ap.parse_args()
+
+    f = h5py.File(args.kmc, "r")
+    obs = f["observables"]
+    for need in ("charge_profile", "shock_position", "current_theory"):
+        if need not in obs:
+            sys.exit(f"shock_report.py: {args.kmc} has no /observables/{need}; allowed: a kmc run "
+                     "with a preset and a shock (kmc.samples > 0)")
+    scene_text = f["parameters/scene"][()]
+    scene_text = scene_text.decode() if isinstance(scene_text, bytes) else scene_text
+    q = obs["charge_profile/value"][:]  # [samples+1][L] mean charge per site
+    t = obs["charge_profile/time"][:]
+    L = q.shape[1]
+    x_kmc = obs["shock_position/value"][:]
+    x_err = obs["shock_position_error/value"][:]
+    var = obs["shock_position_variance/value"][:]
+    var_err = obs["shock_position_variance_error/value"][:]
+    dens, flux = obs["current_theory/bins"][:], obs["current_theory/value"][0]
+    v_seed = d_seed = None
+    if "shock_theory" in obs:
+        v_seed, d_seed = obs["shock_theory/value"][0]
+
+    # Riemann data: the measured densities either side of the shock, averaged over all samples
+    # and over the sites the shock never came within 20 sites of (and 10 from the ends).
+    s0 = int(round(x_kmc[0]))
+    lo, hi = int(x_kmc.min()) - 20, int(math.ceil(x_kmc.max())) + 20
+    if lo <= 10 or hi >= L - 10:
+        sys.exit("shock_report.py: the shock came within 30 sites of an end; allowed: a run whose "
+                 "shock stays inside")
+    left, right = q[:, 10:lo].mean(), q[:, hi:L - 10].mean()
+    rh = (np.interp(left, dens, flux) - np.interp(right, dens, flux)) / (left - right)
+    cont = run_continuum(
+        find_narrows(args.narrows),
+        kmc_flux_lines(scene_text) + f'length = {float(L)!r}\ncells = {L}\nboundary = "open"\n'
+        f'initial = {{ kind = "riemann", left = {float(left)!r}, right = {float(right)!r}, '
+        f"position = {float(s0)!r} }}\ntime = {float(t[-1])!r}\nsamples = {len(t) - 1}\n")
+    tc, rho_c = cont["density"]
+    _, x_c = cont["shock_position"]
+    if not np.allclose(tc, t, rtol=1e-9, atol=1e-9 * t[-1]):
+        sys.exit("shock_report.py: continuum sample times differ from the kmc ones")
+
+    v_kmc, v_kmc_err = fit_slope(t, x_kmc, np.maximum(x_err, 1e-3))
+    half = len(t) // 2
+    v_cont = (x_c[-1] - x_c[half]) / (t[-1] - t[half])
+    d_kmc, d_kmc_err = fit_slope(t, var / 2.0, np.maximum(var_err / 2.0, 1e-3))
+    rows = [("kmc (weighted fit of mean position and variance)", f"{v_kmc:.5g} +- {v_kmc_err:.2g}",
+             f"{d_kmc:.5g} +- {d_kmc_err:.2g}"),
+            ("continuum engine (D = 0; second half of the run)", f"{v_cont:.5g}", "0"),
+            ("Rankine-Hugoniot (J(l) - J(r)) / (l - r)", f"{rh:.5g}", "")]
+    if v_seed is not None:
+        rows.append(("seed 000 eq 2.115-2.116 (shock random walk)", f"{v_seed:.5g}",
+                     f"{d_seed:.5g}"))
+    table = [f"shock {left:.4f} | {right:.4f} at site {s0}, L = {L}, t = 0 .. {t[-1]:g}",
+             "| source | speed (sites/time, to the right) | diffusion D_s |", "|---|---|---|"]
+    table += [f"| {a} | {b} | {c} |" for a, b, c in rows]
+    print("\n".join(table))
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, 3, figsize=(16, 4.4))
+    b = max(1, args.block)
+    xb = block(np.arange(1, L + 1, dtype=float), b)
+    xc = np.arange(L) + 1.0  # continuum cell i covers [i, i + 1): site i + 1
+    d_use = d_seed if d_seed is not None else max(d_kmc, 0.0)
+    ax = axes[0]
+    picks = sorted(set([0, len(t) // 3, 2 * len(t) // 3, len(t) - 1]))
+    for c, i in enumerate(picks):
+        ax.plot(xb, block(q[i], b), ".", color=f"C{c}", ms=3)
+        ax.plot(xc, rho_c[i], "-", color=f"C{c}", lw=1, label=f"t = {t[i]:.4g}")
+        ax.plot(xc, smeared(rho_c[i], math.sqrt(2.0 * d_use * t[i])), "--", color=f"C{c}", lw=1)
+    ax.set_xlabel("site")
+    ax.set_ylabel("density (charge per site)")
+    ax.set_title("kmc (dots), continuum (lines), smeared by 2 D_s t (dashed)", fontsize=9)
+    ax.legend(fontsize=8)
+
+    ax = axes[1]
+    ax.errorbar(t, x_kmc, yerr=x_err, fmt=".", label="kmc mean")
+    ax.plot(t, x_c, "-", label="continuum engine")
+    ax.plot(t, s0 + rh * t, ":", color="k", label=f"Rankine-Hugoniot ({rh:.4g})")
+    if v_seed is not None:
+        ax.plot(t, s0 + v_seed * t, "--", color="C3", lw=1, label=f"seed v_s ({v_seed:.4g})")
+    ax.set_xlabel("time")
+    ax.set_ylabel("shock position (site)")
+    ax.set_title("shock position")
+    ax.legend(fontsize=8)
+
+    ax = axes[2]
+    ax.errorbar(t, var, yerr=var_err, fmt=".", label="kmc variance")
+    if d_seed is not None:
+        ax.plot(t, var[0] + 2 * d_seed * t, "-", label=f"2 D_s t (seed D_s = {d_seed:.4g})")
+    ax.set_xlabel("time")
+    ax.set_ylabel("variance (sites$^2$)")
+    ax.set_title("shock position variance (continuum: sharp, 0)")
+    ax.legend(fontsize=8)
+
+    fig.tight_layout()
+    png = args.png or os.path.join(os.path.dirname(os.path.abspath(args.kmc)), "shock_report.png")
+    fig.savefig(png, dpi=110)
+    txt = os.path.splitext(png)[0] + ".txt"
+    with open(txt, "w") as fh:
+        fh.write("\n".join(table) + "\n")
+    print(f"wrote {png} and {txt}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
