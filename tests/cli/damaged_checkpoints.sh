@@ -35,26 +35,34 @@ check "mpcd checkpoint written" '[ -s "$tmp/c/checkpoint-0000000004.h5" ]'
 good=$tmp/c/checkpoint-0000000004.h5
 
 cat > "$tmp/flip.py" <<'PY'
-# flip.py IN OUT DATASET BYTE_FRACTION BIT: OUT = IN with one bit of DATASET's stored data
-# flipped (at the given fraction of its bytes); prints the dataset.
+# flip.py IN BYTE_FRACTION BIT OUT1 DATASET1 [OUT2 DATASET2 ...]: each OUTk = IN with one bit of
+# DATASETk's stored data flipped (at the given fraction of its bytes). One python start for all
+# the copies (importing h5py takes ~0.5 s).
 import shutil, sys, h5py
-src, dst, name, frac, bit = sys.argv[1], sys.argv[2], sys.argv[3], float(sys.argv[4]), int(sys.argv[5])
+src, frac, bit = sys.argv[1], float(sys.argv[2]), int(sys.argv[3])
+pairs = list(zip(sys.argv[4::2], sys.argv[5::2]))
 with h5py.File(src, "r") as f:
-    d = f[name]
-    off, size = d.id.get_offset(), d.id.get_storage_size()
-shutil.copy(src, dst)
-at = off + min(int(frac * size), size - 1)
-with open(dst, "r+b") as f:
-    f.seek(at); b = f.read(1)[0]; f.seek(at); f.write(bytes([b ^ (1 << bit)]))
+    where = {name: (f[name].id.get_offset(), f[name].id.get_storage_size()) for _, name in pairs}
+for dst, name in pairs:
+    off, size = where[name]
+    shutil.copy(src, dst)
+    at = off + min(int(frac * size), size - 1)
+    with open(dst, "r+b") as f:
+        f.seek(at); b = f.read(1)[0]; f.seek(at); f.write(bytes([b ^ (1 << bit)]))
 PY
 
 ranks=0
 # One flipped bit in each dataset a restart reads: refused naming the dataset, file untouched.
-for ds in /particles/fluid/position/value /particles/fluid/velocity/value /particles/fluid/id/value \
-  /particles/colloids/position/value /particles/colloids/velocity/value \
-  /particles/colloids/radius/value /particles/fluid/box/edges \
-  /parameters/scene /parameters/step /parameters/time /parameters/seed; do
-  $py "$tmp/flip.py" "$good" "$tmp/bad.h5" "$ds" 0.37 5
+datasets=(/particles/fluid/position/value /particles/fluid/velocity/value /particles/fluid/id/value
+  /particles/colloids/position/value /particles/colloids/velocity/value
+  /particles/colloids/radius/value /particles/fluid/box/edges
+  /parameters/scene /parameters/step /parameters/time /parameters/seed)
+flips=()
+for i in "${!datasets[@]}"; do flips+=("$tmp/bad$i.h5" "${datasets[i]}"); done
+runs "write the damaged copies" $py "$tmp/flip.py" "$good" 0.37 5 "${flips[@]}"
+for i in "${!datasets[@]}"; do
+  ds=${datasets[i]}
+  cp "$tmp/bad$i.h5" "$tmp/bad.h5" # the messages name bad.h5
   sum=$(md5sum < "$tmp/bad.h5")
   ranks=$((ranks % 3 + 1)) # 1, 2, 3 ranks in turn: the checksum is verified collectively
   for n in $ranks; do
@@ -86,7 +94,7 @@ observables = ["shear_wave"]
 progress = false
 TOML
 "$narrows" run "$tmp/l.toml" --out "$tmp/l" > /dev/null 2> "$tmp/err"
-$py "$tmp/flip.py" "$tmp/l/checkpoint-0000000004.h5" "$tmp/badl.h5" /particles/lattice/state/value 0.5 0
+$py "$tmp/flip.py" "$tmp/l/checkpoint-0000000004.h5" 0.5 0 "$tmp/badl.h5" /particles/lattice/state/value
 for n in 1 2; do
   refused "lgca flip, $n ranks" "damaged checkpoint: /particles/lattice/state/value does not match" \
     timeout 60 "${mpi[@]}" -n $n "$narrows" run "$tmp/l.toml" --restart "$tmp/badl.h5" --set run.steps=6 --out "$tmp/lr$n"
@@ -110,7 +118,7 @@ progress = false
 TOML
 "$narrows" run "$tmp/k.toml" --set kmc.replicas=1 --out "$tmp/k" > /dev/null 2> "$tmp/err"
 kck=$(ls "$tmp"/k/checkpoint-*.h5 | head -1)
-$py "$tmp/flip.py" "$kck" "$tmp/badk.h5" /kmc/mean 0.5 6
+$py "$tmp/flip.py" "$kck" 0.5 6 "$tmp/badk.h5" /kmc/mean
 refused "kmc flip" "damaged checkpoint: /kmc/mean does not match its checksum" \
   timeout 60 "$narrows" run "$tmp/k.toml" --restart "$tmp/badk.h5" --out "$tmp/kr"
 
@@ -142,9 +150,14 @@ TOML
 "$narrows" run "$tmp/lc.toml" --out "$tmp/lc" > /dev/null 2> "$tmp/err"
 lgood=$tmp/lc/checkpoint-0000000040.h5
 check "lgca colloid checkpoint written" '[ -s "$lgood" ]'
-for ds in /colloid/momentum /colloid/omega /colloid/position /colloid/angle \
-  /colloid/correlations/layout /colloid/correlations/values; do
-  $py "$tmp/flip.py" "$lgood" "$tmp/badc.h5" "$ds" 0.6 3
+cdatasets=(/colloid/momentum /colloid/omega /colloid/position /colloid/angle
+  /colloid/correlations/layout /colloid/correlations/values)
+flips=()
+for i in "${!cdatasets[@]}"; do flips+=("$tmp/badc$i.h5" "${cdatasets[i]}"); done
+runs "write the damaged lgca colloid copies" $py "$tmp/flip.py" "$lgood" 0.6 3 "${flips[@]}"
+for i in "${!cdatasets[@]}"; do
+  ds=${cdatasets[i]}
+  cp "$tmp/badc$i.h5" "$tmp/badc.h5" # the messages name badc.h5
   sum=$(md5sum < "$tmp/badc.h5")
   ranks=$((ranks % 3 + 1))
   refused "lgca colloid flip in $ds, $ranks ranks" \
@@ -172,72 +185,76 @@ refused_after_warning() {
   check "$name: message matches '$pattern'" 'grep -q -- "$pattern" "$tmp/lerr1" || { cat "$tmp/lerr1"; false; }'
 }
 cat > "$tmp/legacy.py" <<'PY'
-# legacy.py IN OUT EDIT: OUT = IN without checksums (as older narrows wrote), then EDIT applied
-# (to the fluid, or to the disc of an lgca colloid checkpoint).
+# legacy.py IN EDIT1 OUT1 [EDIT2 OUT2 ...]: each OUTk = IN without checksums (as older narrows
+# wrote), then EDITk applied (to the fluid, or to the disc of an lgca colloid checkpoint). One
+# python start for all the copies.
 import shutil, sys, h5py, numpy as np
-src, dst, edit = sys.argv[1:4]
-shutil.copy(src, dst)
-with h5py.File(dst, "r+") as f:
-    def strip(name, obj):
-        if "checksum" in obj.attrs:
-            del obj.attrs["checksum"]
-    f.visititems(strip)
-    def edit_ds(name, fn):
-        v = f[name][...]; fn(v); f[name][...] = v
-    if "/colloid" in f:  # an lgca checkpoint with a disc: its state
-        if edit == "outside":
-            edit_ds("/colloid/position", lambda v: v.__setitem__(1, 1e300))
-        elif edit == "negative":
-            edit_ds("/colloid/position", lambda v: v.__setitem__(0, -0.5))
-        elif edit == "omega":
-            f["/colloid/omega"][()] = np.nan
-        elif edit == "angle":
-            f["/colloid/angle"][()] = np.inf
-        elif edit == "values":
-            edit_ds("/colloid/correlations/values", lambda v: v.__setitem__(7, np.nan))
-        elif edit == "layout":
-            edit_ds("/colloid/correlations/layout", lambda v: v.__setitem__(5, -3))
-        elif edit == "moved":
-            edit_ds("/colloid/position", lambda v: v.__setitem__(0, v[0] + 1.0))
-        sys.exit(0)
-    pos, vel, ids = (f["/particles/fluid/%s/value" % k] for k in ("position", "velocity", "id"))
-    n = ids.shape[0]
-    if edit == "outside":
-        p = pos[...]; p[n - 3, 0] = 1e300; pos[...] = p
-    elif edit == "beyond_wall":
-        p = pos[...]; p[n // 2, 1] = 12.5; pos[...] = p
-    elif edit == "nan":
-        v = vel[...]; v[n - 2, 1] = np.nan; vel[...] = v
-    elif edit == "duplicate":
-        i = ids[...]; i[n - 1] = i[0]; ids[...] = i
-    elif edit == "all_zero":
-        ids[...] = np.zeros(n, dtype=np.uint64)
-    elif edit == "range":
-        i = ids[...]; i[n - 1] = n + 5; ids[...] = i
-    elif edit == "seed":
-        f["/parameters/seed"][()] = 9
-    elif edit == "box":
-        e = f["/particles/fluid/box/edges"][...]; e[1] = 13.0; f["/particles/fluid/box/edges"][...] = e
-    elif edit == "time":
-        f["/parameters/time"][()] = np.nan
-    elif edit == "step":
-        f["/parameters/step"][()] = 2**62
+src = sys.argv[1]
+for edit, dst in zip(sys.argv[2::2], sys.argv[3::2]):
+  shutil.copy(src, dst)
+  with h5py.File(dst, "r+") as f:
+      def strip(name, obj):
+          if "checksum" in obj.attrs:
+              del obj.attrs["checksum"]
+      f.visititems(strip)
+      def edit_ds(name, fn):
+          v = f[name][...]; fn(v); f[name][...] = v
+      if "/colloid" in f:  # an lgca checkpoint with a disc: its state
+          if edit == "outside":
+              edit_ds("/colloid/position", lambda v: v.__setitem__(1, 1e300))
+          elif edit == "negative":
+              edit_ds("/colloid/position", lambda v: v.__setitem__(0, -0.5))
+          elif edit == "omega":
+              f["/colloid/omega"][()] = np.nan
+          elif edit == "angle":
+              f["/colloid/angle"][()] = np.inf
+          elif edit == "values":
+              edit_ds("/colloid/correlations/values", lambda v: v.__setitem__(7, np.nan))
+          elif edit == "layout":
+              edit_ds("/colloid/correlations/layout", lambda v: v.__setitem__(5, -3))
+          elif edit == "moved":
+              edit_ds("/colloid/position", lambda v: v.__setitem__(0, v[0] + 1.0))
+          continue
+      pos, vel, ids = (f["/particles/fluid/%s/value" % k] for k in ("position", "velocity", "id"))
+      n = ids.shape[0]
+      if edit == "outside":
+          p = pos[...]; p[n - 3, 0] = 1e300; pos[...] = p
+      elif edit == "beyond_wall":
+          p = pos[...]; p[n // 2, 1] = 12.5; pos[...] = p
+      elif edit == "nan":
+          v = vel[...]; v[n - 2, 1] = np.nan; vel[...] = v
+      elif edit == "duplicate":
+          i = ids[...]; i[n - 1] = i[0]; ids[...] = i
+      elif edit == "all_zero":
+          ids[...] = np.zeros(n, dtype=np.uint64)
+      elif edit == "range":
+          i = ids[...]; i[n - 1] = n + 5; ids[...] = i
+      elif edit == "seed":
+          f["/parameters/seed"][()] = 9
+      elif edit == "box":
+          e = f["/particles/fluid/box/edges"][...]; e[1] = 13.0; f["/particles/fluid/box/edges"][...] = e
+      elif edit == "time":
+          f["/parameters/time"][()] = np.nan
+      elif edit == "step":
+          f["/parameters/step"][()] = 2**62
 PY
-$py "$tmp/legacy.py" "$good" "$tmp/legacy.h5" none
+edits=(outside:"position/value row .* component 0 = 1.0000000000000001e+300; allowed: inside the box"
+  nan:"velocity/value row .* = nan; allowed: a finite number"
+  duplicate:"id/value row .* holds id 0, as does row 0; allowed: every id"
+  all_zero:"id/value row 1 holds id 0, as does row 0"
+  range:"id/value row .* holds id .*; allowed: 0 to"
+  seed:"/parameters/seed = 9 but /parameters/scene has run.seed = 8"
+  box:"box/edges\[1\] = 13 but /parameters/scene has domain.size\[1\] = 12"
+  time:"/parameters/time = nan; allowed: a finite time"
+  step:"/parameters/step = 4611686018427387904; allowed: 0 to 9999999999")
+copies=(none "$tmp/legacy.h5")
+for edit in "${edits[@]}"; do copies+=("${edit%%:*}" "$tmp/${edit%%:*}.h5"); done
+runs "write the copies without checksums" $py "$tmp/legacy.py" "$good" "${copies[@]}"
 timeout 60 "$narrows" run "$tmp/c.toml" --restart "$tmp/legacy.h5" --set run.steps=6 --out "$tmp/lg" > /dev/null 2> "$tmp/err_lg"
 check "checkpoint without checksums: accepted" '[ $? -eq 0 ]'
 check "checkpoint without checksums: a warning says so" 'grep -q "carries no checksums" "$tmp/err_lg"'
-for edit in outside:"position/value row .* component 0 = 1.0000000000000001e+300; allowed: inside the box" \
-  nan:"velocity/value row .* = nan; allowed: a finite number" \
-  duplicate:"id/value row .* holds id 0, as does row 0; allowed: every id" \
-  all_zero:"id/value row 1 holds id 0, as does row 0" \
-  range:"id/value row .* holds id .*; allowed: 0 to" \
-  seed:"/parameters/seed = 9 but /parameters/scene has run.seed = 8" \
-  box:"box/edges\[1\] = 13 but /parameters/scene has domain.size\[1\] = 12" \
-  time:"/parameters/time = nan; allowed: a finite time" \
-  step:"/parameters/step = 4611686018427387904; allowed: 0 to 9999999999"; do
+for edit in "${edits[@]}"; do
   name=${edit%%:*} pattern=${edit#*:}
-  $py "$tmp/legacy.py" "$good" "$tmp/$name.h5" "$name"
   ranks=$((ranks % 2 + 2)) # 1 rank, and 2 or 3 in turn: every rank ends with the same line
   for n in 1 $ranks; do
     refused_after_warning "$name, $n ranks" "$pattern" \
@@ -247,20 +264,22 @@ for edit in outside:"position/value row .* component 0 = 1.0000000000000001e+300
 done
 # lgca colloid checkpoints without checksums (as narrows wrote them before): accepted with a
 # warning; a disc state no run can have written is refused naming the dataset and row.
-$py "$tmp/legacy.py" "$lgood" "$tmp/lcleg.h5" none
+cedits=(outside:"/colloid/position row 1 = 1.0000000000000001e+300; allowed: 0 <= value < 27.71"
+  negative:"/colloid/position row 0 = -0.5; allowed: 0 <= value < 32 (the lattice's size_x)"
+  omega:"/colloid/omega row 0 = nan; allowed: a finite number"
+  angle:"/colloid/angle row 0 = inf; allowed: a finite number"
+  values:"/colloid/correlations/values row 7 = nan; allowed: a finite number"
+  layout:"/colloid/correlations/layout row 5 = -3; allowed: at least 0")
+copies=(none "$tmp/lcleg.h5")
+for edit in "${cedits[@]}"; do copies+=("${edit%%:*}" "$tmp/lc_${edit%%:*}.h5"); done
+runs "write the lgca colloid copies without checksums" $py "$tmp/legacy.py" "$lgood" "${copies[@]}"
 timeout 60 "$narrows" run "$tmp/lc.toml" --restart "$tmp/lcleg.h5" --set run.steps=60 \
   --out "$tmp/lcl" > /dev/null 2> "$tmp/err_lcl"
 check "lgca colloid checkpoint without checksums: accepted" '[ $? -eq 0 ]'
 check "lgca colloid checkpoint without checksums: a warning says so" \
   'grep -q "/colloid carries no checksums" "$tmp/err_lcl"'
-for edit in outside:"/colloid/position row 1 = 1.0000000000000001e+300; allowed: 0 <= value < 27.71" \
-  negative:"/colloid/position row 0 = -0.5; allowed: 0 <= value < 32 (the lattice's size_x)" \
-  omega:"/colloid/omega row 0 = nan; allowed: a finite number" \
-  angle:"/colloid/angle row 0 = inf; allowed: a finite number" \
-  values:"/colloid/correlations/values row 7 = nan; allowed: a finite number" \
-  layout:"/colloid/correlations/layout row 5 = -3; allowed: at least 0"; do
+for edit in "${cedits[@]}"; do
   name=${edit%%:*} pattern=${edit#*:}
-  $py "$tmp/legacy.py" "$lgood" "$tmp/lc_$name.h5" "$name"
   ranks=$((ranks % 2 + 2))
   for n in 1 $ranks; do
     refused_after_warning "lgca colloid $name, $n ranks" "lc_$name.h5: $pattern" \
@@ -270,7 +289,7 @@ for edit in outside:"/colloid/position row 1 = 1.0000000000000001e+300; allowed:
 done
 # A held disc is where the scene put it.
 "$narrows" run "$tmp/lc.toml" --set colloid.held=true --out "$tmp/lh" > /dev/null 2> "$tmp/err"
-$py "$tmp/legacy.py" "$tmp/lh/checkpoint-0000000040.h5" "$tmp/lc_moved.h5" moved
+$py "$tmp/legacy.py" "$tmp/lh/checkpoint-0000000040.h5" moved "$tmp/lc_moved.h5"
 refused_after_warning "lgca held colloid moved, 2 ranks" \
   "/colloid/position row 0 = 17; allowed: 16 (colloid.held = true" \
   timeout 60 "${mpi[@]}" -n 2 "$narrows" run "$tmp/lc.toml" --set colloid.held=true \
