@@ -9,7 +9,7 @@
 namespace narrows::lattice::dhumieres {
 
 VacfRun measure_vacf(std::int64_t L, double d, Ensemble ensemble, Rule rule, std::uint64_t seed,
-                     int max_lag, int curves) {
+                     int max_lag, int curves, const std::function<bool()> &stop) {
   const auto t0 = std::chrono::steady_clock::now();
   auto state = initial_state(L, d, ensemble, seed);
   std::vector<std::uint8_t> next(state.size());
@@ -24,6 +24,10 @@ VacfRun measure_vacf(std::int64_t L, double d, Ensemble ensemble, Rule rule, std
     std::swap(state, next);
     collide(state, table, rule, seed + 1, step);
     mp.feed(state);
+    if (stop && step % 4096 == 0 && stop()) {
+      run.stopped = true;
+      break;
+    }
   }
   run.vacf = mp.mean();
   run.curves = mp.curves();

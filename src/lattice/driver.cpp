@@ -380,14 +380,23 @@ void run_dhumieres(const scene::Scene &scene, const run::Options &options, MPI_C
   const std::size_t row = static_cast<std::size_t>(max_lag) + 3;
   std::vector<double> mine(row * replicas, 0.0), all(row * replicas, 0.0);
   Stopwatch clock;
-  for (int k = rank; k < replicas; k += ranks) {
+  const auto stop = [&] { return shell.stop_received(); };
+  for (int k = rank; k < replicas && !shell.stop_received(); k += ranks) {
     const auto r = dhumieres::measure_vacf(L, g.density, ensemble, dhumieres::Rule::swap,
                                            scene.run.seed + 1000 * static_cast<std::uint64_t>(k),
-                                           max_lag, curves);
+                                           max_lag, curves, stop);
+    if (r.stopped)
+      break;
     for (int t = 0; t <= max_lag; ++t)
       mine[k * row + t] = r.vacf[t] / r.vacf[0];
     mine[k * row + max_lag + 1] = static_cast<double>(r.particles);
     mine[k * row + max_lag + 2] = static_cast<double>(r.momentum);
+  }
+  if (shell.stop_requested()) { // collective; this model keeps no checkpoints
+    log.line("stopped by a signal before every curve was measured: lattice.model = "
+             "\"dhumieres-1d\" keeps no checkpoints, so no result is written; exit 0 (run it "
+             "again, or with fewer tagged.replicas or run.steps)");
+    return;
   }
   // Every entry has one non-zero contribution: the sum is exact.
   MPI_Reduce(mine.data(), all.data(), static_cast<int>(all.size()), MPI_DOUBLE, MPI_SUM, 0, comm);

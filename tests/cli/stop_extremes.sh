@@ -181,4 +181,20 @@ wait_bounded "$pid"
 check "kmc frozen lattice: exit 3 within $bound s (got $code after $took ms)" '[ "$code" -eq 3 ]'
 check "kmc frozen lattice: says why" 'grep -q "snapshot interval .* cannot advance the time" "$tmp/frozen.err"'
 
+# ---- lgca dhumieres-1d (no checkpoints): 4e8 steps per replica; SIGTERM ends it at once with
+# exit 0 and a line saying that nothing was written.
+"$narrows" run "$src/run/lgca_dhumieres_fig1.toml" --set run.steps=400000000 --out "$tmp/dh" \
+  > "$tmp/dh.out" 2> "$tmp/dh.err" &
+pid=$!
+pids+=("$pid")
+check "dhumieres: the run starts" 'wait_for "$tmp/dh/log.txt" 60'
+sleep 1
+kill -TERM "$pid"
+wait_bounded "$pid"
+echo "dhumieres: stopped $took ms after SIGTERM"
+check "dhumieres: exit 0 after SIGTERM (got $code)" '[ "$code" -eq 0 ]'
+check "dhumieres: stopped within $bound s (took $took ms)" '[ "$took" -lt $((bound * 1000)) ]'
+check "dhumieres: log line says nothing was written" \
+  'grep -q "stopped by a signal before every curve was measured.*no result is written; exit 0" "$tmp/dh/log.txt"'
+
 finish "stop at extremes"

@@ -5,6 +5,7 @@
 #include "narrows/lattice/dhumieres_1d.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace narrows::lattice::dhumieres {
@@ -14,12 +15,14 @@ struct VacfRun {
   int curves = 0;
   std::int64_t particles = 0, momentum = 0; // N and P of the run (both conserved)
   double seconds = 0.0;
+  bool stopped = false; // `stop` answered true before every curve was measured
 };
 
 // Draws the initial state (seed), then collides (seed + 1 as the collision seed) and
 // propagates for `curves` successive curves of lags 0..max_lag; moment propagation sees every
-// post-collision state, the initial state being the post-collision state of step 0.
+// post-collision state, the initial state being the post-collision state of step 0. `stop`
+// (if given) is asked every 4096 steps; when it answers true the run ends early (stopped).
 VacfRun measure_vacf(std::int64_t L, double d, Ensemble ensemble, Rule rule, std::uint64_t seed,
-                     int max_lag, int curves);
+                     int max_lag, int curves, const std::function<bool()> &stop = nullptr);
 
 } // namespace narrows::lattice::dhumieres
