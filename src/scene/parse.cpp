@@ -1286,12 +1286,18 @@ Scene parse_scene(const std::string &text, const std::string &file,
   }
 
   parse_run(c, run, s.run);
-  if (s.run.engine == Engine::kmc) {
-    for (const char *name : {"domain", "fluid", "body_force", "walls", "colloids", "thermostat",
-                             "lattice", "tagged", "colloid", "continuum"})
+  // Refuses the sections of other engines; `allowed` lists this engine's.
+  const auto refuse_sections = [&](std::initializer_list<const char *> names, const char *engine,
+                                   const char *allowed) {
+    for (const char *name : names)
       if (section(c, root, name) != nullptr)
         c.fail(name, std::string("section [") + name + "] is for engine " + engine_of(name) +
-                         "; allowed with run.engine = \"kmc\": [run], [kmc], [output]");
+                         "; allowed with run.engine = \"" + engine + "\": " + allowed);
+  };
+  if (s.run.engine == Engine::kmc) {
+    refuse_sections({"domain", "fluid", "body_force", "walls", "colloids", "thermostat", "lattice",
+                     "tagged", "colloid", "continuum"},
+                    "kmc", "[run], [kmc], [output]");
     check_keys(c, section(c, root, "kmc"), "kmc");
     s.kmc = detail::parse_kmc(
         section(c, root, "kmc"),
@@ -1300,23 +1306,18 @@ Scene parse_scene(const std::string &text, const std::string &file,
     if (s.kmc->samples > 0)
       s.output.observables.insert(s.output.observables.end(), {"shock_position", "charge_profile"});
   } else if (s.run.engine == Engine::continuum) {
-    for (const char *name : {"domain", "fluid", "body_force", "walls", "colloids", "thermostat",
-                             "kmc", "lattice", "tagged", "colloid"})
-      if (section(c, root, name) != nullptr)
-        c.fail(name, std::string("section [") + name + "] is for engine " + engine_of(name) +
-                         "; allowed with run.engine = \"continuum\": [run], [continuum], [output]");
+    refuse_sections({"domain", "fluid", "body_force", "walls", "colloids", "thermostat", "kmc",
+                     "lattice", "tagged", "colloid"},
+                    "continuum", "[run], [continuum], [output]");
     check_keys(c, section(c, root, "continuum"), "continuum");
     s.continuum = detail::parse_continuum(
         section(c, root, "continuum"),
         [&c](const std::string &key, const std::string &message) { c.fail(key, message); });
     s.output.observables = {"density", "shock_position"};
   } else if (s.run.engine == Engine::lgca) {
-    for (const char *name :
-         {"domain", "fluid", "body_force", "walls", "colloids", "thermostat", "kmc", "continuum"})
-      if (section(c, root, name) != nullptr)
-        c.fail(name, std::string("section [") + name + "] is for engine " + engine_of(name) +
-                         "; allowed with run.engine = \"lgca\": [run], [lattice], [tagged], "
-                         "[colloid], [output]");
+    refuse_sections(
+        {"domain", "fluid", "body_force", "walls", "colloids", "thermostat", "kmc", "continuum"},
+        "lgca", "[run], [lattice], [tagged], [colloid], [output]");
     check_keys(c, section(c, root, "lattice"), "lattice");
     const auto fail = [&c](const std::string &key, const std::string &message) {
       c.fail(key, message);
