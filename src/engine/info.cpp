@@ -2,8 +2,8 @@
 #include "narrows/engine/info.hpp"
 
 #include "narrows/colloids/placement.hpp"
-#include "narrows/engine/invariants.hpp"
 #include "narrows/core/error.hpp"
+#include "narrows/engine/invariants.hpp"
 #include "narrows/engine/mpcd_simulation.hpp"
 #include "narrows/mpcd/transport_theory.hpp"
 
