@@ -85,10 +85,10 @@ void ColloidGhosts::add_for_step(Colloids &c, std::vector<double> &margin, doubl
 void ColloidGhosts::refresh_positions(Colloids &c) {
   if (!active())
     return;
-  std::vector<std::vector<double> *> x;
+  positions_.clear(); // pointers to the position arrays (no allocation after the first step)
   for (int k = 0; k < c.dim; ++k)
-    x.push_back(&c.x[k]);
-  exchange_.refresh(x, list_, owned_);
+    positions_.push_back(&c.x[k]);
+  exchange_.refresh(positions_, list_, owned_);
 }
 
 void ColloidGhosts::reverse(std::vector<std::int64_t> &per_row, int k) {

@@ -73,6 +73,7 @@ private:
   parallel::CopyList list_;    // owned rows and the ranks they were copied to
   parallel::Halo halo_;        // where each ghost row came from
   std::vector<std::int64_t> ghost_values_;
+  std::vector<std::vector<double> *> positions_; // the fields refresh_positions() sends
 };
 
 } // namespace narrows::colloids
