@@ -276,8 +276,12 @@ Colloids place_colloids(const scene::Colloids &spec, const mpcd::Box &box, doubl
     }
     break;
   case scene::ColloidPlacement::random: {
-    // Every colloid keeps the largest wall cut-off from the walls (the same band for all).
-    const double margin = box.walls_y ? wall_cutoff(spec.wall_sigma_of(spec.max_radius())) : 0.0;
+    // Every colloid keeps the largest wall cut-off from the walls (the same band for all);
+    // no-slip colloids have no potentials: their largest radius, and cores apart.
+    const bool no_slip = spec.coupling == scene::ColloidCoupling::no_slip;
+    const double margin = !box.walls_y ? 0.0
+                          : no_slip    ? spec.max_radius()
+                                       : wall_cutoff(spec.wall_sigma_of(spec.max_radius()));
     double r_max = 0.0;
     for (const double r : c.radius)
       r_max = std::max(r_max, r);
@@ -293,8 +297,9 @@ Colloids place_colloids(const scene::Colloids &spec, const mpcd::Box &box, doubl
           p[k] = k == 1 && box.walls_y ? margin + p[k] * (box.length[1] - 2.0 * margin)
                                        : p[k] * box.length[k];
         placed = grid.all_of_near(p, [&](std::uint32_t j) {
+          const double sum = c.radius[i] + c.radius[j];
           return distance2(box, p, position(c, j)) >=
-                 std::pow(repulsive_cutoff(24, c.radius[i] + c.radius[j]), 2);
+                 std::pow(no_slip ? sum : repulsive_cutoff(24, sum), 2);
         });
         if (placed) {
           for (int k = 0; k < box.dim; ++k)
