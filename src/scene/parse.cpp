@@ -1088,10 +1088,10 @@ void check_no_slip(const Ctx &c, const Scene &s) {
   }
   if (col.contacts == ColloidContacts::none && (s.walls || col.count > 1))
     c.fail("colloids.contacts",
-           std::string("no-slip colloids with contacts = \"none\" and ") +
+           std::string("colloids.contacts = \"none\" with no-slip colloids and ") +
                (s.walls ? "[walls]" : "colloids.count = " + std::to_string(col.count)) +
-               " could overlap each other or a wall; allowed: contacts = \"hard\", or one "
-               "colloid in a periodic box");
+               ": they could overlap each other or a wall; allowed: contacts = \"hard\", or "
+               "one colloid in a periodic box");
 }
 
 std::optional<Thermostat> parse_thermostat(const Ctx &c, const value *sec, Collision rule) {
