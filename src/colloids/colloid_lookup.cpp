@@ -60,17 +60,15 @@ void ColloidLookup::build(const Colloids &c, const mpcd::Box &box, int first_col
 }
 
 int ColloidLookup::cell_of(const double *p) const {
+  // Positions lie in [0, L) along periodic axes and [0, L_y] between walls (streamed and
+  // wrapped): truncation is the floor, and one subtraction wraps the column into the region.
   const int L = box_.cells[0];
-  int col = static_cast<int>(std::floor(p[0]));
-  col = ((col % L) + L) % L;
-  const int ix = ((col - lo_) % L + L) % L;
+  int ix = std::min(static_cast<int>(p[0]), L - 1) - lo_;
+  ix += ix < 0 ? L : 0;
   if (ix >= nx_)
     return -1;
-  int iy = static_cast<int>(std::floor(p[1]));
-  iy = std::clamp(iy, 0, ny_ - 1); // y = L_y on a wall
-  int iz = 0;
-  if (box_.dim == 3)
-    iz = std::clamp(static_cast<int>(std::floor(p[2])), 0, nz_ - 1);
+  const int iy = std::clamp(static_cast<int>(p[1]), 0, ny_ - 1); // y = L_y on a wall
+  const int iz = box_.dim == 3 ? std::clamp(static_cast<int>(p[2]), 0, nz_ - 1) : 0;
   return ix + nx_ * (iy + ny_ * iz);
 }
 

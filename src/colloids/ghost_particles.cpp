@@ -5,6 +5,7 @@
 #include "narrows/core/error.hpp"
 #include "narrows/core/fixed_point.hpp"
 #include "narrows/core/rng.hpp"
+#include "narrows/core/timer.hpp"
 #include "narrows/mpcd/streaming.hpp"
 
 #include <algorithm>
@@ -23,6 +24,7 @@ std::uint64_t ghost_key(std::uint64_t colloid, std::uint64_t cell, std::uint64_t
 
 void NoSlipCoupling::add_ghost_particles(mpcd::Fluid &fluid, mpcd::CellGrid &grid,
                                          const Colloids &c, std::uint64_t step) {
+  const ScopedSeconds timed(seconds_);
   first_ghost_ = fluid.size();
   ghost_row_.clear();
   const double n = params_.density, sigma = std::sqrt(params_.kT);
@@ -122,6 +124,7 @@ void NoSlipCoupling::add_ghost_particles(mpcd::Fluid &fluid, mpcd::CellGrid &gri
 
 void NoSlipCoupling::take_back_ghost_particles(mpcd::Fluid &fluid, mpcd::CellGrid &grid,
                                                Colloids &c) {
+  const ScopedSeconds timed(seconds_);
   const std::size_t m = ghost_row_.size();
   for (std::size_t g = 0; g < m; ++g) {
     const std::size_t i = first_ghost_ + g, a = ghost_row_[g];

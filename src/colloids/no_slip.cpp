@@ -7,6 +7,7 @@
 #include "narrows/colloids/pair_geometry.hpp"
 #include "narrows/core/error.hpp"
 #include "narrows/core/fixed_point.hpp"
+#include "narrows/core/timer.hpp"
 #include "narrows/mpcd/streaming.hpp"
 
 #include <algorithm>
@@ -29,6 +30,7 @@ NoSlipCoupling::NoSlipCoupling(const NoSlipParams &params, const mpcd::Box &box,
       migration_(slabs.comm()), stride_(box.dim == 2 ? 3 : 6) {}
 
 void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c) {
+  const ScopedSeconds timed(seconds_);
   const double dt = params_.dt;
   const std::size_t owned = c.size();
   for (std::size_t a = 0; a < owned; ++a) // gravity: a kick of the whole step
@@ -50,11 +52,13 @@ void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c) {
     margin_[a] = params_.hard_contacts ? (margin_[a] + 2.0 * v_max) * dt + path_allowance
                                        : margin_[a] * dt * (1.0 + 1e-12) + 1e-12;
   const double r_max = ghosts_.largest_radius(c);
-  const double reach = fluid_reach(fluid, dt,
-                                   std::sqrt(params_.fluid_accel[0] * params_.fluid_accel[0] +
-                                             params_.fluid_accel[1] * params_.fluid_accel[1] +
-                                             params_.fluid_accel[2] * params_.fluid_accel[2]) +
-                                       std::abs(params_.sine_amplitude));
+  // The fluid's reach sizes the regions of other ranks (a pass over the fluid): not needed on
+  // one rank, where every colloid is owned and nothing is copied.
+  const double accel = std::sqrt(params_.fluid_accel[0] * params_.fluid_accel[0] +
+                                 params_.fluid_accel[1] * params_.fluid_accel[1] +
+                                 params_.fluid_accel[2] * params_.fluid_accel[2]) +
+                       std::abs(params_.sine_amplitude);
+  const double reach = ghosts_.active() ? fluid_reach(fluid, dt, accel) : 0.0;
   // With contacts the region reaches two collision distances further, so that the ghosts an
   // owned colloid can meet, and theirs, are all here (trusted_rows; a longer chain is refused).
   double m_max = 0.0, m_own = 0.0;
@@ -144,6 +148,7 @@ void NoSlipCoupling::apply_impulses(Colloids &c, bool refresh) {
 }
 
 void NoSlipCoupling::hand_over(Colloids &c) {
+  const ScopedSeconds timed(seconds_);
   ghosts_.remove(c, &margin_);
   if (ghosts_.active())
     migrate_colloids(c, slabs_, migration_);

@@ -2,6 +2,7 @@
 #include "narrows/colloids/no_slip.hpp"
 #include "narrows/colloids/pair_geometry.hpp"
 #include "narrows/core/error.hpp"
+#include "narrows/core/timer.hpp"
 #include "narrows/mpcd/streaming.hpp"
 
 #include <algorithm>
@@ -25,6 +26,7 @@ constexpr double surface_gap = 1e-12;
 
 BounceStats NoSlipCoupling::bounce_back(mpcd::Fluid &fluid, Colloids &c,
                                         const FluidStream &stream) {
+  const ScopedSeconds timed(seconds_);
   BounceStats stats;
   const std::size_t n = fluid.size();
   batch_.dim = dim_;

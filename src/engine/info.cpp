@@ -211,7 +211,7 @@ std::vector<std::string> describe_scene(const scene::Scene &s, MPI_Comm comm) {
       out.push_back("Poiseuille channel: u0 = g_x L_y^2/(8 nu) = " + fmt("%.4g", r.u0) +
                     ", Ma = u0/c_s = " + fmt("%.3g", r.mach) + " (c_s = " +
                     fmt("%.4g", r.sound_speed) + "), Re = u0 L_y/nu = " + fmt("%.3g", r.reynolds));
-    } else if (s.body_force->kind == scene::ForceKind::constant) {
+    } else if (s.body_force->kind == scene::ForceKind::constant && !s.walls) {
       double g = 0.0;
       for (int k = 0; k < d; ++k)
         g += s.body_force->value[k] * s.body_force->value[k];

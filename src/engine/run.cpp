@@ -260,6 +260,16 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
                   "forces, migration)",
                   largest / static_cast<double>(steps));
     log.line(text);
+    if (const auto *ns = sim.no_slip(); ns && seconds > 0.0) { // the coupling's share
+      const double mine = ns->seconds();
+      double most = 0.0;
+      MPI_Reduce(&mine, &most, 1, MPI_DOUBLE, MPI_MAX, 0, comm);
+      std::snprintf(text, sizeof text,
+                    "no-slip coupling: %.4g s of the loop (%.1f %%) on the busiest rank (colloid "
+                    "motion, bounce-back, ghost particles made and taken back)",
+                    most, 100.0 * most / seconds);
+      log.line(text);
+    }
     if (const auto *ns = sim.no_slip();
         ns && sim.scene().colloids->contacts == scene::ColloidContacts::hard) {
       // Rank 0's count: every collision of a colloid it owned, and those of its ghosts.

@@ -70,6 +70,9 @@ public:
 
   // Bytes this rank sent for colloids (ghosts, reverse sums, migration) since the start.
   std::uint64_t bytes_sent() const { return ghosts_.bytes_sent() + migration_.bytes_sent(); }
+  // Seconds this rank spent in the calls above since the start (the ghost particles' share of
+  // the collision itself is not included).
+  double seconds() const { return seconds_; }
   // Hard-sphere collisions this rank resolved since the start (ghost rows included).
   const HardSphereStats &contacts() const { return contacts_; }
   // Ghost particles added in the last step on this rank.
@@ -101,6 +104,7 @@ private:
   std::vector<std::uint32_t> ghost_row_;
   std::array<std::vector<double>, 3> ghost_v0_;
   HardSphereStats contacts_;
+  double seconds_ = 0.0;
 };
 
 } // namespace narrows::colloids

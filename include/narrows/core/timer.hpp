@@ -17,4 +17,17 @@ private:
   std::chrono::steady_clock::time_point start_;
 };
 
+// Adds the seconds from its construction to its destruction (on every way out) to `total`.
+class ScopedSeconds {
+public:
+  explicit ScopedSeconds(double &total) : total_(total) {}
+  ScopedSeconds(const ScopedSeconds &) = delete;
+  ScopedSeconds &operator=(const ScopedSeconds &) = delete;
+  ~ScopedSeconds() { total_ += clock_.seconds(); }
+
+private:
+  double &total_;
+  Stopwatch clock_;
+};
+
 } // namespace narrows
