@@ -33,6 +33,7 @@ enum class Purpose : std::uint32_t {
   colloid_radius = 20,      // step = attempt, id = colloid id: radius from a truncated Gaussian
   dhumieres_collision = 40, // id = site: outcome of a 1D d'Humieres collision
   lgca_initial = 41,        // step = draw round (attempt), id = link or site: initial occupations
+  continuum_initial = 42,   // id = grid point: random initial perturbation (jamming)
 };
 
 using Block = std::array<std::uint32_t, 4>;
