@@ -14,9 +14,9 @@ check "check: the fit of Table 6.2 (mu = 1)" \
   'grep -q "^friction: .*0.0413 \[1 + tanh((0.762 - phi) / 0.0025)\]" "$tmp/check.out"'
 check "check: the unstable band of eq 6.11 at phi = 0.75" \
   'grep -q "^stability (eq 6.11) of phi = 0.75.*unstable band 0 < k < 0.757" "$tmp/check.out"'
-check "check: time step and steps" 'grep -q "^time: 400 in 13600 steps" "$tmp/check.out"'
+check "check: time step and steps" 'grep -q "^time: 400 in 54200 steps" "$tmp/check.out"'
 
-runs "uninterrupted run" "$narrows" run "$scene" "${short[@]}" --set output.checkpoint_every=340 \
+runs "uninterrupted run" "$narrows" run "$scene" "${short[@]}" --set output.checkpoint_every=1360 \
   --out "$tmp/full" > /dev/null 2>&1
 check "observables: density and velocity [21][256], mass conserved" '/usr/bin/python3 - "$tmp/full/observables.h5" <<PY
 import sys, h5py, numpy as np
@@ -26,11 +26,11 @@ assert f["velocity/value"].shape == (21, 256)
 m = f["density/value"][()].mean(axis=1)
 assert np.max(np.abs(m - m[0])) < 1e-13, np.max(np.abs(m - m[0]))
 PY'
-check "checkpoints at 340 and 680 steps" \
-  '[ -f "$tmp/full/checkpoint-0000000340.h5" ] && [ -f "$tmp/full/checkpoint-0000000680.h5" ]'
+check "checkpoints at 1360 and 2720 steps" \
+  '[ -f "$tmp/full/checkpoint-0000001360.h5" ] && [ -f "$tmp/full/checkpoint-0000002720.h5" ]'
 
 mkdir -p "$tmp/part"
-cp "$tmp/full/checkpoint-0000000340.h5" "$tmp/part/"
+cp "$tmp/full/checkpoint-0000001360.h5" "$tmp/part/"
 runs "restart at T/2" "$narrows" run "$scene" "${short[@]}" --restart "$tmp/part" --out "$tmp/part" \
   > /dev/null 2>&1
 runs "2 ranks" "${mpi[@]}" -n 2 "$narrows" run "$scene" "${short[@]}" --out "$tmp/two" > /dev/null 2>&1
@@ -38,12 +38,12 @@ check "restart and 2 ranks: bitwise the uninterrupted run" '/usr/bin/python3 - "
 import sys, h5py, numpy as np
 t = sys.argv[1]
 for k in ("density", "velocity"):
-    a = h5py.File(t + "/full/checkpoint-0000000680.h5", "r")["continuum/" + k][()]
+    a = h5py.File(t + "/full/checkpoint-0000002720.h5", "r")["continuum/" + k][()]
     for other in ("/part/", "/two/"):
-        b = h5py.File(t + other + "checkpoint-0000000680.h5", "r")["continuum/" + k][()]
+        b = h5py.File(t + other + "checkpoint-0000002720.h5", "r")["continuum/" + k][()]
         assert np.array_equal(a, b), (k, other)
 fa = h5py.File(t + "/full/observables.h5", "r")["observables"]
-fb = h5py.File(t + "/part/observables-0000000340.h5", "r")["observables"]
+fb = h5py.File(t + "/part/observables-0000001360.h5", "r")["observables"]
 for k in ("density", "velocity"):
     assert fb[k]["value"].shape[0] == 10
     assert np.array_equal(fa[k]["value"][-10:], fb[k]["value"][()]), k
