@@ -1,0 +1,156 @@
+// Travelling waves of the jamming model (seed 001 §6.3.3-6.3.5; issue 22, acceptance 3) with
+// the fit of Table 6.2 for mu = 1 and sigma = D = 1 (the seed's normalisation):
+// - the fixed points of the co-moving ODEs (eq 6.13-6.14) at the parameters of fig 6.18 b)
+//   (c = -2.8, q = 2.228) are those the seed describes: three, a saddle on the free-flow branch,
+//   a focus at phi_c between them and a saddle on the jammed branch; Eigen's eigenvalues agree
+//   with the closed form eq 6.20;
+// - on the Hopf line (eq 6.21) the focus has purely imaginary eigenvalues and changes from sink
+//   to source as |c| grows across it;
+// - the limit cycle around the focus (the seed's periodic pulse train of fig 6.18 b) exists, and
+//   the PDE started from it travels at c and keeps its shape.
+#include "narrows/continuum/jamming_model.hpp"
+#include "narrows/continuum/jamming_solver.hpp"
+#include "narrows/continuum/travelling_wave.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <numbers>
+#include <vector>
+
+using namespace narrows;
+using namespace narrows::continuum;
+
+namespace {
+
+JammingModel mu1() { return JammingModel(table_6_2(scene::JammingFit::mu_1), 1.0, 1.0); }
+
+void print(double c, double q, const std::vector<FixedPoint> &fps) {
+  std::printf("  c = %g, q = %g: %zu fixed points\n", c, q, fps.size());
+  for (const auto &f : fps)
+    std::printf("    phi0 = %.6f v0 = %.6f  lambda = %+.4f%+.4fi, %+.4f%+.4fi  %s\n", f.phi, f.v,
+                f.lambda[0].real(), f.lambda[0].imag(), f.lambda[1].real(), f.lambda[1].imag(),
+                to_string(f.type));
+}
+
+// Eq 6.20 as printed (sigma = D = 1).
+std::array<std::complex<double>, 2> eq_6_20(const JammingModel &m, double c, double phi0) {
+  const double v0 = m.vss(phi0), xi = m.xi(phi0), dxi = m.dxi(phi0);
+  const double half_trace = 0.5 * (v0 - c - xi / (v0 - c));
+  const std::complex<double> root = std::sqrt(
+      std::complex<double>(half_trace * half_trace + xi - v0 * phi0 / (v0 - c) * dxi, 0.0));
+  return {half_trace + root, half_trace - root};
+}
+
+TEST(JammingWave, FixedPointsOfFig6_18b) {
+  const JammingModel m = mu1();
+  const double c = -2.8, q = 2.228;
+  const auto fps = fixed_points(m, c, q);
+  print(c, q, fps);
+  ASSERT_EQ(fps.size(), 3u);
+  const double phi_c = m.fit().phi_c;
+  EXPECT_LT(fps[0].phi, phi_c - 0.02); // free-flow branch
+  EXPECT_EQ(fps[0].type, FixedPointType::saddle);
+  EXPECT_NEAR(fps[1].phi, phi_c, 2.0 * m.fit().dphi); // in the jump of v_ss
+  EXPECT_TRUE(fps[1].type == FixedPointType::focus_sink ||
+              fps[1].type == FixedPointType::focus_source);
+  EXPECT_GT(fps[2].phi, phi_c + 0.01); // jammed branch
+  EXPECT_EQ(fps[2].type, FixedPointType::saddle);
+  for (const auto &f : fps) {
+    EXPECT_NEAR(q, f.phi * (f.v - c), 1e-12); // eq 6.18
+    const auto l = eq_6_20(m, c, f.phi);
+    // The two eigenvalues in either order.
+    const double d0 = std::abs(l[0] - f.lambda[0]) + std::abs(l[1] - f.lambda[1]);
+    const double d1 = std::abs(l[0] - f.lambda[1]) + std::abs(l[1] - f.lambda[0]);
+    EXPECT_LT(std::min(d0, d1), 1e-9 * (1.0 + std::abs(l[0]) + std::abs(l[1])));
+  }
+}
+
+TEST(JammingWave, HopfLineOfEq6_21) {
+  const JammingModel m = mu1();
+  for (double phi0 : {0.758, 0.76, 0.762, 0.764}) {
+    bool valid = false;
+    const double c = hopf_speed(m, phi0, &valid);
+    ASSERT_TRUE(valid) << phi0;
+    const FixedPoint at = classify(m, c, phi0);
+    std::printf("  phi0 = %g: Hopf at c = %.6f, lambda = %+.2e%+.4fi\n", phi0, c,
+                at.lambda[0].real(), at.lambda[0].imag());
+    EXPECT_LT(std::abs(at.lambda[0].real()), 1e-9 * std::abs(at.lambda[0].imag()));
+    EXPECT_EQ(classify(m, c + 0.01, phi0).type, FixedPointType::focus_sink);
+    EXPECT_EQ(classify(m, c - 0.01, phi0).type, FixedPointType::focus_source);
+  }
+}
+
+// The periodic profile (values at z_j = j P / n) at x, linearly interpolated.
+double periodic_at(const std::vector<double> &y, double period, double x) {
+  const double n = static_cast<double>(y.size());
+  double s = std::fmod(x / period * n, n);
+  if (s < 0.0)
+    s += n;
+  const std::size_t j = static_cast<std::size_t>(s);
+  const double w = s - static_cast<double>(j);
+  return (1.0 - w) * y[j % y.size()] + w * y[(j + 1) % y.size()];
+}
+
+// The speed of the PDE started from the limit cycle: the phase of the Fourier mode of the
+// pulse train, sampled often enough that the train moves less than half a wavelength between
+// samples. The cycle is tabulated at dz = 1e-3 (interpolation error ~1e-7 in phi), the PDE runs
+// at cfl 0.1 (splitting error ~1e-4 in the linear test): 0.5 % is a generous bound on the
+// speed; the shape (min and max of phi) must persist to 1 % of its amplitude over t = 20
+// (the pulse train is stable in the PDE, as the seed's simulations show pulse trains).
+TEST(JammingWave, LimitCycleOfFig6_18bIsAPulseTrainOfThePDE) {
+  const JammingModel m = mu1();
+  const double c = -2.8, q = 2.228;
+  const auto fps = fixed_points(m, c, q);
+  ASSERT_EQ(fps.size(), 3u);
+  const LimitCycle lc = limit_cycle(m, c, q, fps[1], 1e-3);
+  ASSERT_TRUE(lc.found);
+  std::printf("  limit cycle: period %.6f in z, phi from %.6f to %.6f (mean %.6f)\n", lc.period,
+              lc.phi_min, lc.phi_max, lc.phi_mean);
+  EXPECT_LT(lc.phi_min, fps[1].phi);
+  EXPECT_GT(lc.phi_max, fps[1].phi);
+  EXPECT_GT(lc.phi_min, fps[0].phi); // inside the saddles: not yet homoclinic
+  EXPECT_LT(lc.phi_max, fps[2].phi);
+
+  const int periods = 4, cells = 256;
+  const double L = periods * lc.period, dx = L / cells;
+  std::vector<double> phi(cells), v(cells);
+  for (int i = 0; i < cells; ++i) {
+    phi[i] = periodic_at(lc.phi, lc.period, i * dx);
+    v[i] = periodic_at(lc.v, lc.period, i * dx);
+  }
+  JammingSolver solver(m, cells, L);
+  const double k = 2.0 * std::numbers::pi * periods / L;
+  const double dt = 0.1 * dx / 2.64; // cfl 0.1 at the speed bound of the scenes
+  const auto phase = [&] {
+    std::complex<double> s = 0.0;
+    for (int i = 0; i < cells; ++i)
+      s += phi[i] * std::polar(1.0, -k * i * dx);
+    return std::arg(s);
+  };
+  const int per_sample = 100; // the train moves 0.38 < half a wavelength (1.17) per sample
+  double t = 0.0, last = phase(), travelled = 0.0;
+  while (t < 20.0) {
+    for (int j = 0; j < per_sample; ++j)
+      solver.step(phi, v, dt);
+    t += per_sample * dt;
+    double d = phase() - last;
+    d -= 2.0 * std::numbers::pi * std::round(d / (2.0 * std::numbers::pi));
+    travelled += d;
+    last += d;
+  }
+  const double speed = -travelled / (k * t);
+  const auto [lo, hi] = std::minmax_element(phi.begin(), phi.end());
+  std::printf("  PDE from the cycle: speed %.6f (c = %g, rel. error %.2e) over t = %.3f; phi "
+              "from %.6f to %.6f\n",
+              speed, c, (speed - c) / std::abs(c), t, *lo, *hi);
+  EXPECT_LT(std::abs(speed - c), 0.005 * std::abs(c));
+  const double amplitude = lc.phi_max - lc.phi_min;
+  EXPECT_LT(std::abs(*lo - lc.phi_min), 0.01 * amplitude);
+  EXPECT_LT(std::abs(*hi - lc.phi_max), 0.01 * amplitude);
+}
+
+} // namespace
