@@ -2,7 +2,8 @@
 # The jamming model of the continuum engine (seed 001 ch.6) from the command line: check prints
 # the friction fit, the unstable band of eq 6.11 and the time step; a run writes density (phi)
 # and velocity (v) and conserves the mass; a restart from the checkpoint half-way continues
-# bitwise; 2 ranks give the bits of 1; bad input exits 2 with one line.
+# bitwise; 2 ranks give the bits of 1; tools/jamming_plot.py draws the run; bad input exits 2
+# with one line.
 set -u
 source "$(dirname "$0")/common.bash"
 
@@ -48,6 +49,11 @@ for k in ("density", "velocity"):
     assert fb[k]["value"].shape[0] == 10
     assert np.array_equal(fa[k]["value"][-10:], fb[k]["value"][()]), k
 PY'
+
+runs "tools/jamming_plot.py" /usr/bin/python3 "$src/tools/jamming_plot.py" "$tmp/full" > "$tmp/plot.out" 2>&1
+check "jamming_plot: PNG and the three fixed points of fig 6.18 b (saddle, focus source, saddle)" \
+  '[ -s "$tmp/full/jamming.png" ] && [ "$(grep -c "^fixed point" "$tmp/plot.out")" -eq 3 ] &&
+   grep -q "0.7625.*focus source" "$tmp/plot.out"'
 
 refused "flux with jamming" 'continuum.flux is a key of continuum.model = "conservation-law"' \
   "$narrows" check "$scene" --set continuum.flux=burgers
