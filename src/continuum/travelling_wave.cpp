@@ -86,10 +86,17 @@ double hopf_speed(const JammingModel &m, double phi0, bool *valid) {
 
 LimitCycle limit_cycle(const JammingModel &m, double c, double q, const FixedPoint &centre,
                        double dz, double tol, int max_turns) {
+  const bool repels = centre.lambda[0].real() > 0.0; // integrate away from the fixed point
+  return limit_cycle_from(m, c, q, centre.phi, centre.v * (1.0 + 1e-4) + 1e-6, centre.phi,
+                          repels, dz, tol, max_turns);
+}
+
+LimitCycle limit_cycle_from(const JammingModel &m, double c, double q, double phi_start,
+                            double v_start, double section, bool forward, double dz, double tol,
+                            int max_turns) {
   LimitCycle lc;
-  const bool repels = centre.lambda[0].real() > 0.0;
-  const double h = repels ? dz : -dz; // integrate away from the fixed point
-  lc.attracting_forward = repels;
+  const double h = forward ? dz : -dz;
+  lc.attracting_forward = forward;
   const auto f = [&](double p, double v) { return wave_rhs(m, c, q, p, v); };
   const auto rk4 = [&](double &p, double &v, double hh) {
     const auto k1 = f(p, v);
@@ -99,8 +106,7 @@ LimitCycle limit_cycle(const JammingModel &m, double c, double q, const FixedPoi
     p += hh / 6.0 * (k1[0] + 2.0 * k2[0] + 2.0 * k3[0] + k4[0]);
     v += hh / 6.0 * (k1[1] + 2.0 * k2[1] + 2.0 * k3[1] + k4[1]);
   };
-  double p = centre.phi, v = centre.v * (1.0 + 1e-4) + 1e-6;
-  const double section = centre.phi;
+  double p = phi_start, v = v_start;
   // Crossings of phi = section upwards in the direction of integration (v above v0 there).
   double last_v = 0.0, last_s = 0.0, s = 0.0;
   int crossings = 0;
@@ -158,6 +164,8 @@ LimitCycle limit_cycle(const JammingModel &m, double c, double q, const FixedPoi
     lc.phi_max = std::max(lc.phi_max, x);
   }
   lc.phi_mean = sum / static_cast<double>(ps.size());
+  if (lc.phi_max - lc.phi_min < 1e-6) // converged onto a fixed point, not a cycle
+    lc = LimitCycle{};
   return lc;
 }
 

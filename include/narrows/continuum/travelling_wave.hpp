@@ -55,5 +55,10 @@ struct LimitCycle {
 // (0, 1) (no cycle).
 LimitCycle limit_cycle(const JammingModel &m, double c, double q, const FixedPoint &centre,
                        double dz = 2e-3, double tol = 1e-9, int max_turns = 4000);
+// The same from any start (phi, v), integrating forward or backward in z, with the section
+// phi = section (e.g. a point of a pulse train measured in a PDE run: the cycle it lies on).
+LimitCycle limit_cycle_from(const JammingModel &m, double c, double q, double phi_start,
+                            double v_start, double section, bool forward, double dz = 2e-3,
+                            double tol = 1e-9, int max_turns = 4000);
 
 } // namespace narrows::continuum
