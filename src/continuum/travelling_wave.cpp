@@ -87,8 +87,8 @@ double hopf_speed(const JammingModel &m, double phi0, bool *valid) {
 LimitCycle limit_cycle(const JammingModel &m, double c, double q, const FixedPoint &centre,
                        double dz, double tol, int max_turns) {
   const bool repels = centre.lambda[0].real() > 0.0; // integrate away from the fixed point
-  return limit_cycle_from(m, c, q, centre.phi, centre.v * (1.0 + 1e-4) + 1e-6, centre.phi,
-                          repels, dz, tol, max_turns);
+  return limit_cycle_from(m, c, q, centre.phi, centre.v * (1.0 + 1e-4) + 1e-6, centre.phi, repels,
+                          dz, tol, max_turns);
 }
 
 LimitCycle limit_cycle_from(const JammingModel &m, double c, double q, double phi_start,

@@ -7,7 +7,9 @@
 // - on the Hopf line (eq 6.21) the focus has purely imaginary eigenvalues and changes from sink
 //   to source as |c| grows across it;
 // - the limit cycle around the focus (the seed's periodic pulse train of fig 6.18 b) exists, and
-//   the PDE started from it travels at c and keeps its shape.
+//   the PDE started from it travels at c and keeps its shape;
+// - a pulse grown in the PDE from a small perturbation is a travelling wave of eq 6.13-6.14 at
+//   its measured (c, q), next to the homoclinic loop of the jammed saddle.
 #include "narrows/continuum/jamming_model.hpp"
 #include "narrows/continuum/jamming_solver.hpp"
 #include "narrows/continuum/travelling_wave.hpp"
@@ -151,6 +153,114 @@ TEST(JammingWave, LimitCycleOfFig6_18bIsAPulseTrainOfThePDE) {
   const double amplitude = lc.phi_max - lc.phi_min;
   EXPECT_LT(std::abs(*lo - lc.phi_min), 0.01 * amplitude);
   EXPECT_LT(std::abs(*hi - lc.phi_max), 0.01 * amplitude);
+}
+
+} // namespace
+
+namespace {
+
+// Spectral derivative of a periodic array on [0, L).
+std::vector<double> derivative(const std::vector<double> &y, double L) {
+  const std::size_t n = y.size();
+  std::vector<double> out(n, 0.0);
+  for (std::size_t m = 1; m < n / 2; ++m) {
+    std::complex<double> a = 0.0;
+    for (std::size_t i = 0; i < n; ++i)
+      a += y[i] * std::polar(1.0, -2.0 * std::numbers::pi * double(m * i) / double(n));
+    a *= 2.0 / double(n);
+    const double k = 2.0 * std::numbers::pi * double(m) / L;
+    for (std::size_t i = 0; i < n; ++i)
+      out[i] += (std::complex<double>(0.0, k) * a *
+                 std::polar(1.0, 2.0 * std::numbers::pi * double(m * i) / double(n)))
+                    .real();
+  }
+  return out;
+}
+
+// A pulse grown in the PDE from a small perturbation of unstable flow (phi = 0.75, one pulse in
+// L = 20) is a travelling wave of eq 6.13-6.14: after it settles (t = 250), its speed c (the
+// phase of its Fourier mode over t = 250..300) and the co-moving flux q = (v - c) phi - phi'
+// (spectral derivatives) make q constant along the profile, and v' = (1 - xi v)/(v - c) (eq
+// 6.14) holds along it up to a discretisation residual that shrinks with the grid (rms 21-22 %,
+// 5-8 %, 2.3 % of rms |v'| on 128, 256, 512 points, varying with where the fronts fall on the
+// grid: they cross phi_c, where xi changes by a factor 2 within dphi = 0.0025); the ODE at (c, q)
+// has the three fixed points of fig 6.18 a), and the jam of the pulse sits at the jammed saddle
+// (max phi within 1e-3 of its phi0): the PDE pulse train is the orbit near the homoclinic loop of
+// that saddle, the seed's solitary rarefaction pulse (§6.3.5). About 5 s (two grids).
+struct Pulse {
+  double c = 0.0, q = 0.0, q_spread = 0.0, residual = 0.0, phi_min = 0.0, phi_max = 0.0;
+};
+
+Pulse grow_pulse(const JammingModel &m, int cells) {
+  const double L = 20.0, dx = L / cells, dt = 0.1 * dx / 2.64;
+  std::vector<double> phi(cells), v(cells);
+  for (int i = 0; i < cells; ++i) {
+    phi[i] = 0.75 + 1e-3 * std::sin(2.0 * std::numbers::pi * i * dx / L);
+    v[i] = m.vss(phi[i]);
+  }
+  JammingSolver solver(m, cells, L);
+  const auto phase = [&] {
+    std::complex<double> s = 0.0;
+    for (int i = 0; i < cells; ++i)
+      s += phi[i] * std::polar(1.0, -2.0 * std::numbers::pi * i / cells);
+    return std::arg(s);
+  };
+  double t = 0.0;
+  while (t < 250.0) {
+    solver.step(phi, v, dt);
+    t += dt;
+  }
+  const double t0 = t;
+  double last = phase(), travelled = 0.0;
+  while (t < 300.0) {
+    for (double s = 0.0; s < 0.15; s += dt) { // the pulse moves ~0.4 < L/2 between phases
+      solver.step(phi, v, dt);
+      t += dt;
+    }
+    double d = phase() - last;
+    d -= 2.0 * std::numbers::pi * std::round(d / (2.0 * std::numbers::pi));
+    travelled += d;
+    last += d;
+  }
+  Pulse p;
+  p.c = -travelled / (2.0 * std::numbers::pi / L * (t - t0));
+  const std::vector<double> dphi = derivative(phi, L), dv = derivative(v, L);
+  double qmin = 1e300, qmax = -1e300, res2 = 0.0, dv2 = 0.0;
+  for (int i = 0; i < cells; ++i) {
+    const double q = (v[i] - p.c) * phi[i] - dphi[i];
+    qmin = std::min(qmin, q);
+    qmax = std::max(qmax, q);
+    p.q += q / cells;
+    const double r = dv[i] - (1.0 - m.xi(phi[i]) * v[i]) / (v[i] - p.c);
+    res2 += r * r;
+    dv2 += dv[i] * dv[i];
+  }
+  p.q_spread = qmax - qmin;
+  p.residual = std::sqrt(res2 / dv2);
+  const auto [lo, hi] = std::minmax_element(phi.begin(), phi.end());
+  p.phi_min = *lo;
+  p.phi_max = *hi;
+  std::printf("  PDE pulse on %d points: c = %.6f, q = %.6f (spread %.2e), phi from %.6f to "
+              "%.6f; eq 6.14 residual rms %.2e of rms |v'|\n",
+              cells, p.c, p.q, p.q_spread, p.phi_min, p.phi_max, p.residual);
+  return p;
+}
+
+TEST(JammingWave, PulseGrownInThePDEIsATravellingWave) {
+  const JammingModel m = mu1();
+  const Pulse coarse = grow_pulse(m, 128), p = grow_pulse(m, 256);
+  const auto fps = fixed_points(m, p.c, p.q);
+  print(p.c, p.q, fps);
+  EXPECT_LT(p.c, 0.0);                                       // against the flow (eq 6.15)
+  EXPECT_LT(std::abs(p.c - coarse.c), 1e-3 * std::abs(p.c)); // resolved speed
+  EXPECT_LT(p.q_spread, 5e-4 * p.q);                         // measured 1.2e-4 to 2.6e-4
+  EXPECT_LT(p.residual, 0.5 * coarse.residual);              // shrinks with the grid
+  EXPECT_LT(p.residual, 0.15);
+  ASSERT_EQ(fps.size(), 3u);
+  EXPECT_EQ(fps[0].type, FixedPointType::saddle);
+  EXPECT_EQ(fps[2].type, FixedPointType::saddle);
+  EXPECT_LT(std::abs(p.phi_max - fps[2].phi), 1e-3);
+  EXPECT_GT(p.phi_min, fps[0].phi); // the rarefaction stays above the free-flow saddle
 }
 
 } // namespace
