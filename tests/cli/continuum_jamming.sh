@@ -55,6 +55,10 @@ check "jamming_plot: PNG and the three fixed points of fig 6.18 b (saddle, focus
   '[ -s "$tmp/full/jamming.png" ] && [ "$(grep -c "^fixed point" "$tmp/plot.out")" -eq 3 ] &&
    grep -q "0.7625.*focus source" "$tmp/plot.out"'
 
+runs "bench --continuum" "$narrows" bench --continuum 1000 > "$tmp/bench.txt" 2>&1
+check "bench: point-steps/s of the jamming model" \
+  'grep -q "^continuum jamming 1000 points: .* point-steps/s on one core" "$tmp/bench.txt"'
+
 refused "flux with jamming" 'continuum.flux is a key of continuum.model = "conservation-law"' \
   "$narrows" check "$scene" --set continuum.flux=burgers
 refused "unknown mu" 'continuum.mu = "2" is not known; allowed: "infinity", "1", "1/2", "0"' \
