@@ -99,6 +99,9 @@ std::vector<std::string> describe_jamming(const scene::Scene &scene) {
     out.push_back("stability (eq 6.11) of phi = " +
                   fmt("%g, v = %g: homogeneous flow is linearly stable", phi0, model.vss(phi0)));
   }
+  out.push_back("stability boundary in the (phi, drive) plane: flow at phi = " +
+                fmt("%g is unstable to long waves for drive < %.6g (phi^2 v_ss'^2 v_ss / D)", phi0,
+                    critical_drive(model, phi0)));
   out.push_back("scheme: pseudo-spectral (FFTW), 2/3 rule (modes |n| < " +
                 std::to_string((m.cells + 2) / 3) +
                 "), Strang splitting: exact friction relaxation, IF-RK4 transport with exact "

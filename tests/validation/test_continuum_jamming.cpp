@@ -158,3 +158,32 @@ INSTANTIATE_TEST_SUITE_P(Jamming, JammingGrowth, ::testing::ValuesIn(cases),
                          [](const auto &info) { return std::string(info.param.name); });
 
 } // namespace
+
+namespace {
+
+// The stability boundary in the (phi0, drive) plane is the long-wave one of
+// jamming_stability.hpp, sigma_c = phi0^2 v_ss'^2 v_ss / D: 2 % below it some wave number up to
+// k = 20 grows (eq 6.11 scanned on 4000 points and bisected), 2 % above none does, for every
+// phi0 on a grid of 341 points from 0.5 to 0.84 (below phi_q = 0.845 of the mu = 1 fit, where
+// v_ss' vanishes) and each column of Table 6.2.
+TEST(JammingStability, BoundaryInThePhiDrivePlaneIsTheLongWaveOne) {
+  for (auto fit : {scene::JammingFit::mu_infinity, scene::JammingFit::mu_1,
+                   scene::JammingFit::mu_half, scene::JammingFit::mu_0}) {
+    int checked = 0;
+    for (int i = 0; i <= 340; ++i) {
+      const double phi0 = 0.5 + 0.001 * i;
+      const continuum::JammingModel unit(continuum::table_6_2(fit), 1.0, 1.0);
+      if (phi0 > unit.fit().phi_q - 0.005)
+        continue;
+      const double sc = continuum::critical_drive(unit, phi0);
+      const continuum::JammingModel below(continuum::table_6_2(fit), 0.98 * sc, 1.0);
+      const continuum::JammingModel above(continuum::table_6_2(fit), 1.02 * sc, 1.0);
+      EXPECT_GT(continuum::unstable_band_edge(below, phi0, 20.0, 4000), 0.0) << phi0;
+      EXPECT_EQ(continuum::unstable_band_edge(above, phi0, 20.0, 4000), 0.0) << phi0;
+      ++checked;
+    }
+    EXPECT_GT(checked, 300);
+  }
+}
+
+} // namespace
