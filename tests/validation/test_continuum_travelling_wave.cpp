@@ -71,6 +71,38 @@ TEST(JammingWave, FixedPointsOfFig6_18b) {
   }
 }
 
+// The seed's statements on the phase portraits (§6.3.4, fig 6.15 a and 6.12), over a grid of
+// (c, q) with c from -4 to -1.2 and q from 1 to 3.5 whose fixed points all lie below
+// phi_q - 0.005 (at phi_q = 0.845 the fit's v_ss touches 0 and rises again beyond, where a lone
+// fixed point can be a node source: outside the physical range, left out): with one fixed point it
+// is a saddle; with three, the outer two are saddles (free-flow and jammed branch, either side of
+// phi_c) and the middle one a node or a focus; two occur only at tangencies (none on the grid).
+TEST(JammingWave, FixedPointTypesOverTheCQPlane) {
+  const JammingModel m = mu1();
+  int one = 0, three = 0;
+  for (int i = 0; i <= 56; ++i)
+    for (int j = 0; j <= 250; ++j) {
+      const double c = -4.0 + 0.05 * i, q = 1.0 + 0.01 * j;
+      const auto fps = fixed_points(m, c, q, 1e-3, 0.999, 4000);
+      if (fps.empty() || fps.back().phi >= m.fit().phi_q - 0.005)
+        continue; // a root at phi >= phi_q
+      ASSERT_TRUE(fps.size() == 1 || fps.size() == 3) << c << " " << q << ": " << fps.size();
+      if (fps.size() == 1) {
+        ++one;
+        EXPECT_EQ(fps[0].type, FixedPointType::saddle) << c << " " << q;
+      } else {
+        ++three;
+        EXPECT_EQ(fps[0].type, FixedPointType::saddle) << c << " " << q;
+        EXPECT_EQ(fps[2].type, FixedPointType::saddle) << c << " " << q;
+        EXPECT_NE(fps[1].type, FixedPointType::saddle) << c << " " << q;
+        EXPECT_LT(fps[0].phi, m.fit().phi_c);
+        EXPECT_GT(fps[2].phi, m.fit().phi_c);
+      }
+    }
+  std::printf("  %d (c, q) with one fixed point (saddle), %d with three\n", one, three);
+  EXPECT_GT(three, 100);
+}
+
 TEST(JammingWave, HopfLineOfEq6_21) {
   const JammingModel m = mu1();
   for (double phi0 : {0.758, 0.76, 0.762, 0.764}) {
