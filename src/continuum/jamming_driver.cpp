@@ -99,6 +99,11 @@ std::vector<std::string> describe_jamming(const scene::Scene &scene) {
     out.push_back("stability (eq 6.11) of phi = " +
                   fmt("%g, v = %g: homogeneous flow is linearly stable", phi0, model.vss(phi0)));
   }
+  if (phi0 >= model.fit().phi_q)
+    out.push_back("warning: the mean phi = " +
+                  fmt("%g is at or beyond phi_q = %g, where the fit's v_ss (eq 6.4) reaches 0 and "
+                      "rises again: outside the range of the seed's data (fig 6.8)",
+                      phi0, model.fit().phi_q));
   out.push_back("stability boundary in the (phi, drive) plane: flow at phi = " +
                 fmt("%g is unstable to long waves for drive < %.6g (phi^2 v_ss'^2 v_ss / D)", phi0,
                     critical_drive(model, phi0)));
