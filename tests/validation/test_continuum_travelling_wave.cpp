@@ -5,13 +5,14 @@
 //   a focus at phi_c between them and a saddle on the jammed branch; Eigen's eigenvalues agree
 //   with the closed form eq 6.20;
 // - on the Hopf line (eq 6.21) the focus has purely imaginary eigenvalues and changes from sink
-//   to source as |c| grows across it;
+//   to source as |c| grows across it, and the line is the neutral curve of eq 6.11;
 // - the limit cycle around the focus (the seed's periodic pulse train of fig 6.18 b) exists, and
 //   the PDE started from it travels at c and keeps its shape;
 // - a pulse grown in the PDE from a small perturbation is a travelling wave of eq 6.13-6.14 at
 //   its measured (c, q), next to the homoclinic loop of the jammed saddle.
 #include "narrows/continuum/jamming_model.hpp"
 #include "narrows/continuum/jamming_solver.hpp"
+#include "narrows/continuum/jamming_stability.hpp"
 #include "narrows/continuum/travelling_wave.hpp"
 
 #include <gtest/gtest.h>
@@ -115,6 +116,29 @@ TEST(JammingWave, HopfLineOfEq6_21) {
     EXPECT_LT(std::abs(at.lambda[0].real()), 1e-9 * std::abs(at.lambda[0].imag()));
     EXPECT_EQ(classify(m, c + 0.01, phi0).type, FixedPointType::focus_sink);
     EXPECT_EQ(classify(m, c - 0.01, phi0).type, FixedPointType::focus_source);
+  }
+}
+
+// The Hopf line of the travelling-wave ODEs (eq 6.21) is the neutral curve of the PDE's linear
+// stability (eq 6.11): a neutral mode exp(i k (x - c t)) of the PDE is a solution exp(i k z) of
+// the linearised eq 6.13-6.14, so at each phi0 the edge k_c of the unstable band of eq 6.11
+// equals the Hopf frequency omega_H, and its phase velocity -Im lambda(k_c) / k_c equals c_H.
+// Both sides come from different code (the band edge by bisection of eq 6.11, the Hopf point
+// in closed form with Eigen's eigenvalues); agreement to 1e-8 (the bisection stops at 1e-14).
+TEST(JammingWave, HopfLineIsTheNeutralCurveOfEq6_11) {
+  const JammingModel m = mu1();
+  for (double phi0 : {0.6, 0.7, 0.75, 0.755, 0.76}) {
+    const double kc = unstable_band_edge(m, phi0, 10.0, 20000);
+    ASSERT_GT(kc, 0.0) << phi0;
+    const double c_phase = -growth_rate(m, phi0, kc).imag() / kc;
+    bool valid = false;
+    const double c_hopf = hopf_speed(m, phi0, &valid);
+    ASSERT_TRUE(valid);
+    const double omega = std::abs(classify(m, c_hopf, phi0).lambda[0].imag());
+    std::printf("  phi0 = %g: k_c = %.9f, omega_H = %.9f; phase velocity %.9f, c_H = %.9f\n", phi0,
+                kc, omega, c_phase, c_hopf);
+    EXPECT_NEAR(omega, kc, 1e-8 * kc);
+    EXPECT_NEAR(c_phase, c_hopf, 1e-8 * std::abs(c_hopf));
   }
 }
 
