@@ -3,6 +3,7 @@
 
 #include "narrows/continuum/exact.hpp"
 #include "narrows/continuum/flux.hpp"
+#include "narrows/continuum/jamming_driver.hpp"
 #include "narrows/continuum/plan.hpp"
 #include "narrows/continuum/scheme.hpp"
 #include "narrows/continuum/shock.hpp"
@@ -57,6 +58,8 @@ bool wants(const scene::Scene &scene, const char *name) {
 } // namespace
 
 std::vector<std::string> describe(const scene::Scene &scene) {
+  if (scene.continuum->model == scene::ContinuumModel::jamming)
+    return describe_jamming(scene);
   const scene::Continuum &m = *scene.continuum;
   const Flux flux(m);
   const Plan p = plan_of(scene);
@@ -80,6 +83,8 @@ std::vector<std::string> describe(const scene::Scene &scene) {
     break;
   case scene::ContinuumInitial::cells:
     out.push_back("initial: the given cell averages");
+    break;
+  case scene::ContinuumInitial::random: // model jamming only (jamming_driver.cpp)
     break;
   case scene::ContinuumInitial::sine:
     out.push_back("initial: " + fmt("%g + %g sin(2 pi x / %g)", m.mean, m.amplitude, m.length));
@@ -110,6 +115,10 @@ std::vector<std::string> describe(const scene::Scene &scene) {
 }
 
 void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm comm) {
+  if (scene.continuum->model == scene::ContinuumModel::jamming) {
+    run_jamming(scene, options, comm);
+    return;
+  }
   const scene::Continuum &m = *scene.continuum;
   const Plan p = plan_of(scene);
   const Flux flux(m);

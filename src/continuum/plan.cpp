@@ -52,6 +52,8 @@ std::vector<double> initial_cells(const scene::Continuum &m) {
   case scene::ContinuumInitial::cells:
     u = m.profile;
     break;
+  case scene::ContinuumInitial::random: // model jamming only (jamming_plan.cpp)
+    break;
   case scene::ContinuumInitial::sine: {
     const double k = 2.0 * std::numbers::pi / m.length;
     for (std::size_t i = 0; i < n; ++i) {

@@ -70,7 +70,8 @@ const std::vector<Section> &schema() {
       {"tagged", {"max_lag", "replicas"}},
       {"continuum",
        {"model", "flux", "rates", "parameters", "c", "c_prime", "v_cm", "length", "cells",
-        "diffusion", "boundary", "reservoirs", "initial", "time", "samples", "cfl", "limiter"}},
+        "diffusion", "boundary", "reservoirs", "initial", "time", "samples", "cfl", "limiter", "mu",
+        "drive"}},
       {"colloid",
        {"position", "radius", "mass", "velocity", "held", "max_lag", "displacement_lag",
         "displacement_every"}},
@@ -102,7 +103,7 @@ std::vector<std::string> engine_observables(Engine engine) {
   if (engine == Engine::lgca)
     return {"shear_wave", "density", "velocity", "vacf", "colloid_vacf", "colloid_diffusion"};
   if (engine == Engine::continuum)
-    return {"density", "shock_position"};
+    return {"density", "shock_position", "velocity"};
   return std::vector<std::string>(std::begin(all_observables), std::end(all_observables));
 }
 
@@ -1382,6 +1383,8 @@ Scene parse_scene(const std::string &text, const std::string &file,
         section(c, root, "continuum"),
         [&c](const std::string &key, const std::string &message) { c.fail(key, message); });
     s.output.observables = {"density", "shock_position"};
+    if (s.continuum->model == ContinuumModel::jamming)
+      s.output.observables = {"density", "velocity"};
   } else if (s.run.engine == Engine::lgca) {
     refuse_sections(
         {"domain", "fluid", "body_force", "walls", "colloids", "thermostat", "kmc", "continuum"},
@@ -1424,6 +1427,15 @@ Scene parse_scene(const std::string &text, const std::string &file,
   }
   parse_output(c, section(c, root, "output"), s.run.engine, s.output);
   const auto &obs = s.output.observables;
+  if (s.continuum) {
+    const bool jamming = s.continuum->model == ContinuumModel::jamming;
+    const char *other = jamming ? "shock_position" : "velocity";
+    if (std::find(obs.begin(), obs.end(), other) != obs.end())
+      c.fail("output.observables",
+             std::string("output.observables lists \"") + other + "\", which continuum.model = \"" +
+                 (jamming ? "jamming" : "conservation-law") + "\" does not write; allowed: " +
+                 (jamming ? "\"density\", \"velocity\"" : "\"density\", \"shock_position\""));
+  }
   const bool poiseuille = s.walls && s.body_force && s.body_force->kind == ForceKind::constant &&
                           s.body_force->value[0] != 0.0;
   for (const char *name : {"settling_velocity", "colloid_positions"})

@@ -8,6 +8,7 @@
 #include "narrows/kmc/preset.hpp"
 #include "narrows/kmc/rates.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -180,6 +181,137 @@ void parse_initial(const Checker &c, const toml::value &v, const Range &range, C
   }
 }
 
+// Initial data of the jamming model: phi about a mean (sine, random) or given at the points.
+void parse_jamming_initial(const Checker &c, const toml::value &v, Continuum &out) {
+  const std::string allowed = "{ kind = \"sine\", mean, amplitude, mode } or { kind = "
+                              "\"random\", mean, amplitude, seed } or { kind = \"cells\", "
+                              "values = [...], velocity = [...] }";
+  if (!v.is_table())
+    c.wrong_type("continuum.initial", v, allowed);
+  const toml::value *kind = find(&v, "kind");
+  if (kind == nullptr)
+    c.fail("continuum.initial.kind", "missing required key 'continuum.initial.kind'; allowed "
+                                     "with continuum.model = \"jamming\": \"sine\", \"random\", "
+                                     "\"cells\"");
+  const std::size_t k = choice(c, *kind, "continuum.initial.kind", {"sine", "random", "cells"});
+  out.initial = k == 0   ? ContinuumInitial::sine
+                : k == 1 ? ContinuumInitial::random
+                         : ContinuumInitial::cells;
+  const std::vector<std::vector<std::string>> keys{{"kind", "mean", "amplitude", "mode"},
+                                                   {"kind", "mean", "amplitude", "seed"},
+                                                   {"kind", "values", "velocity"}};
+  const std::vector<std::string> &mine = keys[k];
+  for (const auto &[key, x] : sorted(v)) {
+    (void)x;
+    if (std::find(mine.begin(), mine.end(), key) == mine.end()) {
+      std::string list;
+      for (const auto &m : mine)
+        list += (list.empty() ? "" : ", ") + m;
+      c.fail("continuum.initial." + key, "unknown key 'continuum.initial." + key + "' for kind = " +
+                                             repr(*kind) + "; allowed keys: " + list);
+    }
+  }
+  const auto required = [&](const char *name, const std::string &what) -> const toml::value & {
+    const toml::value *x = find(&v, name);
+    if (x == nullptr)
+      c.fail(std::string("continuum.initial.") + name,
+             std::string("missing required key 'continuum.initial.") + name +
+                 "'; allowed: " + what);
+    return *x;
+  };
+  const std::string fraction = "an area fraction from 0 to 1";
+  const auto in_unit = [](double x) { return x >= 0.0 && x <= 1.0; };
+  if (out.initial == ContinuumInitial::cells) {
+    const std::string what = "an array of continuum.cells = " + std::to_string(out.cells) +
+                             " values (" + fraction + "), phi at the points x_i = i length / cells";
+    const toml::value &p = required("values", what);
+    if (!p.is_array() || static_cast<std::int64_t>(p.as_array().size()) != out.cells)
+      c.wrong_type("continuum.initial.values", p, what);
+    for (std::size_t i = 0; i < p.as_array().size(); ++i)
+      out.profile.push_back(c.number(p.as_array()[i],
+                                     "continuum.initial.values[" + std::to_string(i) + "]",
+                                     fraction, in_unit));
+    if (const toml::value *u = find(&v, "velocity")) {
+      const std::string uwhat = "an array of continuum.cells = " + std::to_string(out.cells) +
+                                " finite numbers, v at the points";
+      if (!u->is_array() || static_cast<std::int64_t>(u->as_array().size()) != out.cells)
+        c.wrong_type("continuum.initial.velocity", *u, uwhat);
+      for (std::size_t i = 0; i < u->as_array().size(); ++i)
+        out.velocity.push_back(c.number(u->as_array()[i],
+                                        "continuum.initial.velocity[" + std::to_string(i) + "]",
+                                        "a finite number", finite));
+    }
+    out.mean = 0.0;
+    for (double x : out.profile)
+      out.mean += x / static_cast<double>(out.cells);
+    return;
+  }
+  out.mean = c.number(required("mean", fraction), "continuum.initial.mean", fraction,
+                      [](double x) { return x > 0.0 && x < 1.0; });
+  const double room = std::min(out.mean, 1.0 - out.mean);
+  const std::string what = "a number with mean +- amplitude from 0 to 1";
+  out.amplitude = c.number(required("amplitude", what), "continuum.initial.amplitude", what,
+                           [room](double a) { return std::abs(a) <= room; });
+  if (out.initial == ContinuumInitial::sine) {
+    const std::int64_t top = (out.cells - 1) / 3;
+    const std::string mwhat = "an integer from 1 to " + std::to_string(top) +
+                              " (continuum.cells / 3: the modes the 2/3 rule keeps)";
+    if (const toml::value *x = find(&v, "mode"))
+      out.mode = c.integer(*x, "continuum.initial.mode", mwhat,
+                           [top](std::int64_t n) { return n >= 1 && n <= top; });
+  } else if (const toml::value *x = find(&v, "seed")) {
+    out.seed = static_cast<std::uint64_t>(c.integer(*x, "continuum.initial.seed", "an integer >= 0",
+                                                    [](std::int64_t n) { return n >= 0; }));
+  }
+}
+
+// model = "jamming": its own keys, and a refusal of the conservation law's.
+void parse_jamming(const Checker &c, const toml::value *sec, Continuum &out) {
+  for (const char *k :
+       {"flux", "rates", "parameters", "c", "c_prime", "v_cm", "reservoirs", "limiter"})
+    if (find(sec, k) != nullptr)
+      c.fail(std::string("continuum.") + k,
+             std::string("continuum.") + k +
+                 " is a key of continuum.model = \"conservation-law\"; allowed with "
+                 "\"jamming\": mu, drive, diffusion, length, cells, boundary, initial, time, "
+                 "samples, cfl");
+  const auto required = [&](const char *name, const std::string &what) -> const toml::value & {
+    const toml::value *x = find(sec, name);
+    if (x == nullptr)
+      c.fail(std::string("continuum.") + name,
+             std::string("missing required key 'continuum.") + name + "'; allowed: " + what);
+    return *x;
+  };
+  if (const toml::value *v = find(sec, "mu"))
+    out.fit = static_cast<JammingFit>(choice(c, *v, "continuum.mu", {"infinity", "1", "1/2", "0"}));
+  if (const toml::value *v = find(sec, "drive"))
+    out.drive = c.number(*v, "continuum.drive", "a number > 0 (sigma of eq 6.3)",
+                         [](double x) { return x > 0.0; });
+  out.cfl = 0.1; // the splitting error of growth rates: 0.9 % at 0.1, 6 % at 0.4
+  out.diffusion = 1.0;
+  if (const toml::value *v = find(sec, "diffusion"))
+    out.diffusion = c.number(*v, "continuum.diffusion", "a number > 0 (D of eq 6.2)",
+                             [](double x) { return x > 0.0; });
+  out.boundary = ContinuumBoundary::periodic;
+  if (const toml::value *v = find(sec, "boundary"))
+    choice(c, *v, "continuum.boundary", {"periodic"});
+  const std::string len_allowed = "a number > 0 (the periodic domain [0, length))";
+  out.length = c.number(required("length", len_allowed), "continuum.length", len_allowed,
+                        [](double x) { return x > 0.0; });
+  const std::string cells_allowed = "an even integer from 8 to 16777216 (grid points)";
+  out.cells = c.integer(required("cells", cells_allowed), "continuum.cells", cells_allowed,
+                        [](std::int64_t n) { return n >= 8 && n <= 16777216 && n % 2 == 0; });
+  parse_jamming_initial(c,
+                        required("initial", "{ kind = \"sine\", mean, amplitude, mode }, { kind "
+                                            "= \"random\", mean, amplitude, seed }, { kind = "
+                                            "\"cells\", values, velocity }"),
+                        out);
+}
+
+} // namespace
+
+namespace {
+void parse_conservation_law(const Checker &c, const toml::value *sec, Continuum &out);
 } // namespace
 
 Continuum parse_continuum(const toml::value *sec, const SectionFail &fail) {
@@ -195,8 +327,45 @@ Continuum parse_continuum(const toml::value *sec, const SectionFail &fail) {
              std::string("missing required key 'continuum.") + name + "'; allowed: " + what);
     return *x;
   };
-  choice(c, required("model", "\"conservation-law\""), "continuum.model", {"conservation-law"});
-  out.model = ContinuumModel::conservation_law;
+  out.model = choice(c, required("model", "\"conservation-law\", \"jamming\""), "continuum.model",
+                     {"conservation-law", "jamming"}) == 0
+                  ? ContinuumModel::conservation_law
+                  : ContinuumModel::jamming;
+  if (out.model == ContinuumModel::jamming)
+    parse_jamming(c, sec, out);
+  else
+    for (const char *k : {"mu", "drive"})
+      if (find(sec, k) != nullptr)
+        c.fail(std::string("continuum.") + k,
+               std::string("continuum.") + k +
+                   " is a key of continuum.model = \"jamming\"; allowed with "
+                   "\"conservation-law\": none");
+  if (out.model == ContinuumModel::conservation_law)
+    parse_conservation_law(c, sec, out);
+  const std::string time_allowed = "a number > 0 (simulated time)";
+  out.time = c.number(required("time", time_allowed), "continuum.time", time_allowed,
+                      [](double x) { return x > 0.0; });
+  if (const toml::value *v = find(sec, "samples"))
+    out.samples = c.integer(*v, "continuum.samples",
+                            "an integer from 1 to 100000 (samples over continuum.time)",
+                            [](std::int64_t n) { return n >= 1 && n <= 100000; });
+  if (const toml::value *v = find(sec, "cfl"))
+    out.cfl = c.number(*v, "continuum.cfl", "a number > 0 and <= 0.5 (Courant number)",
+                       [](double x) { return x > 0.0 && x <= 0.5; });
+  return out;
+}
+
+namespace {
+
+// model = "conservation-law": flux and its parameters, grid, boundary, initial data, limiter.
+void parse_conservation_law(const Checker &c, const toml::value *sec, Continuum &out) {
+  const auto required = [&](const char *name, const std::string &what) -> const toml::value & {
+    const toml::value *x = find(sec, name);
+    if (x == nullptr)
+      c.fail(std::string("continuum.") + name,
+             std::string("missing required key 'continuum.") + name + "'; allowed: " + what);
+    return *x;
+  };
   const std::vector<std::string> fluxes{"burgers", "tasep", "family1", "family2", "colloid-chain"};
   out.flux = static_cast<ContinuumFlux>(
       choice(c, required("flux", choice_list(fluxes)), "continuum.flux", fluxes));
@@ -263,21 +432,12 @@ Continuum parse_continuum(const toml::value *sec, const SectionFail &fail) {
           density(c, v->as_array()[i], "continuum.reservoirs[" + std::to_string(i) + "]", range);
   }
 
-  const std::string time_allowed = "a number > 0 (simulated time)";
-  out.time = c.number(required("time", time_allowed), "continuum.time", time_allowed,
-                      [](double x) { return x > 0.0; });
-  if (const toml::value *v = find(sec, "samples"))
-    out.samples = c.integer(*v, "continuum.samples",
-                            "an integer from 1 to 100000 (samples over continuum.time)",
-                            [](std::int64_t n) { return n >= 1 && n <= 100000; });
-  if (const toml::value *v = find(sec, "cfl"))
-    out.cfl = c.number(*v, "continuum.cfl", "a number > 0 and <= 0.5 (Courant number)",
-                       [](double x) { return x > 0.0 && x <= 0.5; });
   if (const toml::value *v = find(sec, "limiter"))
     out.limiter = choice(c, *v, "continuum.limiter", {"mc", "minmod"}) == 0
                       ? ContinuumLimiter::mc
                       : ContinuumLimiter::minmod;
-  return out;
 }
+
+} // namespace
 
 } // namespace narrows::scene::detail

@@ -1,6 +1,6 @@
-// Engine "continuum" (model "conservation-law"): the run/check/info commands over the run
-// shell (run/shell.hpp): output folder, log, observables (density, shock_position), checkpoints
-// of the cell averages and bitwise restarts.
+// Engine "continuum" (model "conservation-law"; "jamming" is dispatched to jamming_driver.hpp):
+// the run/check/info commands over the run shell (run/shell.hpp): output folder, log,
+// observables (density, shock_position), checkpoints of the cell averages and bitwise restarts.
 #pragma once
 
 #include "narrows/run/shell.hpp"

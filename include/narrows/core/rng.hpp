@@ -35,6 +35,7 @@ enum class Purpose : std::uint32_t {
   ghost_velocity = 22,      // the same id: its Maxwell-Boltzmann velocity
   dhumieres_collision = 40, // id = site: outcome of a 1D d'Humieres collision
   lgca_initial = 41,        // step = draw round (attempt), id = link or site: initial occupations
+  continuum_initial = 42,   // id = grid point: random initial perturbation (jamming)
 };
 
 using Block = std::array<std::uint32_t, 4>;

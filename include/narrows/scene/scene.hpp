@@ -198,10 +198,13 @@ struct LgcaColloid {
 // Engine "continuum", model "conservation-law": rho_t + J(rho)_x = D rho_xx in 1D by finite
 // volumes (continuum/). The lattice-gas fluxes are those of the kmc presets (kmc/preset.hpp):
 // `lattice_gas` holds their rates (tasep and family2: preset family2, tasep with c = 0).
-enum class ContinuumModel { conservation_law };
+// Model "jamming": phi_t + (phi v)_x = D phi_xx, v_t + v v_x = sigma - xi(phi) v (seed 001 eq
+// 6.2-6.6, xi = sigma / v_ss with v_ss fitted in Table 6.2), periodic, pseudo-spectral.
+enum class ContinuumModel { conservation_law, jamming };
+enum class JammingFit { mu_infinity, mu_1, mu_half, mu_0 }; // the columns of Table 6.2
 enum class ContinuumFlux { burgers, tasep, family1, family2, colloid_chain };
 enum class ContinuumBoundary { open, periodic };
-enum class ContinuumInitial { riemann, profile, sine, cells };
+enum class ContinuumInitial { riemann, profile, sine, cells, random };
 enum class ContinuumLimiter { mc, minmod };
 
 struct Continuum {
@@ -222,6 +225,12 @@ struct Continuum {
   std::int64_t samples = 100;         // observable samples over `time` (+ t = 0)
   double cfl = 0.4;                   // Courant number of the time step
   ContinuumLimiter limiter = ContinuumLimiter::mc;
+  // jamming only
+  JammingFit fit = JammingFit::mu_1; // v_ss of Table 6.2 for this wall friction
+  double drive = 1.0;                // sigma of eq 6.3
+  std::int64_t mode = 1;             // sine: mean + amplitude sin(2 pi mode x / length)
+  std::uint64_t seed = 1;            // random: mean + amplitude * uniform(-1, 1) per point
+  std::vector<double> velocity;      // cells: the initial v (empty: v_ss(phi) at each point)
 };
 
 struct Scene {

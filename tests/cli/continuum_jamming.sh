@@ -1,0 +1,78 @@
+#!/usr/bin/env bash
+# The jamming model of the continuum engine (seed 001 ch.6) from the command line: check prints
+# the friction fit, the unstable band of eq 6.11 and the time step; a run writes density (phi)
+# and velocity (v) and conserves the mass; a restart from the checkpoint half-way continues
+# bitwise; 2 ranks give the bits of 1; tools/jamming_plot.py draws the run; bad input exits 2
+# with one line.
+set -u
+source "$(dirname "$0")/common.bash"
+
+scene=$src/run/continuum_jamming_pulses.toml
+short=(--set continuum.time=40.0 --set continuum.samples=20 --set continuum.cells=256)
+
+runs "check" "$narrows" check "$scene" > "$tmp/check.out" 2>&1
+check "check: the fit of Table 6.2 (mu = 1)" \
+  'grep -q "^friction: .*0.0413 \[1 + tanh((0.762 - phi) / 0.0025)\]" "$tmp/check.out"'
+check "check: the unstable band of eq 6.11 at phi = 0.75" \
+  'grep -q "^stability (eq 6.11) of phi = 0.75.*unstable band 0 < k < 0.757" "$tmp/check.out" &&
+   grep -q "^stability boundary .* unstable to long waves for drive < 1.258" "$tmp/check.out"'
+check "check: time step and steps" 'grep -q "^time: 400 in 54200 steps" "$tmp/check.out"'
+
+runs "uninterrupted run" "$narrows" run "$scene" "${short[@]}" --set output.checkpoint_every=1360 \
+  --out "$tmp/full" > /dev/null 2>&1
+check "observables: density and velocity [21][256], mass conserved" '/usr/bin/python3 - "$tmp/full/observables.h5" <<PY
+import sys, h5py, numpy as np
+f = h5py.File(sys.argv[1], "r")["observables"]
+assert f["density/value"].shape == (21, 256), f["density/value"].shape
+assert f["velocity/value"].shape == (21, 256)
+m = f["density/value"][()].mean(axis=1)
+assert np.max(np.abs(m - m[0])) < 1e-13, np.max(np.abs(m - m[0]))
+PY'
+check "checkpoints at 1360 and 2720 steps" \
+  '[ -f "$tmp/full/checkpoint-0000001360.h5" ] && [ -f "$tmp/full/checkpoint-0000002720.h5" ]'
+
+mkdir -p "$tmp/part"
+cp "$tmp/full/checkpoint-0000001360.h5" "$tmp/part/"
+runs "restart at T/2" "$narrows" run "$scene" "${short[@]}" --restart "$tmp/part" --out "$tmp/part" \
+  > /dev/null 2>&1
+runs "2 ranks" "${mpi[@]}" -n 2 "$narrows" run "$scene" "${short[@]}" --out "$tmp/two" > /dev/null 2>&1
+check "restart and 2 ranks: bitwise the uninterrupted run" '/usr/bin/python3 - "$tmp" <<PY
+import sys, h5py, numpy as np
+t = sys.argv[1]
+for k in ("density", "velocity"):
+    a = h5py.File(t + "/full/checkpoint-0000002720.h5", "r")["continuum/" + k][()]
+    for other in ("/part/", "/two/"):
+        b = h5py.File(t + other + "checkpoint-0000002720.h5", "r")["continuum/" + k][()]
+        assert np.array_equal(a, b), (k, other)
+fa = h5py.File(t + "/full/observables.h5", "r")["observables"]
+fb = h5py.File(t + "/part/observables-0000001360.h5", "r")["observables"]
+for k in ("density", "velocity"):
+    assert fb[k]["value"].shape[0] == 10
+    assert np.array_equal(fa[k]["value"][-10:], fb[k]["value"][()]), k
+PY'
+
+runs "tools/jamming_plot.py" /usr/bin/python3 "$src/tools/jamming_plot.py" "$tmp/full" > "$tmp/plot.out" 2>&1
+check "jamming_plot: PNG and the three fixed points of fig 6.18 b (saddle, focus source, saddle)" \
+  '[ -s "$tmp/full/jamming.png" ] && [ "$(grep -c "^fixed point" "$tmp/plot.out")" -eq 3 ] &&
+   grep -q "0.7625.*focus source" "$tmp/plot.out"'
+
+runs "bench --continuum" "$narrows" bench --continuum 1000 > "$tmp/bench.txt" 2>&1
+check "bench: point-steps/s of the jamming model" \
+  'grep -q "^continuum jamming 1000 points: .* point-steps/s on one core" "$tmp/bench.txt"'
+
+refused "flux with jamming" 'continuum.flux is a key of continuum.model = "conservation-law"' \
+  "$narrows" check "$scene" --set continuum.flux=burgers
+refused "unknown mu" 'continuum.mu = "2" is not known; allowed: "infinity", "1", "1/2", "0"' \
+  "$narrows" check "$scene" --set 'continuum.mu="2"'
+refused "odd cells" "continuum.cells = 511 is out of range; allowed: an even integer" \
+  "$narrows" check "$scene" --set continuum.cells=511
+refused "open boundary" 'continuum.boundary = "open" is not known; allowed: "periodic"' \
+  "$narrows" check "$scene" --set continuum.boundary=open
+refused "mean out of range" "continuum.initial.mean = 1.5 is out of range" \
+  "$narrows" check "$scene" --set 'continuum.initial={kind="random",mean=1.5,amplitude=0.0}'
+refused "shock_position with jamming" 'output.observables lists "shock_position"' \
+  "$narrows" check "$scene" --set 'output.observables=["shock_position"]'
+refused "drive with the conservation law" 'continuum.drive is a key of continuum.model = "jamming"' \
+  "$narrows" check "$src/run/continuum_burgers_riemann.toml" --set continuum.drive=2.0
+
+finish continuum_jamming
