@@ -68,6 +68,22 @@ std::string md_text(const scene::Scene &s, const MpcdPlan &p) {
       size += ", M " + format_number(c.mass_of(dim, s.fluid.density, r_lo)) + " to " +
               format_number(c.mass_of(dim, s.fluid.density, r_hi));
   }
+  if (!c.kinds.empty()) {
+    size = std::to_string(c.kinds.size()) + " kinds:";
+    std::uint64_t first = 0;
+    for (const auto &k : c.kinds) {
+      size += (first > 0 ? ", " : " ") + std::to_string(k.count) + " of r " +
+              format_number(k.radius) + " M " +
+              format_number(c.mass_of_id(dim, s.fluid.density, first, k.radius));
+      first += static_cast<std::uint64_t>(k.count);
+    }
+    r_lo = c.max_radius();
+    r_hi = 0.0;
+    for (const auto &k : c.kinds) {
+      r_lo = std::min(r_lo, k.radius);
+      r_hi = std::max(r_hi, k.radius);
+    }
+  }
   std::string md = "MD: " + std::to_string(c.count) + " colloids (" + size + "), " +
                    std::to_string(c.md_substeps) + " velocity-Verlet sub-steps of " +
                    format_number(p.md.tau) + ": WCA colloid-fluid, 48-24 colloid-colloid";

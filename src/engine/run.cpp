@@ -7,6 +7,7 @@
 #include "narrows/core/error.hpp"
 #include "narrows/core/timer.hpp"
 #include "narrows/engine/colloid_checkpoint.hpp"
+#include "narrows/engine/colloid_statistics.hpp"
 #include "narrows/engine/fluid_checkpoint.hpp"
 #include "narrows/engine/info.hpp"
 #include "narrows/engine/invariants.hpp"
@@ -41,7 +42,7 @@ bool wants(const scene::Scene &s, const std::string &name) {
 class Observer {
 public:
   Observer(MpcdSimulation &sim, std::unique_ptr<io::ObservablesWriter> writer)
-      : sim_(sim), writer_(std::move(writer)), profiles_(sim.box()) {
+      : sim_(sim), writer_(std::move(writer)), profiles_(sim.box()), colloid_stats_(sim) {
     const auto &s = sim.scene();
     temperature_ = wants(s, "temperature");
     momentum_ = wants(s, "momentum");
@@ -53,6 +54,7 @@ public:
     positions_ = wants(s, "colloid_positions");
   }
   void every_step() {
+    colloid_stats_.after_step(sim_);
     if (velocity_ || density_ || viscosity_)
       profiles_.add(sim_.fluid());
     if (settling_)
@@ -62,6 +64,7 @@ public:
     const auto step = sim_.step();
     const double t = sim_.time();
     const MPI_Comm comm = sim_.comm();
+    colloid_stats_.on_observe(sim_);
     if (temperature_) {
       const double kT = analysis::temperature(sim_.fluid(), comm);
       if (writer_)
@@ -115,12 +118,20 @@ public:
     if (writer_)
       writer_->flush();
   }
+  // When the run ends: the results of the whole run (colloid statistics).
+  void finish() {
+    if (writer_ && colloid_stats_.active()) {
+      colloid_stats_.write(*writer_, sim_.step(), sim_.time());
+      writer_->flush();
+    }
+  }
 
 private:
   MpcdSimulation &sim_;
   std::unique_ptr<io::ObservablesWriter> writer_;
   analysis::ProfileAccumulator profiles_;
   SettlingSum settling_sum_;
+  ColloidStatistics colloid_stats_;
   bool temperature_ = false, momentum_ = false, velocity_ = false, density_ = false,
        viscosity_ = false, energy_ = false, settling_ = false, positions_ = false;
 };
@@ -261,6 +272,7 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
                   largest / static_cast<double>(steps));
     log.line(text);
   }
+  observer.finish();
   const std::string last = save_checkpoint();
   shell.finish("step " + std::to_string(sim.step()), last);
   shell.loop_time(seconds, steps, "steps", std::to_string(n_particles) + " particles",
