@@ -148,4 +148,28 @@ ColloidTimeCorrelations::Result ColloidTimeCorrelations::rotational_diffusion() 
   return finish(angular, 1.0 / rdim_);
 }
 
+std::vector<double> ColloidTimeCorrelations::state() const {
+  std::vector<double> s{static_cast<double>(t_), static_cast<double>(block_len_)};
+  for (const auto *v : {&unwrapped_, &last_, &v_hist_, &x_hist_, &w_hist_, &sums_[0], &sums_[1],
+                        &sums_[2], &counts_})
+    s.insert(s.end(), v->begin(), v->end());
+  return s;
+}
+
+bool ColloidTimeCorrelations::restore(const std::vector<double> &s) {
+  if (s.size() != state().size() || !(s[0] >= 0.0 && s[1] >= 1.0) || s[0] != std::floor(s[0]) ||
+      s[1] != std::floor(s[1]))
+    return false;
+  t_ = static_cast<std::size_t>(s[0]);
+  block_len_ = static_cast<std::size_t>(s[1]);
+  std::size_t at = 2;
+  for (auto *v : {&unwrapped_, &last_, &v_hist_, &x_hist_, &w_hist_, &sums_[0], &sums_[1],
+                  &sums_[2], &counts_}) {
+    std::copy(s.begin() + static_cast<std::ptrdiff_t>(at),
+              s.begin() + static_cast<std::ptrdiff_t>(at + v->size()), v->begin());
+    at += v->size();
+  }
+  return true;
+}
+
 } // namespace narrows::analysis

@@ -98,4 +98,23 @@ std::vector<double> KernelDensity::error() const {
   return out;
 }
 
+std::vector<double> KernelDensity::state() const {
+  std::vector<double> s{static_cast<double>(t_), static_cast<double>(block_len_)};
+  s.insert(s.end(), sums_.begin(), sums_.end());
+  s.insert(s.end(), counts_.begin(), counts_.end());
+  return s;
+}
+
+bool KernelDensity::restore(const std::vector<double> &s) {
+  if (s.size() != 2 + sums_.size() + counts_.size() || !(s[0] >= 0.0 && s[1] >= 1.0) ||
+      s[0] != std::floor(s[0]) || s[1] != std::floor(s[1]))
+    return false;
+  t_ = static_cast<std::size_t>(s[0]);
+  block_len_ = static_cast<std::size_t>(s[1]);
+  const auto sums_end = s.begin() + 2 + static_cast<std::ptrdiff_t>(sums_.size());
+  std::copy(s.begin() + 2, sums_end, sums_.begin());
+  std::copy(sums_end, s.end(), counts_.begin());
+  return true;
+}
+
 } // namespace narrows::analysis

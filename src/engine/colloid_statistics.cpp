@@ -1,6 +1,8 @@
 // The colloid statistics of an MPCD run (see the header).
 #include "narrows/engine/colloid_statistics.hpp"
 
+#include "narrows/core/error.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -47,8 +49,7 @@ ColloidStatistics::ColloidStatistics(const MpcdSimulation &sim) {
   const auto &box = sim.box();
   for (int k = 0; k < box.dim; ++k)
     period_[k] = k == 1 && box.walls_y ? 0.0 : box.length[k];
-  if (!accumulate_)
-    return;
+  // Every rank holds the accumulators (their sizes, for reading a checkpoint); rank 0 fills them.
   if (correlations_wanted_)
     correlations_.emplace(
         kind_, spec.kind_count(), box.dim, static_cast<std::size_t>(spec.max_lag / every_),
@@ -65,7 +66,7 @@ void ColloidStatistics::after_step(const MpcdSimulation &sim) {
   if (!correlations_wanted_ || sim.step() < from_ || sim.step() % every_ != 0)
     return;
   const colloids::Colloids c = sim.gather_colloids(); // collective
-  if (correlations_)
+  if (accumulate_)
     correlations_->add(c, period_);
 }
 
@@ -73,12 +74,40 @@ void ColloidStatistics::on_observe(const MpcdSimulation &sim) {
   if (!kde_wanted_ || sim.step() < from_)
     return;
   const colloids::Colloids c = sim.gather_colloids(); // collective
-  if (kde_)
+  if (accumulate_)
     kde_->add(c.x[1], kind_);
+}
+
+std::vector<io::CheckpointArray> ColloidStatistics::checkpoint_arrays() const {
+  std::vector<io::CheckpointArray> out;
+  if (correlations_)
+    out.push_back({"colloid_statistics/correlations",
+                   accumulate_ ? correlations_->state() : std::vector<double>{}});
+  if (kde_)
+    out.push_back(
+        {"colloid_statistics/density_kde", accumulate_ ? kde_->state() : std::vector<double>{}});
+  return out;
+}
+
+void ColloidStatistics::restore(const std::string &checkpoint, MPI_Comm comm) {
+  const auto take = [&](const std::string &name, auto &accumulator) {
+    if (!accumulator || !io::has_checkpoint_array(checkpoint, name, comm))
+      return;
+    const auto values =
+        io::read_checkpoint_array(checkpoint, name, accumulator->state().size(), comm);
+    if (!accumulator->restore(values))
+      throw input_error(checkpoint + ": /" + name +
+                        " holds sample counts that are not whole numbers >= 0; allowed: the "
+                        "sums of a run of this scene");
+  };
+  take("colloid_statistics/correlations", correlations_);
+  take("colloid_statistics/density_kde", kde_);
 }
 
 void ColloidStatistics::write(io::ObservablesWriter &writer, std::int64_t step, double time) const {
   using Beside = std::vector<std::pair<std::string, std::vector<double>>>;
+  if (!accumulate_)
+    return;
   if (correlations_) {
     const double kinds = static_cast<double>(correlations_->kinds());
     const double samples = static_cast<double>(correlations_->samples());

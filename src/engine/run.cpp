@@ -41,8 +41,10 @@ bool wants(const scene::Scene &s, const std::string &name) {
 // Everything written every `output.every` steps.
 class Observer {
 public:
-  Observer(MpcdSimulation &sim, std::unique_ptr<io::ObservablesWriter> writer)
-      : sim_(sim), writer_(std::move(writer)), profiles_(sim.box()), colloid_stats_(sim) {
+  Observer(MpcdSimulation &sim, std::unique_ptr<io::ObservablesWriter> writer,
+           ColloidStatistics colloid_stats)
+      : sim_(sim), writer_(std::move(writer)), profiles_(sim.box()),
+        colloid_stats_(std::move(colloid_stats)) {
     const auto &s = sim.scene();
     temperature_ = wants(s, "temperature");
     momentum_ = wants(s, "momentum");
@@ -118,6 +120,10 @@ public:
     if (writer_)
       writer_->flush();
   }
+  // The colloid statistics' sums for a checkpoint.
+  std::vector<io::CheckpointArray> checkpoint_arrays() const {
+    return colloid_stats_.checkpoint_arrays();
+  }
   // When the run ends: the results of the whole run (colloid statistics).
   void finish() {
     if (writer_ && colloid_stats_.active()) {
@@ -184,6 +190,10 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
                                    scene.colloids->epsilon, scene.fluid.kT, file, comm);
     }
   }
+  // The colloid statistics, on a restart with the sums of the run chain so far.
+  ColloidStatistics colloid_stats(sim);
+  if (restarting)
+    run::collectively(comm, [&] { colloid_stats.restore(shell.restart_file(), comm); });
   run::Log &log = shell.open(restarting ? sim.step() : -1);
   for (const auto &line : describe_scene(scene, comm))
     log.line(line);
@@ -194,7 +204,7 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
   std::unique_ptr<io::ObservablesWriter> writer;
   if (shell.rank() == 0)
     writer = std::make_unique<io::ObservablesWriter>(shell.output_file("observables"), scene.text);
-  Observer observer(sim, std::move(writer));
+  Observer observer(sim, std::move(writer), std::move(colloid_stats));
   std::optional<TrajectoryWriter> trajectory;
   // The trajectory and checkpoints hold every colloid: gathered from their owners when written.
   colloids::Colloids all_colloids;
@@ -230,7 +240,8 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
         all_colloids = sim.gather_colloids();
         species.push_back(colloid_fields(all_colloids, none, comm));
       }
-      const double bytes = io::write_checkpoint(path, info, species, comm);
+      const double bytes =
+          io::write_checkpoint(path, info, species, comm, observer.checkpoint_arrays());
       const double s = watch.seconds();
       char text[200];
       std::snprintf(text, sizeof text, "%.1f MB of particles in %.3g s (%.1f MB/s)", bytes / 1e6, s,

@@ -5,7 +5,8 @@
 # running trapezoid integral of C, the MSD is 0 at lag 0, MD colloids do not rotate, each kind's
 # kernel density integrates to 1); 2 ranks write them bitwise equal to 1 rank; a restart with two
 # kinds (1 rank to 60, 2 ranks to 120) ends bitwise equal to the uninterrupted run, radius and
-# mass included; tools/colloid_plot.py draws them; mixing the one-kind keys with the kinds is
+# mass included, and its statistics continue the sums of the checkpoint (bitwise those of the
+# uninterrupted run when continued from its own checkpoint); tools/colloid_plot.py draws them; mixing the one-kind keys with the kinds is
 # refused.
 set -u
 source "$(dirname "$0")/common.bash"
@@ -92,7 +93,19 @@ r, m = a["colloids/radius/value"][()][oa], a["colloids/mass/value"][()][oa]
 assert list(r) == [1.5] * 4 + [2.5] * 2, r
 assert np.allclose(m[:4], 5 * np.pi * 1.5**2, rtol=1e-14) and list(m[4:]) == [150.0, 150.0], m
 PY'
-check "the continuation writes its own statistics" '$py -c "import h5py,sys; assert h5py.File(sys.argv[1])[\"observables/colloid_vacf/samples\"][0] == 30" "$tmp/part/observables-0000000060.h5"'
+check "the continuation's statistics hold the samples of the whole chain" '$py -c "import h5py,sys; assert h5py.File(sys.argv[1])[\"observables/colloid_vacf/samples\"][0] == 51" "$tmp/part/observables-0000000060.h5"'
+# The same scene (run.steps too, so the same blocks) continued from the uninterrupted run's
+# checkpoint at 60 on 2 ranks: the statistics of the chain are bitwise those of the run.
+mkdir -p "$tmp/chain" && cp "$tmp/one/checkpoint-0000000060.h5" "$tmp/chain/"
+runs --err "$tmp/err4" "restart from the run's checkpoint at 60, 2 ranks" "${mpi[@]}" -n 2 "$narrows" run "$tmp/k.toml" --restart "$tmp/chain" --out "$tmp/chain" > /dev/null
+check "the chain's statistics (restart at 60) are bitwise the uninterrupted run's" '$py - "$tmp/one/observables.h5" "$tmp/chain/observables-0000000060.h5" <<PY
+import sys, h5py, numpy as np
+a, b = (h5py.File(p, "r")["observables"] for p in sys.argv[1:])
+for name in ("colloid_vacf", "colloid_diffusion", "colloid_msd", "colloid_angular_vacf", "density_kde"):
+    for key in a[name]:
+        x, y = a[name][key][()], b[name][key][()]
+        assert x.shape == y.shape and np.array_equal(np.atleast_1d(x).view(np.uint8), np.atleast_1d(y).view(np.uint8)), (name, key)
+PY'
 runs "colloid_plot.py" $py "$src/tools/colloid_plot.py" "$tmp/one" --png "$tmp/c.png" > "$tmp/plot.txt"
 check "colloid_plot.py fits a plateau per kind and draws a PNG: $(head -c 300 "$tmp/plot.txt")" \
   'grep -q "^kind 1: D = .* +- .* (plateau over t in \[1.33333, 2\])" "$tmp/plot.txt" && grep -q "kind 0: density_kde integrates to 1.00" "$tmp/plot.txt" && [ -s "$tmp/c.png" ]'

@@ -163,3 +163,49 @@ TEST(KernelDensity, UniformColloidsGiveTheirDensity) {
   }
   EXPECT_NEAR(mean / n, 1.0 / 6.0, 4 * mean_err / n);
 }
+
+// state()/restore(): an accumulator continued from the state of another is bitwise the one that
+// saw every sample; a state of another size is refused and changes nothing.
+TEST(ColloidTimeCorrelations, StateRestoresTheSumsBitwise) {
+  const std::vector<std::size_t> kind{0, 1, 1};
+  analysis::ColloidTimeCorrelations whole(kind, 2, 3, 4, 0.5, 20), first(kind, 2, 3, 4, 0.5, 20);
+  analysis::KernelDensity kde_whole(2, 6.0, true, 0.7, 24, 20),
+      kde_first(2, 6.0, true, 0.7, 24, 20);
+  colloids::Colloids c;
+  c.dim = 3;
+  c.resize(3);
+  std::mt19937_64 gen(3);
+  std::uniform_real_distribution<double> u(0.0, 6.0);
+  std::vector<std::vector<double>> ys;
+  std::vector<colloids::Colloids> frames;
+  for (int t = 0; t < 20; ++t) {
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) {
+        c.x[k][i] = u(gen);
+        c.v[k][i] = u(gen) - 3.0;
+        c.omega[k][i] = u(gen) - 3.0;
+      }
+    frames.push_back(c);
+  }
+  for (int t = 0; t < 20; ++t) {
+    whole.add(frames[t], {6.0, 6.0, 6.0});
+    kde_whole.add(frames[t].x[1], kind);
+    if (t < 9) {
+      first.add(frames[t], {6.0, 6.0, 6.0});
+      kde_first.add(frames[t].x[1], kind);
+    }
+  }
+  analysis::ColloidTimeCorrelations second(kind, 2, 3, 4, 0.5, 11);
+  analysis::KernelDensity kde_second(2, 6.0, true, 0.7, 24, 11);
+  EXPECT_FALSE(second.restore(std::vector<double>(5, 0.0)));
+  EXPECT_FALSE(kde_second.restore(std::vector<double>(5, 0.0)));
+  ASSERT_TRUE(second.restore(first.state()));
+  ASSERT_TRUE(kde_second.restore(kde_first.state()));
+  for (int t = 9; t < 20; ++t) {
+    second.add(frames[t], {6.0, 6.0, 6.0});
+    kde_second.add(frames[t].x[1], kind);
+  }
+  EXPECT_EQ(second.state(), whole.state());
+  EXPECT_EQ(kde_second.state(), kde_whole.state());
+  EXPECT_EQ(second.msd().value, whole.msd().value);
+}

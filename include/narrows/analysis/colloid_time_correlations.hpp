@@ -42,6 +42,13 @@ public:
   std::size_t samples() const { return t_; }
   std::size_t kinds() const { return kinds_; }
 
+  // Everything add() accumulated (sample count, block length, unwrapped and last positions, the
+  // history and the sums), flat, for a checkpoint; restore() takes it back (a continued run then
+  // averages as if it had not stopped) and returns false, changing nothing, if its size is not
+  // this object's or its counts are not whole numbers >= 0.
+  std::vector<double> state() const;
+  bool restore(const std::vector<double> &state);
+
 private:
   enum Quantity { velocity = 0, displacement = 1, angular = 2 };
   Result finish(Quantity q, double integral_scale) const; // integral_scale 0: no integral

@@ -32,6 +32,11 @@ public:
   std::size_t bins() const { return bins_; }
   double width() const { return eps_; }
 
+  // Sample count, block length and the sums, flat, for a checkpoint; restore() as in
+  // ColloidTimeCorrelations.
+  std::vector<double> state() const;
+  bool restore(const std::vector<double> &state);
+
 private:
   std::size_t kinds_, bins_, blocks_, block_len_;
   double length_, eps_;
