@@ -6,7 +6,8 @@
 # kernel density integrates to 1); 2 ranks write them bitwise equal to 1 rank; a restart with two
 # kinds (1 rank to 60, 2 ranks to 120) ends bitwise equal to the uninterrupted run, radius and
 # mass included, and its statistics continue the sums of the checkpoint (bitwise those of the
-# uninterrupted run when continued from its own checkpoint); tools/colloid_plot.py draws them; mixing the one-kind keys with the kinds is
+# uninterrupted run when continued from its own checkpoint) and join_observables.py copies
+# them into the joined file; tools/colloid_plot.py draws them; mixing the one-kind keys with the kinds is
 # refused.
 set -u
 source "$(dirname "$0")/common.bash"
@@ -94,6 +95,12 @@ assert list(r) == [1.5] * 4 + [2.5] * 2, r
 assert np.allclose(m[:4], 5 * np.pi * 1.5**2, rtol=1e-14) and list(m[4:]) == [150.0, 150.0], m
 PY'
 check "the continuation's statistics hold the samples of the whole chain" '$py -c "import h5py,sys; assert h5py.File(sys.argv[1])[\"observables/colloid_vacf/samples\"][0] == 51" "$tmp/part/observables-0000000060.h5"'
+runs "join_observables.py on the chain" $py "$src/tools/join_observables.py" "$tmp/part" > /dev/null
+check "the joined file holds the chain's statistics and the joined series" '$py -c "
+import h5py, sys
+o = h5py.File(sys.argv[1])[\"observables\"]
+assert o[\"colloid_vacf/samples\"][0] == 51 and o[\"density_kde/value\"].shape == (2, 128)
+assert o[\"temperature/value\"].shape == (12,)" "$tmp/part/observables-joined.h5"'
 # The same scene (run.steps too, so the same blocks) continued from the uninterrupted run's
 # checkpoint at 60 on 2 ranks: the statistics of the chain are bitwise those of the run.
 mkdir -p "$tmp/chain" && cp "$tmp/one/checkpoint-0000000060.h5" "$tmp/chain/"
