@@ -71,6 +71,11 @@ void ColloidGhosts::add(Colloids &c, std::vector<double> *margin, double own_ext
 void ColloidGhosts::add_for_forces(Colloids &c) { add(c, nullptr, 1.0); }
 
 void ColloidGhosts::add_for_step(Colloids &c, std::vector<double> &margin, double fluid_reach) {
+  add_for_step(c, margin, fluid_reach, 0.0);
+}
+
+void ColloidGhosts::add_for_step(Colloids &c, std::vector<double> &margin, double fluid_reach,
+                                 double more) {
   if (!active()) {
     owned_ = c.size();
     return;
@@ -79,7 +84,18 @@ void ColloidGhosts::add_for_step(Colloids &c, std::vector<double> &margin, doubl
   for (std::size_t a = 0; a < c.size(); ++a)
     own = std::max(own, margin[a]);
   MPI_Allreduce(&own, &largest, 1, MPI_DOUBLE, MPI_MAX, slabs_.comm());
-  add(c, &margin, std::max(1.0 + fluid_reach + 2.0 * largest, own));
+  add(c, &margin, std::max(1.0 + fluid_reach + 2.0 * largest, own) + more);
+}
+
+void ColloidGhosts::trusted_rows(const Colloids &c, double depth,
+                                 std::vector<std::uint8_t> &flags) const {
+  flags.assign(c.size(), 1);
+  if (!active())
+    return;
+  const double lo = slabs_.first_column(), hi = lo + slabs_.local_columns();
+  const double range = extent() - depth;
+  for (std::size_t a = owned_; a < c.size(); ++a)
+    flags[a] = range >= 0.0 && near_interval(c.x[0][a], lo, hi, range, box_.length[0]);
 }
 
 void ColloidGhosts::refresh_positions(Colloids &c) {
@@ -89,6 +105,17 @@ void ColloidGhosts::refresh_positions(Colloids &c) {
   for (int k = 0; k < c.dim; ++k)
     positions_.push_back(&c.x[k]);
   exchange_.refresh(positions_, list_, owned_);
+}
+
+void ColloidGhosts::refresh_motion(Colloids &c) {
+  if (!active())
+    return;
+  motion_.clear();
+  for (int k = 0; k < c.dim; ++k)
+    motion_.push_back(&c.v[k]);
+  for (int k = 0; k < 3; ++k)
+    motion_.push_back(&c.omega[k]);
+  exchange_.refresh(motion_, list_, owned_);
 }
 
 void ColloidGhosts::reverse(std::vector<std::int64_t> &per_row, int k) {

@@ -110,20 +110,21 @@ struct Event {
   double t;
   std::size_t a, b; // b: a colloid, or wall_low / wall_high
   std::uint64_t stamp_a, stamp_b;
-  // Earliest first; ties in a fixed order of the colloids.
+  std::uint64_t id_a, id_b; // ties in a fixed order of the colloid ids (rows differ by rank)
+  // Earliest first.
   bool operator>(const Event &o) const {
     if (t != o.t)
       return t > o.t;
-    if (a != o.a)
-      return a > o.a;
-    return b > o.b;
+    if (id_a != o.id_a)
+      return id_a > o.id_a;
+    return id_b > o.id_b;
   }
 };
 
 class EventQueue {
 public:
-  EventQueue(Colloids &c, const mpcd::Box &box, double dt)
-      : c_(c), box_(box), dt_(dt), t_(c.size(), 0.0), stamp_(c.size(), 0) {}
+  EventQueue(Colloids &c, const mpcd::Box &box, double dt, std::vector<std::uint8_t> *trusted)
+      : c_(c), box_(box), dt_(dt), t_(c.size(), 0.0), stamp_(c.size(), 0), trusted_(trusted) {}
 
   // The position of colloid a at time t (not wrapped).
   double x_at(std::size_t a, int k, double t) const {
@@ -199,6 +200,8 @@ public:
         separation_at(e.a, e.b, e.t, d);
         collide_rough(c_, e.a, e.b, d);
         ++stats.pair_collisions;
+        if (trusted_ && (*trusted_)[e.a] != (*trusted_)[e.b]) // one may have missed a partner
+          (*trusted_)[e.a] = (*trusted_)[e.b] = 0;
         predict(e.b, e.t);
       }
       predict(e.a, e.t);
@@ -216,7 +219,9 @@ private:
   void push(double t, std::size_t a, std::size_t b) {
     if (t > dt_)
       return;
-    queue_.push({t, a, b, stamp_[a], b < wall_high ? stamp_[b] : 0});
+    const bool wall = b >= wall_high;
+    queue_.push({t, a, b, stamp_[a], wall ? 0 : stamp_[b], c_.id[a],
+                 wall ? ~0ull - (b == wall_low) : c_.id[b]});
   }
 
   Colloids &c_;
@@ -224,13 +229,15 @@ private:
   double dt_;
   std::vector<double> t_;            // per colloid: the time its position refers to
   std::vector<std::uint64_t> stamp_; // per colloid: collisions so far (stale events differ)
+  std::vector<std::uint8_t> *trusted_;
   std::priority_queue<Event, std::vector<Event>, std::greater<Event>> queue_;
 };
 
 } // namespace
 
-HardSphereStats advance_hard_spheres(Colloids &c, const mpcd::Box &box, double dt) {
-  EventQueue q(c, box, dt);
+HardSphereStats advance_hard_spheres(Colloids &c, const mpcd::Box &box, double dt,
+                                     std::vector<std::uint8_t> *trusted) {
+  EventQueue q(c, box, dt, trusted);
   return q.run();
 }
 

@@ -282,10 +282,15 @@ Colloids place_colloids(const scene::Colloids &spec, const mpcd::Box &box, doubl
     break;
   case scene::ColloidPlacement::random: {
     // One kind: every colloid keeps the largest wall cut-off from the walls (the same band for
-    // all). Several kinds: each keeps its own kind's cut-off, and the kinds are placed largest
-    // radius first (then by id), which packs denser mixtures than id order: a large colloid
-    // finds room before the small ones fill the gaps. The order depends on the scene alone.
-    const double margin = box.walls_y ? wall_cutoff(spec.wall_sigma_of(spec.max_radius())) : 0.0;
+    // all); no-slip colloids have no potentials: their largest radius, and cores apart. Several
+    // kinds: each keeps its own kind's band, and the kinds are placed largest radius first (then
+    // by id), which packs denser mixtures than id order: a large colloid finds room before the
+    // small ones fill the gaps. The order depends on the scene alone.
+    const bool no_slip = spec.coupling == scene::ColloidCoupling::no_slip;
+    const auto wall_band = [&](double r) {
+      return no_slip ? r : wall_cutoff(spec.wall_sigma_of(r));
+    };
+    const double margin = box.walls_y ? wall_band(spec.max_radius()) : 0.0;
     double r_max = 0.0;
     for (const double r : c.radius)
       r_max = std::max(r_max, r);
@@ -296,9 +301,7 @@ Colloids place_colloids(const scene::Colloids &spec, const mpcd::Box &box, doubl
                        [&](std::size_t a, std::size_t b) { return c.radius[a] > c.radius[b]; });
     PlacedGrid grid(box, repulsive_cutoff(24, 2.0 * r_max));
     for (const std::size_t i : order) {
-      const double band = !box.walls_y || spec.kinds.empty()
-                              ? margin
-                              : wall_cutoff(spec.wall_sigma_of(c.radius[i]));
+      const double band = !box.walls_y || spec.kinds.empty() ? margin : wall_band(c.radius[i]);
       bool placed = false;
       for (std::uint64_t attempt = 0; attempt < 100000 && !placed; ++attempt) {
         const auto r = rng::draw(seed, rng::Purpose::colloid_placement, attempt, i);
@@ -309,8 +312,9 @@ Colloids place_colloids(const scene::Colloids &spec, const mpcd::Box &box, doubl
           p[k] = k == 1 && box.walls_y ? band + p[k] * (box.length[1] - 2.0 * band)
                                        : p[k] * box.length[k];
         placed = grid.all_of_near(p, [&](std::uint32_t j) {
+          const double sum = c.radius[i] + c.radius[j];
           return distance2(box, p, position(c, j)) >=
-                 std::pow(repulsive_cutoff(24, c.radius[i] + c.radius[j]), 2);
+                 std::pow(no_slip ? sum : repulsive_cutoff(24, sum), 2);
         });
         if (placed) {
           for (int k = 0; k < box.dim; ++k)

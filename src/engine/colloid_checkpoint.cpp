@@ -13,8 +13,14 @@ namespace narrows::engine {
 
 namespace {
 
-// The stored fields of c: position, velocity, id, and (sizes) radius and mass.
-io::SpeciesFields fields_of(colloids::Colloids &c, bool sizes = true) {
+// The components of the angular velocity a colloid has: z in 2D, all three in 3D.
+const char *const spin_names[3] = {"angular_velocity_x", "angular_velocity_y",
+                                   "angular_velocity_z"};
+int first_spin(int dim) { return dim == 2 ? 2 : 0; }
+
+// The stored fields of c: position, velocity, id, and (sizes) radius and mass, (spins) the
+// angular velocity.
+io::SpeciesFields fields_of(colloids::Colloids &c, bool sizes = true, bool spins = true) {
   io::SpeciesFields s;
   s.name = "colloids";
   s.dim = c.dim;
@@ -25,6 +31,9 @@ io::SpeciesFields fields_of(colloids::Colloids &c, bool sizes = true) {
     s.scalars.push_back({"radius", &c.radius});
     s.scalars.push_back({"mass", &c.mass});
   }
+  if (spins)
+    for (int k = first_spin(c.dim); k < 3; ++k)
+      s.scalars.push_back({spin_names[k], &c.omega[k]});
   return s;
 }
 
@@ -48,13 +57,15 @@ colloids::Colloids read_colloids(const std::string &path, const scene::Colloids 
   // Checkpoints written before radius and mass were stored: both follow from the scene.
   const bool sizes = io::has_species_field(path, "colloids", "radius", comm) &&
                      io::has_species_field(path, "colloids", "mass", comm);
-  io::SpeciesFields s = fields_of(block, sizes);
+  // Checkpoints written before colloids could spin: they did not.
+  const bool spins = io::has_species_field(path, "colloids", "angular_velocity_z", comm);
+  io::SpeciesFields s = fields_of(block, sizes, spins);
   io::read_species(path, s, comm);
 
-  // Gather every rank's block everywhere: rows of 2 dim + 3 words (id, radius, mass).
+  // Gather every rank's block everywhere: rows of 2 dim + 3 words (id, radius, mass) + 3 spins.
   int ranks = 1;
   MPI_Comm_size(comm, &ranks);
-  const int row = 2 * dim + 3;
+  const int row = 2 * dim + 6;
   const int mine = static_cast<int>(block.id.size());
   std::vector<int> counts(ranks), displs(ranks, 0);
   MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
@@ -68,6 +79,8 @@ colloids::Colloids read_colloids(const std::string &path, const scene::Colloids 
     r[2 * dim] = static_cast<double>(block.id[i]); // ids < 2^53
     r[2 * dim + 1] = sizes ? block.radius[i] : 0.0;
     r[2 * dim + 2] = sizes ? block.mass[i] : 0.0;
+    for (int k = 0; k < 3; ++k)
+      r[2 * dim + 3 + k] = spins && k >= first_spin(dim) ? block.omega[k][i] : 0.0;
   }
   int total = 0;
   for (int r = 0; r < ranks; ++r) {
@@ -117,6 +130,13 @@ colloids::Colloids read_colloids(const std::string &path, const scene::Colloids 
       c.v[k][id] = r[dim + k];
     }
     c.id[id] = id;
+    for (int k = first_spin(dim); k < 3; ++k) {
+      const double w = r[2 * dim + 3 + k];
+      if (!std::isfinite(w))
+        throw input_error(path + ": /particles/colloids/" + spin_names[k] + "/value" + at + " = " +
+                          std::to_string(w) + "; allowed: a finite number");
+      c.omega[k][id] = w;
+    }
     if (sizes) { // restored exactly as they were written
       const double radius = r[2 * dim + 1], mass = r[2 * dim + 2];
       if (!(radius > 0.0 && std::isfinite(radius) && mass > 0.0 && std::isfinite(mass)))

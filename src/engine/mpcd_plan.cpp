@@ -46,6 +46,18 @@ std::string stream_text(const scene::Scene &s, const MpcdPlan &p, const mpcd::Bo
   return name;
 }
 
+// "2 kinds: 100 of r 2 M 125.664, 100 of r 4 M 600" ([[colloids.kind]]).
+std::string kinds_text(const scene::Colloids &c, int dim, double density) {
+  std::string t = std::to_string(c.kinds.size()) + " kinds:";
+  std::uint64_t first = 0;
+  for (const auto &k : c.kinds) {
+    t += (first > 0 ? ", " : " ") + std::to_string(k.count) + " of r " + format_number(k.radius) +
+         " M " + format_number(c.mass_of_id(dim, density, first, k.radius));
+    first += static_cast<std::uint64_t>(k.count);
+  }
+  return t;
+}
+
 std::string md_text(const scene::Scene &s, const MpcdPlan &p) {
   const auto &c = *s.colloids;
   const int dim = p.dim;
@@ -69,14 +81,7 @@ std::string md_text(const scene::Scene &s, const MpcdPlan &p) {
               format_number(c.mass_of(dim, s.fluid.density, r_hi));
   }
   if (!c.kinds.empty()) {
-    size = std::to_string(c.kinds.size()) + " kinds:";
-    std::uint64_t first = 0;
-    for (const auto &k : c.kinds) {
-      size += (first > 0 ? ", " : " ") + std::to_string(k.count) + " of r " +
-              format_number(k.radius) + " M " +
-              format_number(c.mass_of_id(dim, s.fluid.density, first, k.radius));
-      first += static_cast<std::uint64_t>(k.count);
-    }
+    size = kinds_text(c, dim, s.fluid.density);
     r_lo = c.max_radius();
     r_hi = 0.0;
     for (const auto &k : c.kinds) {
@@ -100,6 +105,21 @@ std::string md_text(const scene::Scene &s, const MpcdPlan &p) {
   if (c.gravity != std::array<double, 3>{0.0, 0.0, 0.0})
     md += ", gravity";
   return md;
+}
+
+std::string no_slip_text(const scene::Scene &s, const MpcdPlan &p) {
+  const auto &c = *s.colloids;
+  const std::string size = c.kinds.empty()
+                               ? "r " + format_number(c.radius) +
+                                     (c.radius_sd > 0.0 ? " sd " + format_number(c.radius_sd) : "")
+                               : kinds_text(c, p.dim, s.fluid.density);
+  std::string t = "no-slip colloids: " + std::to_string(c.count) + " (" + size + ") move " +
+                  (p.no_slip_params.hard_contacts
+                       ? "with event-driven rough hard-sphere contacts (seed 001 eq 4.19-4.30)"
+                       : "ballistically (no contacts)");
+  if (c.gravity != std::array<double, 3>{0.0, 0.0, 0.0})
+    t += ", gravity";
+  return t;
 }
 
 } // namespace
@@ -141,6 +161,20 @@ MpcdPlan make_plan(const scene::Scene &s, const mpcd::Box &box, int ranks) {
     p.forces.sigma_wall = c.wall_sigma; // 0: 2 r_a for each colloid
     p.forces.wall_q = c.wall_q;
     p.forces.gravity = c.gravity;
+    if (c.coupling == scene::ColloidCoupling::no_slip) {
+      p.no_slip = true;
+      auto &q = p.no_slip_params;
+      q.dt = f.dt;
+      q.kT = f.kT;
+      q.density = f.density;
+      q.seed = s.run.seed;
+      q.gravity = c.gravity;
+      if (s.body_force && s.body_force->kind == scene::ForceKind::constant)
+        q.fluid_accel = s.body_force->value;
+      if (s.body_force && s.body_force->kind == scene::ForceKind::sine)
+        q.sine_amplitude = s.body_force->amplitude;
+      q.hard_contacts = c.contacts == scene::ColloidContacts::hard;
+    }
   }
   p.ranks = ranks;
   p.slabs = ranks > 1;
@@ -167,7 +201,14 @@ std::vector<std::string> describe_pipeline(const scene::Scene &s, const MpcdPlan
                                            const mpcd::Box &box) {
   std::vector<std::string> out;
   const std::string stream = stream_text(s, p, box);
-  out.push_back(p.colloids ? md_text(s, p) + "; fluid between kicks: " + stream : stream);
+  if (p.no_slip) {
+    out.push_back(no_slip_text(s, p));
+    out.push_back(stream);
+    out.push_back("bounce-back of fluid that entered a colloid (U + Omega x r at the surface, "
+                  "halved intervals; impulses to the colloids)");
+  } else {
+    out.push_back(p.colloids ? md_text(s, p) + "; fluid between kicks: " + stream : stream);
+  }
   out.push_back("grid shift");
   const std::string ranks = std::to_string(p.ranks);
   if (p.collision == scene::Collision::random_maxwell) {
@@ -182,6 +223,9 @@ std::vector<std::string> describe_pipeline(const scene::Scene &s, const MpcdPlan
   } else {
     out.push_back("bin into cells");
   }
+  if (p.no_slip)
+    out.push_back("ghost particles in the cells cut by colloid surfaces (density " +
+                  format_number(p.density) + ", rigid-body velocity + Maxwell-Boltzmann)");
   if (p.virtual_particles)
     out.push_back(std::string("virtual particles in cells cut by the walls (") +
                   (p.virtual_mirror ? "mirror-image flow)" : "at rest)"));
@@ -200,6 +244,8 @@ std::vector<std::string> describe_pipeline(const scene::Scene &s, const MpcdPlan
   case scene::Collision::random_maxwell:
     break;
   }
+  if (p.no_slip)
+    out.push_back("ghost particles' momentum and angular momentum change to the colloids");
   if (p.collision == scene::Collision::random_permute)
     out.push_back("permute all velocities (random solvent)"); // one rank only (check_ranks)
   if (p.thermostat == MpcdPlan::Thermostat::layers)

@@ -100,7 +100,9 @@ MpcdSimulation::MpcdSimulation(const scene::Scene &scene, MPI_Comm comm, bool al
       exchange_(comm), plan_(make_plan(scene, box_, slabs_.ranks())) {
   for (auto &line : describe_pipeline(scene, plan_, box_))
     stages_.push_back({std::move(line)});
-  if (plan_.colloids)
+  if (plan_.no_slip)
+    no_slip_.emplace(plan_.no_slip_params, box_, slabs_);
+  else if (plan_.colloids)
     md_.emplace(plan_.md, plan_.forces, box_, slabs_);
   if (allocate) {
     grid_ = mpcd::CellGrid(box_, slabs_.first_column(), slabs_.local_columns());
@@ -139,7 +141,9 @@ colloids::Colloids MpcdSimulation::gather_colloids() const {
   return colloids::gather_colloids(colloids_, comm_);
 }
 
-std::uint64_t MpcdSimulation::colloid_bytes_sent() const { return md_ ? md_->bytes_sent() : 0; }
+std::uint64_t MpcdSimulation::colloid_bytes_sent() const {
+  return md_ ? md_->bytes_sent() : no_slip_ ? no_slip_->bytes_sent() : 0;
+}
 
 void MpcdSimulation::migrate_to_owners() {
   // Used where nothing is binned (random solvent b): one scan for particles outside the slab.
@@ -264,11 +268,16 @@ void MpcdSimulation::step_stages() {
     migrate_to_owners(); // as after binning (colloid ghosts assume the fluid near its slab)
     restored_ = false;
   }
-  if (p.colloids) // forces now; ghost colloids; copies out the fluid that may meet a colloid
+  const auto streamer = [this](mpcd::Fluid &f, double t) { stream(f, t); };
+  if (p.no_slip) // ghost colloids; gravity; every colloid moves (with hard contacts if any)
+    no_slip_->move_colloids(fluid_, colloids_);
+  else if (p.colloids) // forces now; ghost colloids; copies out the fluid that may meet a colloid
     md_->take_near_fluid(fluid_, colloids_);
   stream(fluid_, p.dt); // every particle, the whole step (walls, body force exact)
-  if (p.colloids) {     // MD sub-steps of the colloids and those copies, which then go back
-    md_->substeps(colloids_, [this](mpcd::Fluid &f, double t) { stream(f, t); });
+  if (p.no_slip) {      // fluid that entered a colloid goes back out, the colloids recoil
+    no_slip_->bounce_back(fluid_, colloids_, streamer);
+  } else if (p.colloids) { // MD sub-steps of the colloids and those copies, which then go back
+    md_->substeps(colloids_, streamer);
     md_->put_back_near_fluid(fluid_);
     md_->check_paths(colloids_);
     md_->hand_over(colloids_); // ghosts dropped; colloids that left the slab change owner
@@ -279,11 +288,17 @@ void MpcdSimulation::step_stages() {
       migrate_to_owners();
     mpcd::draw_maxwell_velocities(fluid_, p.kT, p.seed, step);
   } else {
-    bin_into_cells();        // with slabs: particles leaving the slab migrate, arrivals are binned
+    bin_into_cells(); // with slabs: particles leaving the slab migrate, arrivals are binned
+    if (p.no_slip)    // ghost particles fill the cells the colloids cut
+      no_slip_->add_ghost_particles(fluid_, grid_, colloids_, step);
     if (p.virtual_particles) // fill the cells cut by the walls to the mean density
       walls::add_virtual_particles(grid_, p.density, p.kT, p.seed, step, p.virtual_at_noise,
                                    p.virtual_mirror);
     collide(step);
+    if (p.no_slip) { // their momentum change to the colloids; ghosts leave, colloids may too
+      no_slip_->take_back_ghost_particles(fluid_, grid_, colloids_);
+      no_slip_->hand_over(colloids_);
+    }
     thermostat(step);
     if (p.sort_every > 0 && (step + 1) % p.sort_every == 0) // locality: counting sort by cell
       mpcd::sort_by_cell(fluid_, grid_, sort_scratch_);

@@ -282,6 +282,16 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
                   "forces, migration)",
                   largest / static_cast<double>(steps));
     log.line(text);
+    if (const auto *ns = sim.no_slip();
+        ns && sim.scene().colloids->contacts == scene::ColloidContacts::hard) {
+      // Rank 0's count: every collision of a colloid it owned, and those of its ghosts.
+      std::snprintf(text, sizeof text,
+                    "colloid contacts: %llu colloid-colloid and %llu colloid-wall collisions "
+                    "resolved on rank 0 (ghosts included)",
+                    static_cast<unsigned long long>(ns->contacts().pair_collisions),
+                    static_cast<unsigned long long>(ns->contacts().wall_collisions));
+      log.line(text);
+    }
   }
   observer.finish();
   const std::string last = save_checkpoint();

@@ -1,6 +1,8 @@
 // Momentum and energy of fluid plus colloids.
 #include "narrows/engine/totals.hpp"
 
+#include "narrows/colloids/hard_spheres.hpp"
+
 #include "narrows/analysis/fluid_observables.hpp"
 
 namespace narrows::engine {
@@ -38,6 +40,12 @@ double total_energy(MpcdSimulation &sim) {
   for (int k = 0; k < c.dim; ++k)
     for (std::size_t a = 0; a < c.size(); ++a)
       e += 0.5 * c.mass[a] * c.v[k][a] * c.v[k][a];
+  if (sim.md() == nullptr) { // no-slip colloids: no potentials, but they spin
+    for (std::size_t a = 0; a < c.size(); ++a)
+      for (int k = 0; k < 3; ++k)
+        e += 0.5 * colloids::moment_of_inertia(c, a) * c.omega[k][a] * c.omega[k][a];
+    return e;
+  }
   return e + sim.md()->potential_energy(f, sim.colloids()).total();
 }
 

@@ -83,6 +83,10 @@ TrajectoryWriter::TrajectoryWriter(const std::string &h5_path, const std::string
     const h5::Group group =
         species("colloids", colloids->id, colloid_step_, colloid_time_, colloid_value_);
     h5::write_dataset<double>(group.get(), "radius", colloids->radius, path_);
+    const h5::Group g = h5::create_group(group.get(), "angular_velocity", path_);
+    spin_step_ = h5::create_series(g.get(), "step", H5T_STD_I64LE, {}, path_);
+    spin_time_ = h5::create_series(g.get(), "time", H5T_IEEE_F64LE, {}, path_);
+    spin_value_ = h5::create_series(g.get(), "value", H5T_IEEE_F64LE, {colloid_rows_, 3}, path_);
   }
   h5::flush(file_, path_);
 }
@@ -112,6 +116,15 @@ void TrajectoryWriter::write_colloid_frame(std::int64_t step, double time,
     h5::write_row(colloid_value_[f], frame, H5T_NATIVE_DOUBLE, shape, data[f], path_,
                   prefix + "value");
   }
+  position_.assign(colloid_rows_ * 3, 0.0); // the angular velocity, all three components
+  for (std::size_t a = 0; a < colloid_rows_; ++a)
+    for (int k = 0; k < 3; ++k)
+      position_[a * 3 + k] = c.omega[k][a];
+  const std::string prefix = "/particles/colloids/angular_velocity/";
+  h5::write_row(spin_step_, frame, H5T_NATIVE_INT64, {}, &step, path_, prefix + "step");
+  h5::write_row(spin_time_, frame, H5T_NATIVE_DOUBLE, {}, &time, path_, prefix + "time");
+  h5::write_row(spin_value_, frame, H5T_NATIVE_DOUBLE, {colloid_rows_, 3}, position_.data(), path_,
+                prefix + "value");
 }
 
 void TrajectoryWriter::write_frame(std::int64_t step, double time, const mpcd::Fluid &fluid,

@@ -59,8 +59,8 @@ const std::vector<Section> &schema() {
       {"thermostat", {"kind", "gamma"}},
       {"colloids",
        {"radius", "radius_sd", "mass", "count", "placement", "positions", "positions_file",
-        "gravity", "md_substeps", "epsilon", "wall_sigma", "wall_q", "kind", "max_lag",
-        "correlation_every", "kde_width", "statistics_from"}},
+        "gravity", "md_substeps", "epsilon", "wall_sigma", "wall_q", "coupling", "contacts", "kind",
+        "max_lag", "correlation_every", "kde_width", "statistics_from"}},
       {"kmc",
        {"length", "boundary", "rates", "left", "right", "initial", "time", "warmup", "replicas",
         "charge", "samples", "preset", "parameters", "fugacity", "boundary_rates",
@@ -934,6 +934,27 @@ std::optional<Colloids> parse_colloids(const Ctx &c, const value *sec, const Dom
       out.radius_sd > 0.0
           ? " (the largest radius, radius + 3 radius_sd = " + float_text(r_max) + ")"
           : "";
+  if (const value *v = find(sec, "coupling"))
+    out.coupling = static_cast<ColloidCoupling>(
+        as_choice(c, *v, "colloids.coupling", "a known coupling", {"md", "no-slip"}));
+  const bool no_slip = out.coupling == ColloidCoupling::no_slip;
+  if (const value *v = find(sec, "contacts")) {
+    if (v->is_string() && v->as_string() == "spring")
+      c.fail("colloids.contacts", "colloids.contacts = \"spring\" (linear springs with Coulomb "
+                                  "friction) is not built yet; allowed: \"none\" or \"hard\"");
+    out.contacts = static_cast<ColloidContacts>(
+        as_choice(c, *v, "colloids.contacts", "a known contact model", {"none", "hard"}));
+    if (out.contacts == ColloidContacts::hard && !no_slip)
+      c.fail("colloids.contacts",
+             "colloids.contacts = \"hard\" resolves contacts of no-slip colloids; allowed with "
+             "coupling = \"md\": \"none\" (the 48-24 potential keeps MD colloids apart)");
+  }
+  if (no_slip) // these set the MD potentials, which no-slip colloids do not have
+    for (const char *key : {"md_substeps", "epsilon", "wall_sigma", "wall_q"})
+      if (const value *v = find(sec, key))
+        c.fail(std::string("colloids.") + key,
+               std::string("colloids.") + key + " = " + repr(*v) +
+                   " sets the MD coupling; allowed only with coupling = \"md\"");
   if (const value *v = find(sec, "mass"))
     out.mass =
         as_number(c, *v, "colloids.mass",
@@ -960,7 +981,7 @@ std::optional<Colloids> parse_colloids(const Ctx &c, const value *sec, const Dom
                   "a number > 0 whose cut-off 1.0631 wall_sigma is below half the channel width (" +
                       float_text(half_width) + ")",
                   [&](double x) { return x > 0.0 && 1.0631 * x < half_width; });
-  } else if (walls && 1.0631 * out.wall_sigma_of(r_max) >= half_width) {
+  } else if (walls && !no_slip && 1.0631 * out.wall_sigma_of(r_max) >= half_width) {
     c.fail(
         "colloids.wall_sigma",
         std::string("colloids.wall_sigma defaults to ") +
@@ -1128,6 +1149,62 @@ std::optional<Colloids> parse_colloids(const Ctx &c, const value *sec, const Dom
                 : "colloids.kind: the " + std::to_string(out.count) + " colloids of all kinds") +
                " fill more than 90 % of the box; allowed: fewer or smaller colloids");
   return out;
+}
+
+// No-slip colloids need the cells of a collision rule (their ghost particles take part in it);
+// with walls or more than one colloid they need contacts that keep them apart and off the
+// walls (the bounce-back assumes a surface point lies in the fluid).
+void check_no_slip(const Ctx &c, const Scene &s) {
+  const auto &col = *s.colloids;
+  const auto rule = s.fluid.collision;
+  if (rule != Collision::srd && rule != Collision::at && rule != Collision::at_a)
+    c.fail("colloids.coupling", std::string("colloids.coupling = \"no-slip\" with "
+                                            "fluid.collision = \"") +
+                                    to_string(rule) +
+                                    "\"; allowed with srd, at or at+a (the ghost particles "
+                                    "inside the colloids take part in the cell collision)");
+  if (s.fluid.density > 255.0)
+    c.fail("colloids.coupling",
+           "colloids.coupling = \"no-slip\" with fluid.density = " + float_text(s.fluid.density) +
+               "; allowed: a density up to 255 (ghost particles per cell)");
+  // The impulses of one step change a colloid's spin explicitly: a particle bounced at the
+  // surface takes 2 (U + Omega x r - v), so K hits per step turn Omega by a factor
+  // 1 - f, f = 4 K / M (2D, I = M R^2 / 2) or 10 K / (3 M) (3D, I = 2 M R^2 / 5, tangential
+  // share 2/3), with K = n S sqrt(kT / 2 pi) dt the particles that cross the surface S in a
+  // step. Runs with f near 1 grew without bound (2D r 1 dt 0.3: f 0.96; 3D r 2 dt 0.5: f 1.0),
+  // f <= 0.67 stayed stable (tests/cli/no_slip_scenes.sh): half of that is allowed.
+  // With several kinds, each kind's radius and mass.
+  std::vector<std::pair<double, double>> sizes; // (radius, mass) of the smallest of each kind
+  const int d = s.run.dimensions;
+  if (col.kinds.empty()) {
+    const double r_min = col.radius - 3.0 * col.radius_sd;
+    sizes.emplace_back(r_min, col.mass_of(d, s.fluid.density, r_min));
+  }
+  std::uint64_t first_id = 0;
+  for (const auto &kind : col.kinds) {
+    sizes.emplace_back(kind.radius, col.mass_of_id(d, s.fluid.density, first_id, kind.radius));
+    first_id += static_cast<std::uint64_t>(kind.count);
+  }
+  for (const auto &[r_min, mass] : sizes) {
+    const double pi = 3.14159265358979;
+    const double surface = d == 2 ? 2.0 * pi * r_min : 4.0 * pi * r_min * r_min;
+    const double hits = s.fluid.density * surface * std::sqrt(s.fluid.kT / (2.0 * pi)) * s.fluid.dt;
+    const double f = (d == 2 ? 4.0 : 10.0 / 3.0) * hits / mass;
+    if (f > 0.5)
+      c.fail("colloids.coupling",
+             "colloids.coupling = \"no-slip\": the bounce-back of one step would change the "
+             "spin of the smallest colloid (r " +
+                 float_text(r_min) + ", M " + float_text(mass) +
+                 ") by a factor f = " + float_text(f) +
+                 " (explicit coupling, unstable near 1); allowed: f <= 0.5, i.e. a smaller "
+                 "fluid.dt, larger or heavier colloids");
+  }
+  if (col.contacts == ColloidContacts::none && (s.walls || col.count > 1))
+    c.fail("colloids.contacts",
+           std::string("no-slip colloids with contacts = \"none\" and ") +
+               (s.walls ? "[walls]" : "colloids.count = " + std::to_string(col.count)) +
+               " could overlap each other or a wall; allowed: contacts = \"hard\", or one "
+               "colloid in a periodic box");
 }
 
 std::optional<Thermostat> parse_thermostat(const Ctx &c, const value *sec, Collision rule) {
@@ -1455,6 +1532,8 @@ Scene parse_scene(const std::string &text, const std::string &file,
     s.colloids = parse_colloids(c, section(c, root, "colloids"), s.domain, s.run.dimensions,
                                 s.walls.has_value());
     s.thermostat = parse_thermostat(c, section(c, root, "thermostat"), s.fluid.collision);
+    if (s.colloids && s.colloids->coupling == ColloidCoupling::no_slip)
+      check_no_slip(c, s);
   }
   parse_output(c, section(c, root, "output"), s.run.engine, s.output);
   const auto &obs = s.output.observables;

@@ -53,6 +53,7 @@ struct Case {
   bool colloids = false;   // MD-coupled colloids with gravity (walls: also the wall potential)
   bool thermostat = false; // 2D: per-layer rescaling thermostat, 3D: Monte Carlo
   double radius_sd = 0.0;  // colloid radii from a Gaussian of this standard deviation
+  bool no_slip = false;    // colloids: no-slip coupling with hard contacts instead of MD
 };
 
 class Bitwise : public ::testing::TestWithParam<Case> {};
@@ -88,6 +89,16 @@ TEST_P(Bitwise, RanksEqualOneRank) {
     col.gravity = {0.008, 0.001, 0.0005};
     col.md_substeps = 50; // tau_MD = 0.01 (at 0.1 a fast fluid particle runs deep into a colloid)
     col.radius_sd = c.radius_sd;
+    if (c.no_slip) { // bounce-back, ghost particles, rough hard-sphere contacts
+      col.coupling = scene::ColloidCoupling::no_slip;
+      col.contacts = scene::ColloidContacts::hard;
+      col.count = c.dim == 2 ? 6 : 4; // more of them: contacts across the slab edges
+      s.fluid.dt = 0.1; // the explicit coupling's stability bound (docs/scenes.md: f <= 0.5)
+      // With walls they settle onto the lower wall and the flow pushes them along it; in the
+      // Kolmogorov flow they go both ways with the fluid.
+      col.gravity =
+          c.walls ? std::array<double, 3>{0.0, -0.02, 0.0} : std::array<double, 3>{0.0, 0.0, 0.0};
+    }
     s.colloids = col;
   }
   // 2000 steps in CI on 2 ranks (~4 s), 500 on 3 and 4 (oversubscribed on 2 cores); longer by
@@ -95,7 +106,8 @@ TEST_P(Bitwise, RanksEqualOneRank) {
   const char *env = std::getenv("NARROWS_BITWISE_STEPS");
   // (colloid cases: 1000 steps of 50 MD sub-steps, 2-6 s each; 250 on 3 and 4 ranks)
   const int quarter = world_size() > 2 ? 4 : 1;
-  const int steps = env ? std::atoi(env) : (c.colloids ? 1000 : 2000) / quarter;
+  // (no-slip cases: 1000 steps on any number of ranks, 1-3 s: enough contacts to compare)
+  const int steps = env ? std::atoi(env) : c.no_slip ? 1000 : (c.colloids ? 1000 : 2000) / quarter;
   engine::MpcdSimulation par(s, MPI_COMM_WORLD);
   // Colloid cases must move colloids from slab to slab, else the comparison is empty for them;
   // the moves are counted both ways (to the right and to the left neighbour's slab).
@@ -124,6 +136,12 @@ TEST_P(Bitwise, RanksEqualOneRank) {
     EXPECT_GT(moves_right + moves_left, 0)
         << "no colloid crossed a slab edge in " << steps << " steps";
     std::printf("colloid slab changes: %d to the right, %d to the left\n", moves_right, moves_left);
+    if (const auto *ns = par.no_slip()) { // contacts this rank resolved, ghosts included
+      std::printf("rank %d: %llu colloid-colloid and %llu colloid-wall collisions\n", world_rank(),
+                  static_cast<unsigned long long>(ns->contacts().pair_collisions),
+                  static_cast<unsigned long long>(ns->contacts().wall_collisions));
+      EXPECT_GT(ns->contacts().pair_collisions, 0u) << "no contact to compare";
+    }
   }
   EXPECT_EQ(misplaced, 0u) << "colloids held by a rank whose slab does not hold their centre";
   const auto total = engine::particle_count(s);
@@ -145,6 +163,9 @@ TEST_P(Bitwise, RanksEqualOneRank) {
     for (std::size_t a = 0; a < ca.size(); ++a)
       colloid_differ += std::memcmp(&ca.x[k][a], &cb.x[k][a], sizeof(double)) != 0 ||
                         std::memcmp(&ca.v[k][a], &cb.v[k][a], sizeof(double)) != 0;
+  for (int k = 0; k < 3; ++k) // angular velocities (no-slip colloids spin)
+    for (std::size_t a = 0; a < ca.size(); ++a)
+      colloid_differ += std::memcmp(&ca.omega[k][a], &cb.omega[k][a], sizeof(double)) != 0;
   for (std::size_t a = 0; a < ca.size(); ++a) // radii and masses (drawn from the seed)
     colloid_differ += std::memcmp(&ca.radius[a], &cb.radius[a], sizeof(double)) != 0 ||
                       std::memcmp(&ca.mass[a], &cb.mass[a], sizeof(double)) != 0;
@@ -181,5 +202,12 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"srd2d_colloids_radius_sd", 2, scene::Collision::srd, false, false, false, true, false,
              0.4},
         Case{"srd3d_walls_colloids_radius_sd", 3, scene::Collision::srd, false, true, false, true,
-             false, 0.1}),
+             false, 0.1},
+        // no-slip colloids with hard contacts (seed 001 §4.2.1-4.2.2)
+        Case{"at_a2d_walls_noslip_hard", 2, scene::Collision::at_a, false, true, false, true, false,
+             0.3, true},
+        Case{"srd3d_sine_noslip_hard", 3, scene::Collision::srd, true, false, false, true, false,
+             0.0, true},
+        Case{"at2d_sine_noslip_hard", 2, scene::Collision::at, true, false, false, true, false, 0.0,
+             true}),
     [](const auto &info) { return std::string(info.param.name); });

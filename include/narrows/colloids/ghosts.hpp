@@ -45,6 +45,16 @@ public:
   void add_for_step(Colloids &c, std::vector<double> &margin, double fluid_reach);
   // The ghosts' positions from their owners again (after the owners moved them; collective).
   void refresh_positions(Colloids &c);
+  // The ghosts' velocities and angular velocities from their owners again (collective).
+  void refresh_motion(Colloids &c);
+  // Appends the ghosts for a whole step with this rank's region widened by `more` beyond what
+  // add_for_step takes (room for chains of contacts; collective).
+  void add_for_step(Colloids &c, std::vector<double> &margin, double fluid_reach, double more);
+  // One flag per row of c: owned rows, and ghosts whose centre lies within extent() - depth of
+  // this rank's slab (their partners within `depth` are all here).
+  void trusted_rows(const Colloids &c, double depth, std::vector<std::uint8_t> &flags) const;
+  // e_r of this rank's region since the last add (0 on one rank: the region is the box).
+  double extent() const { return active() ? extent_[slabs_.rank()] : 0.0; }
   // Adds the per-row values of the ghost rows ([row * k + j]) to their owners' rows on the
   // owning ranks, and zeroes the ghost rows (collective).
   void reverse(std::vector<std::int64_t> &per_row, int k);
@@ -74,6 +84,7 @@ private:
   parallel::Halo halo_;        // where each ghost row came from
   std::vector<std::int64_t> ghost_values_;
   std::vector<std::vector<double> *> positions_; // the fields refresh_positions() sends
+  std::vector<std::vector<double> *> motion_;    // the fields refresh_motion() sends
 };
 
 } // namespace narrows::colloids

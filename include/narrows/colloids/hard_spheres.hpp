@@ -9,15 +9,14 @@
 // Disks (2D, moment of inertia M R^2 / 2, spin omega[2]) and spheres (3D, 2 M R^2 / 5). Periodic
 // axes use the minimum image; a colloid must not travel more than a few radii in one call.
 //
-// Not yet part of the MPCD step: issue 20 adds `[colloids] contacts = "hard"`, which replaces
-// the velocity-Verlet sub-steps (md_integrator.hpp) by advance_hard_spheres(), with colloids
-// owned by slabs and ghosts (ghosts.hpp) for collisions across a slab edge.
+// The no-slip coupling (no_slip.hpp) moves colloids with it when `[colloids] contacts = "hard"`.
 #pragma once
 
 #include "narrows/colloids/colloids.hpp"
 #include "narrows/mpcd/fluid.hpp"
 
 #include <cstdint>
+#include <vector>
 
 namespace narrows::colloids {
 
@@ -38,8 +37,13 @@ struct HardSphereStats {
 
 // Moves every colloid of c ballistically over time dt, resolving each collision exactly in
 // time order (no overlap is ever created). Positions along periodic axes end wrapped into the
-// box. Returns the counts of events.
-HardSphereStats advance_hard_spheres(Colloids &c, const mpcd::Box &box, double dt);
+// box. Returns the counts of events. Each colloid keeps its own time, so its path depends only
+// on the collisions it takes part in, and ties go by id: a colloid's path is the same whichever
+// other colloids are present, as long as those it meets (directly or through others) are.
+// `trusted` (optional, one flag per row): a collision between a trusted and an untrusted row
+// makes both untrusted (a ghost near the edge of a rank's region may have missed a partner).
+HardSphereStats advance_hard_spheres(Colloids &c, const mpcd::Box &box, double dt,
+                                     std::vector<std::uint8_t> *trusted = nullptr);
 
 // Kinetic energy of translation and rotation of all colloids of c.
 double kinetic_energy(const Colloids &c);

@@ -31,6 +31,8 @@ enum class Purpose : std::uint32_t {
   lgca_force = 18,          // step = lattice step, id = row * blocks + x / 8: 8 16-bit uniforms
   lgca_colloid = 19,        // step = lattice step, id = boundary link: Ladd-Frenkel transmission
   colloid_radius = 20,      // step = attempt, id = colloid id: radius from a truncated Gaussian
+  ghost_position = 21,      // id = colloid id << 40 | global cell << 8 | try: ghost particle place
+  ghost_velocity = 22,      // the same id: its Maxwell-Boltzmann velocity
   dhumieres_collision = 40, // id = site: outcome of a 1D d'Humieres collision
   lgca_initial = 41,        // step = draw round (attempt), id = link or site: initial occupations
 };

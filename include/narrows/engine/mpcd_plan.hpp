@@ -5,6 +5,7 @@
 
 #include "narrows/colloids/forces.hpp"
 #include "narrows/colloids/md_integrator.hpp"
+#include "narrows/colloids/no_slip.hpp"
 #include "narrows/mpcd/fluid.hpp"
 #include "narrows/scene/scene.hpp"
 
@@ -28,8 +29,10 @@ struct MpcdPlan {
   double sine_amplitude = 0.0;
   bool slip = false;
 
-  // Colloids: MD sub-steps within each step.
+  // Colloids: MD sub-steps within each step, or (no_slip) bounce-back and ghost particles.
   bool colloids = false;
+  bool no_slip = false;
+  colloids::NoSlipParams no_slip_params;
   colloids::MdParams md;
   colloids::ForceParams forces;
 

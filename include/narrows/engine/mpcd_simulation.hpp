@@ -4,6 +4,7 @@
 
 #include "narrows/colloids/colloids.hpp"
 #include "narrows/colloids/md_integrator.hpp"
+#include "narrows/colloids/no_slip.hpp"
 #include "narrows/engine/mpcd_plan.hpp"
 #include "narrows/mpcd/cell_grid.hpp"
 #include "narrows/mpcd/cell_sort.hpp"
@@ -68,6 +69,8 @@ public:
   std::uint64_t colloid_bytes_sent() const;
   // The MD integrator with [colloids] (nullptr without).
   colloids::MdIntegrator *md() { return md_ ? &*md_ : nullptr; }
+  // The no-slip coupling with coupling = "no-slip" (nullptr without).
+  const colloids::NoSlipCoupling *no_slip() const { return no_slip_ ? &*no_slip_ : nullptr; }
   const MpcdPlan &plan() const { return plan_; }
   const mpcd::CellGrid &grid() const { return grid_; }
   MPI_Comm comm() const { return comm_; }
@@ -95,6 +98,7 @@ private:
   mpcd::Fluid fluid_;
   colloids::Colloids colloids_;
   std::optional<colloids::MdIntegrator> md_;
+  std::optional<colloids::NoSlipCoupling> no_slip_;
   mpcd::CellGrid grid_;
   mpcd::CollisionScratch collision_scratch_;
   mpcd::SortScratch sort_scratch_;

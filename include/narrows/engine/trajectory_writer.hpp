@@ -9,7 +9,8 @@
 //   /particles/fluid/velocity/{value [T][M][d], step [T], time [T]}
 //   /particles/fluid/id                 [M]: row j holds the particle with id j * subsample
 //   /particles/colloids/...             with colloids: every colloid, the same box, position and
-//                                       velocity series, id [N_c] and radius [N_c]
+//                                       velocity series, id [N_c] and radius [N_c], and
+//                                       angular_velocity/{value [T][N_c][3], step, time}
 //   /parameters/{scene, subsample}
 // Rows are ordered by id, so a row is the same particle in every frame, on any rank count.
 // The XDMF has a temporal grid per species (colloids with their radius, for glyphs).
@@ -57,6 +58,7 @@ private:
   io::h5::Dataset step_[2], time_[2], value_[2]; // position, velocity
   std::size_t colloid_rows_ = 0;                 // 0: no colloid species
   io::h5::Dataset colloid_step_[2], colloid_time_[2], colloid_value_[2];
+  io::h5::Dataset spin_step_, spin_time_, spin_value_; // colloids' angular velocity [T][N_c][3]
   std::vector<double> frame_times_;
   std::vector<std::uint64_t> send_rows_, recv_rows_;
   std::vector<double> send_values_, recv_values_, position_, velocity_;

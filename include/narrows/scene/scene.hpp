@@ -59,6 +59,12 @@ struct Walls {
 // 000 (an acceleration: the force on a colloid is its mass times g, eq 4.4 without buoyancy, as the
 // fluid feels no gravity).
 enum class ColloidPlacement { lattice, list, random };
+// How colloids meet the fluid: "md" (seed 000 §3.4: WCA forces, velocity-Verlet sub-steps, slip)
+// or "no-slip" (seed 001 §4.2.1: bounce-back at the surface with the rigid-body velocity, ghost
+// particles inside in the collision; colloids rotate). Contacts between colloids and with the
+// walls: "none" or "hard" (event-driven rough hard spheres, seed 001 §4.2.2).
+enum class ColloidCoupling { md, no_slip };
+enum class ColloidContacts { none, hard };
 
 // One kind of colloid of a [[colloids.kind]] table: `count` colloids of one radius and mass
 // (mass 0: fluid mass density times the volume).
@@ -74,7 +80,9 @@ struct Colloids {
   double mass = 0.0;      // 0: pi r^2 n (2D) or (4/3) pi r^3 n (3D), n = fluid.density
   std::int64_t count = 0;
   ColloidPlacement placement = ColloidPlacement::lattice; // lattice: a row along x, centred
-  std::vector<std::array<double, 3>> positions;           // placement "list"
+  ColloidCoupling coupling = ColloidCoupling::md;
+  ColloidContacts contacts = ColloidContacts::none;
+  std::vector<std::array<double, 3>> positions; // placement "list"
   // Where each position was given, for messages: "colloids.positions[3]" or
   // "colloids.positions_file (path:line)"; empty: "colloids.positions[i]".
   std::vector<std::string> position_keys;

@@ -1,0 +1,106 @@
+// No-slip colloids in the MPCD fluid (seed 001 §4.2.1): rigid disks (2D) and spheres (3D) that
+// move by their own velocity U and spin Omega, bounce fluid particles back at their surface
+// with the rigid-body velocity there, and fill the cells they cut with ghost particles that
+// take part in the collision. Every momentum and angular momentum the fluid loses goes to the
+// colloids (summed in fixed point, so the result does not depend on the order of particles or
+// on the number of ranks). The MPCD step calls, in order:
+//   move_colloids          ghosts for the step; gravity kick U += g dt; every colloid moves
+//                          U dt (contacts = "none") or by event-driven rough hard spheres
+//                          (contacts = "hard", hard_spheres.hpp)
+//   (the engine streams all fluid the whole step with the kernel its plan chose)
+//   bounce_back            every fluid particle that ended inside a colloid: back half the
+//                          interval, onto the surface, v' = 2 (U + Omega x r) - v (eq 4.15),
+//                          forward half the interval; again with halved intervals while it
+//                          ends inside one (Padding et al.); the impulses go to the colloids
+//                          (eq 4.16-4.17 with the sign that conserves momentum)
+//   (the engine shifts the grid and bins the fluid)
+//   add_ghost_particles    in each cell cut by a colloid's surface, at the fluid density, at
+//                          random points inside the colloid, velocity U + Omega x r + a
+//                          Maxwell-Boltzmann draw at kT (eq 4.18), binned into the grid
+//   (the engine collides)
+//   take_back_ghost_particles  their momentum and angular momentum change to the colloids;
+//                          they leave the fluid arrays and the cell sums
+//   hand_over              ghost colloids go; colloids that left the slab change owner
+// All calls are collective over the slabs' communicator.
+#pragma once
+
+#include "narrows/colloids/colloid_lookup.hpp"
+#include "narrows/colloids/colloids.hpp"
+#include "narrows/colloids/ghosts.hpp"
+#include "narrows/colloids/hard_spheres.hpp"
+#include "narrows/colloids/md_integrator.hpp"
+#include "narrows/mpcd/cell_grid.hpp"
+#include "narrows/mpcd/fluid.hpp"
+#include "narrows/parallel/exchange.hpp"
+#include "narrows/parallel/slabs.hpp"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace narrows::colloids {
+
+struct NoSlipParams {
+  double dt = 0.1, kT = 1.0, density = 10.0;
+  std::uint64_t seed = 0;
+  std::array<double, 3> gravity{0.0, 0.0, 0.0};     // acceleration of the colloids
+  std::array<double, 3> fluid_accel{0.0, 0.0, 0.0}; // constant body force on the fluid
+  double sine_amplitude = 0.0; // Kolmogorov force on the fluid, a_x = A sin(2 pi y / L_y)
+  bool hard_contacts = false;
+};
+
+// Fluid ids at or above this are ghost particles (they exist only within a step).
+inline constexpr std::uint64_t ghost_particle_id = 1ull << 63;
+
+struct BounceStats {
+  std::uint64_t particles = 0; // fluid particles bounced this step
+  int deepest = 0;             // most halvings any one needed
+};
+
+class NoSlipCoupling {
+public:
+  NoSlipCoupling(const NoSlipParams &params, const mpcd::Box &box, const parallel::Slabs &slabs);
+
+  void move_colloids(const mpcd::Fluid &fluid, Colloids &c);
+  BounceStats bounce_back(mpcd::Fluid &fluid, Colloids &c, const FluidStream &stream);
+  void add_ghost_particles(mpcd::Fluid &fluid, mpcd::CellGrid &grid, const Colloids &c,
+                           std::uint64_t step);
+  void take_back_ghost_particles(mpcd::Fluid &fluid, mpcd::CellGrid &grid, Colloids &c);
+  void hand_over(Colloids &c);
+
+  // Bytes this rank sent for colloids (ghosts, reverse sums, migration) since the start.
+  std::uint64_t bytes_sent() const { return ghosts_.bytes_sent() + migration_.bytes_sent(); }
+  // Hard-sphere collisions this rank resolved since the start (ghost rows included).
+  const HardSphereStats &contacts() const { return contacts_; }
+  // Ghost particles added in the last step on this rank.
+  std::size_t ghost_particles() const { return ghost_row_.size(); }
+
+private:
+  // Adds the impulse dp (on the colloid, at offset r from its centre) to row a's sums.
+  void add_impulse(std::size_t a, const double *r, const double *dp);
+  // Sends the ghost rows' sums to their owners, which change U and Omega; zeroes the sums;
+  // with `refresh` the ghosts get the new U and Omega.
+  void apply_impulses(Colloids &c, bool refresh);
+
+  NoSlipParams params_;
+  mpcd::Box box_;
+  int dim_;
+  parallel::Slabs slabs_;
+  ColloidGhosts ghosts_;
+  parallel::Exchange migration_;
+  ColloidLookup lookup_;
+  std::vector<double> margin_;
+  std::vector<std::int64_t> impulse_; // per row: momentum (dim) and angular momentum (1 or 3)
+  int stride_ = 3;
+  // Bounce-back scratch: the particles being bounced, their fluid rows and colloid rows.
+  mpcd::Fluid batch_;
+  std::vector<std::size_t> batch_index_;
+  std::vector<long> batch_hit_;
+  // Ghost particles of this step: first fluid row, colloid row, velocity before the collision.
+  std::size_t first_ghost_ = 0;
+  std::vector<std::uint32_t> ghost_row_;
+  std::array<std::vector<double>, 3> ghost_v0_;
+  HardSphereStats contacts_;
+};
+
+} // namespace narrows::colloids

@@ -1,0 +1,144 @@
+// Ghost particles inside no-slip colloids for the collision step (seed 001 §4.2.1, eq 4.18).
+#include "narrows/colloids/hard_spheres.hpp"
+#include "narrows/colloids/no_slip.hpp"
+#include "narrows/colloids/pair_geometry.hpp"
+#include "narrows/core/error.hpp"
+#include "narrows/core/fixed_point.hpp"
+#include "narrows/core/rng.hpp"
+#include "narrows/mpcd/streaming.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace narrows::colloids {
+
+namespace {
+
+// The key of a ghost particle's draws: colloid id, global cell, try (255: the fractional try).
+std::uint64_t ghost_key(std::uint64_t colloid, std::uint64_t cell, std::uint64_t t) {
+  return (colloid << 40) | (cell << 8) | t;
+}
+
+} // namespace
+
+void NoSlipCoupling::add_ghost_particles(mpcd::Fluid &fluid, mpcd::CellGrid &grid,
+                                         const Colloids &c, std::uint64_t step) {
+  first_ghost_ = fluid.size();
+  ghost_row_.clear();
+  const double n = params_.density, sigma = std::sqrt(params_.kT);
+  const int whole = static_cast<int>(std::floor(n));
+  const double fraction = n - whole;
+  const int NX = grid.global_columns, nx = grid.cells[0], ny = grid.cells[1], nz = grid.cells[2];
+  const bool walls = grid.walls_y;
+  const double *sh = grid.shift.data();
+  for (std::size_t a = 0; a < c.size(); ++a) {
+    const double R = c.radius[a], R2 = R * R;
+    const double X[3] = {c.x[0][a], c.x[1][a], dim_ == 3 ? c.x[2][a] : 0.0};
+    // Cells of the shifted grid that the colloid's bounding box touches, as unwrapped indices:
+    // along x and z (and y without walls) cell i covers [i + s, i + 1 + s); with walls row j
+    // covers [j - 1 + s, j + s).
+    int lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    for (int k = 0; k < dim_; ++k) {
+      const double s = sh[k];
+      lo[k] = static_cast<int>(std::floor(X[k] - R - s));
+      hi[k] = static_cast<int>(std::floor(X[k] + R - s));
+      if (k == 1 && walls) {
+        lo[k] = std::max(lo[k] + 1, 0);
+        hi[k] = std::min(hi[k] + 1, ny - 1);
+      }
+    }
+    for (int i = lo[0]; i <= hi[0]; ++i) {
+      const int column = ((i % NX) + NX) % NX;
+      const int ix = column - grid.first_column;
+      if (ix < 0 || ix >= nx)
+        continue;
+      for (int j = lo[1]; j <= hi[1]; ++j) {
+        const int row = walls ? j : ((j % ny) + ny) % ny;
+        for (int l = lo[2]; l <= hi[2]; ++l) {
+          const int layer = dim_ == 3 ? ((l % nz) + nz) % nz : 0;
+          // The cell's lower corner relative to the centre (unwrapped), and its classification:
+          // outside the colloid, wholly inside (no fluid can be there), or cut by the surface.
+          const double corner[3] = {i + sh[0] - X[0], (walls ? j - 1 : j) + sh[1] - X[1],
+                                    dim_ == 3 ? l + sh[2] - X[2] : 0.0};
+          double near2 = 0.0, far2 = 0.0;
+          for (int k = 0; k < dim_; ++k) {
+            const double q = std::clamp(0.0, corner[k], corner[k] + 1.0);
+            near2 += q * q;
+            far2 += std::max(corner[k] * corner[k], (corner[k] + 1.0) * (corner[k] + 1.0));
+          }
+          if (near2 >= R2 || far2 <= R2)
+            continue;
+          const std::size_t cell =
+              ix + static_cast<std::size_t>(nx) * (row + static_cast<std::size_t>(ny) * layer);
+          const std::uint64_t gcell = grid.global_id(cell);
+          int tries = whole;
+          if (fraction > 0.0 &&
+              rng::open01(rng::draw(params_.seed, rng::Purpose::ghost_position, step,
+                                    ghost_key(c.id[a], gcell, 255))[0]) < fraction)
+            ++tries;
+          for (int t = 0; t < tries; ++t) {
+            const std::uint64_t key = ghost_key(c.id[a], gcell, static_cast<std::uint64_t>(t));
+            const auto u = rng::draw(params_.seed, rng::Purpose::ghost_position, step, key);
+            double r[3] = {0.0, 0.0, 0.0}, r2 = 0.0;
+            for (int k = 0; k < dim_; ++k) {
+              r[k] = corner[k] + rng::open01(u[k]);
+              r2 += r[k] * r[k];
+            }
+            if (r2 >= R2)
+              continue;
+            const double y = X[1] + r[1];
+            if (walls && !(y >= 0.0 && y <= box_.length[1]))
+              continue;
+            const auto g =
+                rng::gaussian4(rng::draw(params_.seed, rng::Purpose::ghost_velocity, step, key));
+            const double w[3] = {c.omega[0][a], c.omega[1][a], c.omega[2][a]};
+            const double rigid[3] = {c.v[0][a] + w[1] * r[2] - w[2] * r[1],
+                                     c.v[1][a] + w[2] * r[0] - w[0] * r[2],
+                                     (dim_ == 3 ? c.v[2][a] : 0.0) + w[0] * r[1] - w[1] * r[0]};
+            const std::size_t row_index = fluid.size();
+            fluid.resize(row_index + 1);
+            // The position from the cell's own corner, so that binning finds this cell.
+            const double origin[3] = {column + sh[0], (walls ? j - 1 : row) + sh[1],
+                                      dim_ == 3 ? layer + sh[2] : 0.0};
+            for (int k = 0; k < dim_; ++k) {
+              double x = origin[k] + rng::open01(u[k]);
+              if (!(k == 1 && walls))
+                x = mpcd::wrap_periodic(x, box_.length[k]);
+              fluid.x[k][row_index] = x;
+              fluid.v[k][row_index] = rigid[k] + sigma * g[k];
+            }
+            fluid.id[row_index] = ghost_particle_id | key;
+            ghost_row_.push_back(static_cast<std::uint32_t>(a));
+          }
+        }
+      }
+    }
+  }
+  for (int k = 0; k < dim_; ++k)
+    ghost_v0_[k].assign(fluid.v[k].begin() + static_cast<std::ptrdiff_t>(first_ghost_),
+                        fluid.v[k].end());
+  mpcd::bin_more_particles(fluid, grid, first_ghost_);
+}
+
+void NoSlipCoupling::take_back_ghost_particles(mpcd::Fluid &fluid, mpcd::CellGrid &grid,
+                                               Colloids &c) {
+  const std::size_t m = ghost_row_.size();
+  for (std::size_t g = 0; g < m; ++g) {
+    const std::size_t i = first_ghost_ + g, a = ghost_row_[g];
+    double dp[3] = {0.0, 0.0, 0.0}, r[3] = {0.0, 0.0, 0.0};
+    mpcd::CellSums &sum = grid.sums[fluid.cell[i]];
+    sum.n -= 1; // out of the cell sums again, exactly as binning put it in
+    for (int k = 0; k < dim_; ++k) {
+      dp[k] = fluid.v[k][i] - ghost_v0_[k][g];
+      sum.p[k] -= fixed::from_double(ghost_v0_[k][g]);
+      r[k] = fluid.x[k][i] - c.x[k][a];
+      if (!(k == 1 && box_.walls_y))
+        r[k] = minimum_image(r[k], box_.length[k]);
+    }
+    add_impulse(a, r, dp);
+  }
+  fluid.resize(first_ghost_);
+  apply_impulses(c, false);
+}
+
+} // namespace narrows::colloids

@@ -1,0 +1,152 @@
+// No-slip colloids: their motion over a step, the impulses they collect, the hand-over.
+#include "narrows/colloids/no_slip.hpp"
+
+#include "narrows/colloids/hard_spheres.hpp"
+#include "narrows/colloids/near_fluid.hpp"
+#include "narrows/colloids/ownership.hpp"
+#include "narrows/colloids/pair_geometry.hpp"
+#include "narrows/core/error.hpp"
+#include "narrows/core/fixed_point.hpp"
+#include "narrows/mpcd/streaming.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace narrows::colloids {
+
+namespace {
+
+// Added to each colloid's path over a step when choosing ghost colloids (hard contacts change
+// velocities within the step).
+constexpr double path_allowance = 0.25;
+
+} // namespace
+
+NoSlipCoupling::NoSlipCoupling(const NoSlipParams &params, const mpcd::Box &box,
+                               const parallel::Slabs &slabs)
+    : params_(params), box_(box), dim_(box.dim), slabs_(slabs), ghosts_(slabs, box),
+      migration_(slabs.comm()), stride_(box.dim == 2 ? 3 : 6) {}
+
+void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c) {
+  const double dt = params_.dt;
+  const std::size_t owned = c.size();
+  for (std::size_t a = 0; a < owned; ++a) // gravity: a kick of the whole step
+    for (int k = 0; k < dim_; ++k)
+      c.v[k][a] += params_.gravity[k] * dt;
+  // Each colloid's path this step: its speed, or with hard contacts up to twice the fastest
+  // speed more (a collision can pass on the speed of the partner).
+  double fastest = 0.0, v_max = 0.0;
+  margin_.resize(owned);
+  for (std::size_t a = 0; a < owned; ++a) {
+    double v2 = 0.0;
+    for (int k = 0; k < dim_; ++k)
+      v2 += c.v[k][a] * c.v[k][a];
+    margin_[a] = std::sqrt(v2);
+    fastest = std::max(fastest, margin_[a]);
+  }
+  MPI_Allreduce(&fastest, &v_max, 1, MPI_DOUBLE, MPI_MAX, slabs_.comm());
+  for (std::size_t a = 0; a < owned; ++a)
+    margin_[a] = params_.hard_contacts ? (margin_[a] + 2.0 * v_max) * dt + path_allowance
+                                       : margin_[a] * dt * (1.0 + 1e-12) + 1e-12;
+  const double r_max = ghosts_.largest_radius(c);
+  const double reach = fluid_reach(fluid, dt,
+                                   std::sqrt(params_.fluid_accel[0] * params_.fluid_accel[0] +
+                                             params_.fluid_accel[1] * params_.fluid_accel[1] +
+                                             params_.fluid_accel[2] * params_.fluid_accel[2]) +
+                                       std::abs(params_.sine_amplitude));
+  // With contacts the region reaches two collision distances further, so that the ghosts an
+  // owned colloid can meet, and theirs, are all here (trusted_rows; a longer chain is refused).
+  double m_max = 0.0, m_own = 0.0;
+  for (std::size_t a = 0; a < owned; ++a)
+    m_own = std::max(m_own, margin_[a]);
+  MPI_Allreduce(&m_own, &m_max, 1, MPI_DOUBLE, MPI_MAX, slabs_.comm());
+  const double contact = 2.0 * r_max + 2.0 * m_max;
+  ghosts_.add_for_step(c, margin_, reach, params_.hard_contacts ? 2.0 * contact : 0.0);
+  std::array<std::vector<double>, 3> start;
+  for (int k = 0; k < dim_; ++k)
+    start[k].assign(c.x[k].begin(), c.x[k].begin() + static_cast<std::ptrdiff_t>(owned));
+  if (params_.hard_contacts) {
+    std::vector<std::uint8_t> trusted;
+    ghosts_.trusted_rows(c, contact, trusted);
+    const HardSphereStats e = advance_hard_spheres(c, box_, dt, &trusted);
+    contacts_.pair_collisions += e.pair_collisions;
+    contacts_.wall_collisions += e.wall_collisions;
+    for (std::size_t a = 0; a < owned; ++a)
+      if (!trusted[a]) {
+        std::ostringstream os;
+        os << "colloid id " << c.id[a]
+           << " took part in a chain of contacts reaching beyond the ghost colloids of this "
+              "rank within one step (allowed: fewer ranks, or a smaller fluid.dt)";
+        throw invariant_error(os.str());
+      }
+    ghosts_.refresh_positions(c); // the owners' paths (a ghost may have missed a partner)
+    ghosts_.refresh_motion(c);
+  } else {
+    for (std::size_t a = 0; a < c.size(); ++a) // owned and ghost rows alike: the same bits
+      for (int k = 0; k < dim_; ++k) {
+        double x = c.x[k][a] + c.v[k][a] * dt;
+        if (!(k == 1 && box_.walls_y))
+          x = mpcd::wrap_periodic(x, box_.length[k]);
+        c.x[k][a] = x;
+      }
+  }
+  for (std::size_t a = 0; a < owned; ++a) {
+    double d2 = 0.0;
+    for (int k = 0; k < dim_; ++k) {
+      double d = c.x[k][a] - start[k][a];
+      if (!(k == 1 && box_.walls_y))
+        d = minimum_image(d, box_.length[k]);
+      d2 += d * d;
+    }
+    if (std::sqrt(d2) > margin_[a]) {
+      std::ostringstream os;
+      os << "colloid id " << c.id[a] << " moved " << std::sqrt(d2) << " in one step, more than "
+         << margin_[a]
+         << " its speed and those of the others allowed (allowed: a smaller fluid.dt)";
+      throw invariant_error(os.str());
+    }
+  }
+  lookup_.build(c, box_, slabs_.first_column(), slabs_.local_columns(), ghosts_.extent());
+  impulse_.assign(c.size() * static_cast<std::size_t>(stride_), 0);
+}
+
+void NoSlipCoupling::add_impulse(std::size_t a, const double *r, const double *dp) {
+  std::int64_t *s = &impulse_[a * static_cast<std::size_t>(stride_)];
+  for (int k = 0; k < dim_; ++k)
+    s[k] += fixed::from_double(dp[k]);
+  if (dim_ == 2) {
+    s[2] += fixed::from_double(r[0] * dp[1] - r[1] * dp[0]);
+  } else {
+    s[3] += fixed::from_double(r[1] * dp[2] - r[2] * dp[1]);
+    s[4] += fixed::from_double(r[2] * dp[0] - r[0] * dp[2]);
+    s[5] += fixed::from_double(r[0] * dp[1] - r[1] * dp[0]);
+  }
+}
+
+void NoSlipCoupling::apply_impulses(Colloids &c, bool refresh) {
+  ghosts_.reverse(impulse_, stride_);
+  for (std::size_t a = 0; a < ghosts_.owned(); ++a) {
+    const std::int64_t *s = &impulse_[a * static_cast<std::size_t>(stride_)];
+    const double m = c.mass[a];
+    const double inertia = moment_of_inertia(c, a);
+    for (int k = 0; k < dim_; ++k)
+      c.v[k][a] += fixed::to_double(s[k]) / m;
+    if (dim_ == 2)
+      c.omega[2][a] += fixed::to_double(s[2]) / inertia;
+    else
+      for (int k = 0; k < 3; ++k)
+        c.omega[k][a] += fixed::to_double(s[3 + k]) / inertia;
+  }
+  std::fill(impulse_.begin(), impulse_.end(), 0);
+  if (refresh)
+    ghosts_.refresh_motion(c);
+}
+
+void NoSlipCoupling::hand_over(Colloids &c) {
+  ghosts_.remove(c, &margin_);
+  if (ghosts_.active())
+    migrate_colloids(c, slabs_, migration_);
+}
+
+} // namespace narrows::colloids

@@ -1,0 +1,163 @@
+// Bounce-back of fluid particles at the surfaces of no-slip colloids (seed 001 §4.2.1).
+#include "narrows/colloids/no_slip.hpp"
+#include "narrows/colloids/pair_geometry.hpp"
+#include "narrows/core/error.hpp"
+#include "narrows/mpcd/streaming.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+namespace narrows::colloids {
+
+namespace {
+
+// Halvings of the interval before a particle still inside a colloid is put on its surface
+// without further flight (a particle trapped in a narrow gap).
+constexpr int max_halvings = 20;
+
+// Placed this far outside the surface (relative to the radius), so that it is not found inside
+// again by rounding.
+constexpr double surface_gap = 1e-12;
+
+} // namespace
+
+BounceStats NoSlipCoupling::bounce_back(mpcd::Fluid &fluid, Colloids &c,
+                                        const FluidStream &stream) {
+  BounceStats stats;
+  const std::size_t n = fluid.size();
+  batch_.dim = dim_;
+  batch_.resize(0);
+  batch_index_.clear();
+  batch_hit_.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    const double p[3] = {fluid.x[0][i], fluid.x[1][i], dim_ == 3 ? fluid.x[2][i] : 0.0};
+    const long a = lookup_.inside(c, p);
+    if (a < 0)
+      continue;
+    batch_index_.push_back(i);
+    batch_hit_.push_back(a);
+  }
+  const std::size_t m = batch_index_.size();
+  stats.particles = m;
+  batch_.resize(m);
+  for (std::size_t j = 0; j < m; ++j) {
+    for (int k = 0; k < dim_; ++k) {
+      batch_.x[k][j] = fluid.x[k][batch_index_[j]];
+      batch_.v[k][j] = fluid.v[k][batch_index_[j]];
+    }
+    batch_.id[j] = fluid.id[batch_index_[j]];
+  }
+  // `active` lists the batch rows still inside a colloid; each level halves the interval.
+  std::vector<std::size_t> active(m);
+  for (std::size_t j = 0; j < m; ++j)
+    active[j] = j;
+  std::vector<std::size_t> still;
+  const double two_pi_over_ly = 2.0 * std::numbers::pi / box_.length[1];
+  double T = params_.dt;
+  mpcd::Fluid level;
+  level.dim = dim_;
+  for (int depth = 1; !active.empty(); ++depth) {
+    stats.deepest = depth;
+    const bool last = depth > max_halvings;
+    for (const std::size_t j : active) {
+      const auto a = static_cast<std::size_t>(batch_hit_[j]);
+      double r[3] = {0.0, 0.0, 0.0}, vb[3] = {0.0, 0.0, 0.0}, g[3] = {0.0, 0.0, 0.0};
+      for (int k = 0; k < dim_; ++k)
+        g[k] = params_.fluid_accel[k];
+      if (params_.sine_amplitude != 0.0)
+        g[0] += params_.sine_amplitude * std::sin(two_pi_over_ly * batch_.x[1][j]);
+      // Back half the interval in free flight under the body force (the last level: no
+      // flight, the particle goes to the surface point nearest to where it is).
+      const double h = last ? 0.0 : 0.5 * T;
+      for (int k = 0; k < dim_; ++k) {
+        vb[k] = batch_.v[k][j] - g[k] * h;
+        r[k] = batch_.x[k][j] - batch_.v[k][j] * h + 0.5 * g[k] * h * h;
+      }
+      double d[3] = {0.0, 0.0, 0.0}, len2 = 0.0;
+      for (int k = 0; k < dim_; ++k) {
+        d[k] = r[k] - c.x[k][a];
+        if (!(k == 1 && box_.walls_y))
+          d[k] = minimum_image(d[k], box_.length[k]);
+        len2 += d[k] * d[k];
+      }
+      if (!(len2 > 1e-24)) { // at the centre: leave along x
+        d[0] = 1.0;
+        d[1] = d[2] = 0.0;
+        len2 = 1.0;
+      }
+      const double scale = c.radius[a] * (1.0 + surface_gap) / std::sqrt(len2);
+      double s[3] = {0.0, 0.0, 0.0}, u[3], dp[3];
+      for (int k = 0; k < dim_; ++k)
+        s[k] = d[k] * scale; // the surface point relative to the centre
+      // The rigid-body velocity there: U + Omega x s.
+      const double w[3] = {c.omega[0][a], c.omega[1][a], c.omega[2][a]};
+      u[0] = c.v[0][a] + w[1] * s[2] - w[2] * s[1];
+      u[1] = c.v[1][a] + w[2] * s[0] - w[0] * s[2];
+      u[2] = (dim_ == 3 ? c.v[2][a] : 0.0) + w[0] * s[1] - w[1] * s[0];
+      for (int k = 0; k < dim_; ++k) {
+        const double v_new = 2.0 * u[k] - vb[k];
+        dp[k] = -(v_new - vb[k]); // what the colloid receives
+        double x = c.x[k][a] + s[k];
+        if (!(k == 1 && box_.walls_y))
+          x = mpcd::wrap_periodic(x, box_.length[k]);
+        else // a colloid touching a wall: its surface gap must not cross the wall
+          x = std::min(std::max(x, 0.0), box_.length[1]);
+        batch_.x[k][j] = x;
+        batch_.v[k][j] = v_new;
+      }
+      add_impulse(a, s, dp);
+    }
+    if (last)
+      break;
+    // Forward half the interval from the surface, walls and body force exact.
+    level.resize(active.size());
+    for (std::size_t q = 0; q < active.size(); ++q)
+      for (int k = 0; k < dim_; ++k) {
+        level.x[k][q] = batch_.x[k][active[q]];
+        level.v[k][q] = batch_.v[k][active[q]];
+        level.id[q] = batch_.id[active[q]];
+      }
+    stream(level, 0.5 * T);
+    still.clear();
+    for (std::size_t q = 0; q < active.size(); ++q) {
+      const std::size_t j = active[q];
+      double p[3] = {0.0, 0.0, 0.0};
+      for (int k = 0; k < dim_; ++k) {
+        batch_.x[k][j] = level.x[k][q];
+        batch_.v[k][j] = level.v[k][q];
+        p[k] = level.x[k][q];
+      }
+      const long a = lookup_.inside(c, p);
+      if (a >= 0) {
+        batch_hit_[j] = a;
+        still.push_back(j);
+      }
+    }
+    active.swap(still);
+    T *= 0.5;
+  }
+  // No fluid inside a colloid after the step (seed 001 §4.2.1): checked for every particle
+  // that was bounced, the others were outside already.
+  for (std::size_t j = 0; j < m; ++j) {
+    const double p[3] = {batch_.x[0][j], batch_.x[1][j], dim_ == 3 ? batch_.x[2][j] : 0.0};
+    const long a = lookup_.inside(c, p);
+    if (a >= 0) {
+      std::ostringstream os;
+      os.precision(17);
+      os << "fluid particle id " << batch_.id[j] << " is inside colloid id " << c.id[a]
+         << " after its bounce-back (trapped between colloids that overlap or touch a wall)";
+      throw invariant_error(os.str());
+    }
+    for (int k = 0; k < dim_; ++k) {
+      fluid.x[k][batch_index_[j]] = batch_.x[k][j];
+      fluid.v[k][batch_index_[j]] = batch_.v[k][j];
+    }
+  }
+  ghosts_.check_region(batch_);
+  apply_impulses(c, true);
+  return stats;
+}
+
+} // namespace narrows::colloids
