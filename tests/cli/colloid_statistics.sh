@@ -7,7 +7,8 @@
 # kinds (1 rank to 60, 2 ranks to 120) ends bitwise equal to the uninterrupted run, radius and
 # mass included, and its statistics continue the sums of the checkpoint (bitwise those of the
 # uninterrupted run when continued from its own checkpoint) and join_observables.py copies
-# them into the joined file; tools/colloid_plot.py draws them; mixing the one-kind keys with the kinds is
+# them into the joined file; no-slip colloids of two kinds spin (angular VACF) with the same
+# statistics on 1 and 2 ranks; tools/colloid_plot.py draws them; mixing the one-kind keys with the kinds is
 # refused.
 set -u
 source "$(dirname "$0")/common.bash"
@@ -119,6 +120,22 @@ check "colloid_plot.py fits a plateau per kind and draws a PNG: $(head -c 300 "$
 runs "a run without the statistics" "$narrows" run "$tmp/k.toml" --set run.steps=10 \
   --set 'output.observables=["temperature"]' --out "$tmp/none" > /dev/null 2>&1
 exits 2 "colloid_plot.py without the statistics" $py "$src/tools/colloid_plot.py" "$tmp/none" > /dev/null 2>&1
+# No-slip colloids of two kinds spin: the angular VACF at lag 0 is positive for each kind, and
+# 2 ranks write the statistics bitwise equal to 1 rank.
+ns=(--set colloids.coupling=no-slip --set colloids.contacts=hard --set fluid.collision=at+a
+    --set fluid.dt=0.05 --set run.steps=60 --set colloids.statistics_from=0)
+runs --err "$tmp/err5" "no-slip kinds, 1 rank" "$narrows" run "$tmp/k.toml" "${ns[@]}" --out "$tmp/ns1" > /dev/null
+runs --err "$tmp/err6" "no-slip kinds, 2 ranks" "${mpi[@]}" -n 2 "$narrows" run "$tmp/k.toml" "${ns[@]}" --out "$tmp/ns2" > /dev/null
+check "no-slip kinds: the colloids spin and 2 ranks give the 1-rank statistics bitwise" '$py - "$tmp/ns1/observables.h5" "$tmp/ns2/observables.h5" <<PY
+import sys, h5py, numpy as np
+a, b = (h5py.File(p, "r")["observables"] for p in sys.argv[1:])
+w = a["colloid_angular_vacf/value_by_kind"][()].reshape(2, -1)
+assert np.all(w[:, 0] > 0), w[:, 0]
+for name in ("colloid_vacf", "colloid_angular_vacf", "density_kde"):
+    for key in a[name]:
+        x, y = a[name][key][()], b[name][key][()]
+        assert np.array_equal(np.atleast_1d(x).view(np.uint8), np.atleast_1d(y).view(np.uint8)), (name, key)
+PY'
 refused "one-kind radius beside [[colloids.kind]]" "colloids.radius = 2 cannot be mixed with \[\[colloids.kind\]\]" \
   "$narrows" check "$tmp/k.toml" --set colloids.radius=2
 finish colloid_statistics
