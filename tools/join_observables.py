@@ -8,7 +8,9 @@ DIR/observables-<step>.h5 with the samples after the checkpoint it started from.
 script concatenates every /observables/<name>/{step, time, value} series in step order
 into FILE (default DIR/observables-joined.h5). Where a later file repeats steps (a restart
 from an older checkpoint), its samples replace the earlier ones from that step on. Bin
-centres, /h5md and the newest /parameters/scene are copied. Exit code 2 with one line on
+centres, /h5md and the newest /parameters/scene are copied. A result of a whole run (scalar
+step, e.g. colloid_vacf, whose sums continue across restarts) is copied whole from the file
+of the latest step that has it. Exit code 2 with one line on
 stderr if DIR holds no observables file or a file is not HDF5.
 """
 
@@ -41,12 +43,17 @@ def main(argv):
               file=sys.stderr)
         return 2
     series = {}  # name -> dict(step, time, value, bins)
+    results = {}  # name -> (step, path) of the newest result of a whole run
     for path in paths:
         if not h5py.is_hdf5(path):
             print(f"join_observables: {path}: not an HDF5 file", file=sys.stderr)
             return 2
         with h5py.File(path, "r") as f:
             for name, g in f.get("observables", {}).items():
+                if g["step"].ndim == 0:
+                    if name not in results or g["step"][()] >= results[name][0]:
+                        results[name] = (g["step"][()], path)
+                    continue
                 step, time, value = g["step"][()], g["time"][()], g["value"][()]
                 s = series.setdefault(name, {"step": step[:0], "time": time[:0],
                                              "value": value[:0], "bins": None})
@@ -68,7 +75,11 @@ def main(argv):
                 g.create_dataset(key, data=s[key])
             if s["bins"] is not None:
                 g.create_dataset("bins", data=s["bins"])
-    print(f"join_observables: {len(paths)} files, {len(series)} series -> {out_path}")
+        for name, (_, path) in results.items():
+            with h5py.File(path, "r") as f:
+                f.copy("observables/" + name, obs)
+    print(f"join_observables: {len(paths)} files, {len(series)} series, {len(results)} results "
+          f"-> {out_path}")
     return 0
 
 

@@ -153,6 +153,8 @@ bool ColloidCover::inside(const std::array<double, 3> &p) const {
 }
 
 double colloid_radius(const scene::Colloids &spec, std::uint64_t seed, std::uint64_t id) {
+  if (!spec.kinds.empty())
+    return spec.kinds[spec.kind_of(id)].radius;
   if (spec.radius_sd == 0.0)
     return spec.radius;
   // Truncated at +-3 sd: the four deviates of a block are taken in order, a new block (the
@@ -169,7 +171,7 @@ void set_radii_and_masses(Colloids &c, const scene::Colloids &spec, double densi
                           std::uint64_t seed) {
   for (std::size_t i = 0; i < c.size(); ++i) {
     c.radius[i] = colloid_radius(spec, seed, i);
-    c.mass[i] = spec.mass_of(c.dim, density, c.radius[i]);
+    c.mass[i] = spec.mass_of_id(c.dim, density, i, c.radius[i]);
   }
 }
 
@@ -178,7 +180,10 @@ std::uint64_t fluid_count_with_colloids(const scene::Colloids &spec, const mpcd:
   double volume = 1.0;
   for (int k = 0; k < box.dim; ++k)
     volume *= box.length[k];
-  if (spec.radius_sd == 0.0) {
+  if (!spec.kinds.empty()) {
+    for (const auto &k : spec.kinds)
+      volume -= static_cast<double>(k.count) * colloid_volume(box.dim, k.radius);
+  } else if (spec.radius_sd == 0.0) {
     volume -= static_cast<double>(spec.count) * colloid_volume(box.dim, spec.radius);
   } else {
     for (std::int64_t i = 0; i < spec.count; ++i)
@@ -276,17 +281,27 @@ Colloids place_colloids(const scene::Colloids &spec, const mpcd::Box &box, doubl
     }
     break;
   case scene::ColloidPlacement::random: {
-    // Every colloid keeps the largest wall cut-off from the walls (the same band for all);
-    // no-slip colloids have no potentials: their largest radius, and cores apart.
+    // One kind: every colloid keeps the largest wall cut-off from the walls (the same band for
+    // all); no-slip colloids have no potentials: their largest radius, and cores apart. Several
+    // kinds: each keeps its own kind's band, and the kinds are placed largest radius first (then
+    // by id), which packs denser mixtures than id order: a large colloid finds room before the
+    // small ones fill the gaps. The order depends on the scene alone.
     const bool no_slip = spec.coupling == scene::ColloidCoupling::no_slip;
-    const double margin = !box.walls_y ? 0.0
-                          : no_slip    ? spec.max_radius()
-                                       : wall_cutoff(spec.wall_sigma_of(spec.max_radius()));
+    const auto wall_band = [&](double r) {
+      return no_slip ? r : wall_cutoff(spec.wall_sigma_of(r));
+    };
+    const double margin = box.walls_y ? wall_band(spec.max_radius()) : 0.0;
     double r_max = 0.0;
     for (const double r : c.radius)
       r_max = std::max(r_max, r);
+    std::vector<std::size_t> order(n);
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    if (!spec.kinds.empty())
+      std::stable_sort(order.begin(), order.end(),
+                       [&](std::size_t a, std::size_t b) { return c.radius[a] > c.radius[b]; });
     PlacedGrid grid(box, repulsive_cutoff(24, 2.0 * r_max));
-    for (std::size_t i = 0; i < n; ++i) {
+    for (const std::size_t i : order) {
+      const double band = !box.walls_y || spec.kinds.empty() ? margin : wall_band(c.radius[i]);
       bool placed = false;
       for (std::uint64_t attempt = 0; attempt < 100000 && !placed; ++attempt) {
         const auto r = rng::draw(seed, rng::Purpose::colloid_placement, attempt, i);
@@ -294,7 +309,7 @@ Colloids place_colloids(const scene::Colloids &spec, const mpcd::Box &box, doubl
         std::array<double, 3> p{rng::uniform53(r[0], r[1]), rng::uniform53(r[2], r[3]),
                                 rng::uniform53(r2[0], r2[1])};
         for (int k = 0; k < box.dim; ++k)
-          p[k] = k == 1 && box.walls_y ? margin + p[k] * (box.length[1] - 2.0 * margin)
+          p[k] = k == 1 && box.walls_y ? band + p[k] * (box.length[1] - 2.0 * band)
                                        : p[k] * box.length[k];
         placed = grid.all_of_near(p, [&](std::uint32_t j) {
           const double sum = c.radius[i] + c.radius[j];
@@ -308,8 +323,11 @@ Colloids place_colloids(const scene::Colloids &spec, const mpcd::Box &box, doubl
         }
       }
       if (!placed)
-        throw input_error("colloids.count = " + std::to_string(n) + ": colloid " +
-                          std::to_string(i) +
+        throw input_error((spec.kinds.empty()
+                               ? "colloids.count = " + std::to_string(n)
+                               : "colloids.kind[" + std::to_string(spec.kind_of(i)) + "].count = " +
+                                     std::to_string(spec.kinds[spec.kind_of(i)].count)) +
+                          ": colloid " + std::to_string(i) +
                           " found no free place in 100000 random tries; allowed: fewer colloids "
                           "or placement = \"lattice\"");
     }

@@ -137,14 +137,24 @@ void check_runnable(const scene::Scene &s, MPI_Comm comm) {
   if (s.colloids) {
     // MD with a thermal colloid velocity that crosses its own radius in one sub-step cannot
     // resolve a collision: the integrator is unstable.
-    const double m = s.colloids->mass_of(s.run.dimensions, s.fluid.density, s.colloids->radius);
-    const double step = std::sqrt(s.fluid.kT / m) * s.fluid.dt / s.colloids->md_substeps;
-    if (!(step <= s.colloids->radius))
-      throw input_error(
-          head + "a colloid's thermal velocity sqrt(kT/M) moves it " + fmt("%.3g", step) +
-          " per MD sub-step (mass " + fmt("%.3g", m) + ", fluid.dt / colloids.md_substeps = " +
-          fmt("%.3g", s.fluid.dt / s.colloids->md_substeps) + "); allowed: at most its radius " +
-          fmt("%g", s.colloids->radius) + " (raise colloids.mass or md_substeps, lower fluid.dt)");
+    // With several kinds, each kind's radius and mass.
+    const auto &spec = *s.colloids;
+    std::vector<scene::ColloidKind> kinds = spec.kinds;
+    if (kinds.empty())
+      kinds.push_back({spec.radius, spec.mass, spec.count});
+    std::uint64_t first = 0;
+    for (const auto &kind : kinds) {
+      const double r = kind.radius;
+      const double m = spec.mass_of_id(s.run.dimensions, s.fluid.density, first, r);
+      first += static_cast<std::uint64_t>(kind.count);
+      const double step = std::sqrt(s.fluid.kT / m) * s.fluid.dt / spec.md_substeps;
+      if (!(step <= r))
+        throw input_error(
+            head + "a colloid's thermal velocity sqrt(kT/M) moves it " + fmt("%.3g", step) +
+            " per MD sub-step (mass " + fmt("%.3g", m) + ", fluid.dt / colloids.md_substeps = " +
+            fmt("%.3g", s.fluid.dt / spec.md_substeps) + "); allowed: at most its radius " +
+            fmt("%g", r) + " (raise colloids.mass or md_substeps, lower fluid.dt)");
+    }
   }
 }
 

@@ -46,6 +46,18 @@ std::string stream_text(const scene::Scene &s, const MpcdPlan &p, const mpcd::Bo
   return name;
 }
 
+// "2 kinds: 100 of r 2 M 125.664, 100 of r 4 M 600" ([[colloids.kind]]).
+std::string kinds_text(const scene::Colloids &c, int dim, double density) {
+  std::string t = std::to_string(c.kinds.size()) + " kinds:";
+  std::uint64_t first = 0;
+  for (const auto &k : c.kinds) {
+    t += (first > 0 ? ", " : " ") + std::to_string(k.count) + " of r " + format_number(k.radius) +
+         " M " + format_number(c.mass_of_id(dim, density, first, k.radius));
+    first += static_cast<std::uint64_t>(k.count);
+  }
+  return t;
+}
+
 std::string md_text(const scene::Scene &s, const MpcdPlan &p) {
   const auto &c = *s.colloids;
   const int dim = p.dim;
@@ -68,6 +80,15 @@ std::string md_text(const scene::Scene &s, const MpcdPlan &p) {
       size += ", M " + format_number(c.mass_of(dim, s.fluid.density, r_lo)) + " to " +
               format_number(c.mass_of(dim, s.fluid.density, r_hi));
   }
+  if (!c.kinds.empty()) {
+    size = kinds_text(c, dim, s.fluid.density);
+    r_lo = c.max_radius();
+    r_hi = 0.0;
+    for (const auto &k : c.kinds) {
+      r_lo = std::min(r_lo, k.radius);
+      r_hi = std::max(r_hi, k.radius);
+    }
+  }
   std::string md = "MD: " + std::to_string(c.count) + " colloids (" + size + "), " +
                    std::to_string(c.md_substeps) + " velocity-Verlet sub-steps of " +
                    format_number(p.md.tau) + ": WCA colloid-fluid, 48-24 colloid-colloid";
@@ -88,9 +109,11 @@ std::string md_text(const scene::Scene &s, const MpcdPlan &p) {
 
 std::string no_slip_text(const scene::Scene &s, const MpcdPlan &p) {
   const auto &c = *s.colloids;
-  std::string t = "no-slip colloids: " + std::to_string(c.count) + " (r " +
-                  format_number(c.radius) +
-                  (c.radius_sd > 0.0 ? " sd " + format_number(c.radius_sd) : "") + ") move " +
+  const std::string size = c.kinds.empty()
+                               ? "r " + format_number(c.radius) +
+                                     (c.radius_sd > 0.0 ? " sd " + format_number(c.radius_sd) : "")
+                               : kinds_text(c, p.dim, s.fluid.density);
+  std::string t = "no-slip colloids: " + std::to_string(c.count) + " (" + size + ") move " +
                   (p.no_slip_params.hard_contacts
                        ? "with event-driven rough hard-sphere contacts (seed 001 eq 4.19-4.30)"
                        : "ballistically (no contacts)");

@@ -7,6 +7,7 @@
 #include "narrows/core/error.hpp"
 #include "narrows/core/timer.hpp"
 #include "narrows/engine/colloid_checkpoint.hpp"
+#include "narrows/engine/colloid_statistics.hpp"
 #include "narrows/engine/fluid_checkpoint.hpp"
 #include "narrows/engine/info.hpp"
 #include "narrows/engine/invariants.hpp"
@@ -40,8 +41,10 @@ bool wants(const scene::Scene &s, const std::string &name) {
 // Everything written every `output.every` steps.
 class Observer {
 public:
-  Observer(MpcdSimulation &sim, std::unique_ptr<io::ObservablesWriter> writer)
-      : sim_(sim), writer_(std::move(writer)), profiles_(sim.box()) {
+  Observer(MpcdSimulation &sim, std::unique_ptr<io::ObservablesWriter> writer,
+           ColloidStatistics colloid_stats)
+      : sim_(sim), writer_(std::move(writer)), profiles_(sim.box()),
+        colloid_stats_(std::move(colloid_stats)) {
     const auto &s = sim.scene();
     temperature_ = wants(s, "temperature");
     momentum_ = wants(s, "momentum");
@@ -53,6 +56,7 @@ public:
     positions_ = wants(s, "colloid_positions");
   }
   void every_step() {
+    colloid_stats_.after_step(sim_);
     if (velocity_ || density_ || viscosity_)
       profiles_.add(sim_.fluid());
     if (settling_)
@@ -62,6 +66,7 @@ public:
     const auto step = sim_.step();
     const double t = sim_.time();
     const MPI_Comm comm = sim_.comm();
+    colloid_stats_.on_observe(sim_);
     if (temperature_) {
       const double kT = analysis::temperature(sim_.fluid(), comm);
       if (writer_)
@@ -115,12 +120,24 @@ public:
     if (writer_)
       writer_->flush();
   }
+  // The colloid statistics' sums for a checkpoint.
+  std::vector<io::CheckpointArray> checkpoint_arrays() const {
+    return colloid_stats_.checkpoint_arrays();
+  }
+  // When the run ends: the results of the whole run (colloid statistics).
+  void finish() {
+    if (writer_ && colloid_stats_.active()) {
+      colloid_stats_.write(*writer_, sim_.step(), sim_.time());
+      writer_->flush();
+    }
+  }
 
 private:
   MpcdSimulation &sim_;
   std::unique_ptr<io::ObservablesWriter> writer_;
   analysis::ProfileAccumulator profiles_;
   SettlingSum settling_sum_;
+  ColloidStatistics colloid_stats_;
   bool temperature_ = false, momentum_ = false, velocity_ = false, density_ = false,
        viscosity_ = false, energy_ = false, settling_ = false, positions_ = false;
 };
@@ -173,6 +190,10 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
                                    scene.colloids->epsilon, scene.fluid.kT, file, comm);
     }
   }
+  // The colloid statistics, on a restart with the sums of the run chain so far.
+  ColloidStatistics colloid_stats(sim);
+  if (restarting)
+    run::collectively(comm, [&] { colloid_stats.restore(shell.restart_file(), comm); });
   run::Log &log = shell.open(restarting ? sim.step() : -1);
   for (const auto &line : describe_scene(scene, comm))
     log.line(line);
@@ -183,7 +204,7 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
   std::unique_ptr<io::ObservablesWriter> writer;
   if (shell.rank() == 0)
     writer = std::make_unique<io::ObservablesWriter>(shell.output_file("observables"), scene.text);
-  Observer observer(sim, std::move(writer));
+  Observer observer(sim, std::move(writer), std::move(colloid_stats));
   std::optional<TrajectoryWriter> trajectory;
   // The trajectory and checkpoints hold every colloid: gathered from their owners when written.
   colloids::Colloids all_colloids;
@@ -219,7 +240,8 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
         all_colloids = sim.gather_colloids();
         species.push_back(colloid_fields(all_colloids, none, comm));
       }
-      const double bytes = io::write_checkpoint(path, info, species, comm);
+      const double bytes =
+          io::write_checkpoint(path, info, species, comm, observer.checkpoint_arrays());
       const double s = watch.seconds();
       char text[200];
       std::snprintf(text, sizeof text, "%.1f MB of particles in %.3g s (%.1f MB/s)", bytes / 1e6, s,
@@ -281,6 +303,7 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
       log.line(text);
     }
   }
+  observer.finish();
   const std::string last = save_checkpoint();
   shell.finish("step " + std::to_string(sim.step()), last);
   shell.loop_time(seconds, steps, "steps", std::to_string(n_particles) + " particles",

@@ -877,6 +877,12 @@ void read_species_rows(const std::string &path, SpeciesFields &s, std::uint64_t 
   }
 }
 
+bool has_checkpoint_array(const std::string &path, const std::string &name, MPI_Comm comm) {
+  h5::silence_errors();
+  const h5::File file = open_readable(path, comm);
+  return path_exists(file.get(), "/" + name);
+}
+
 bool has_species_field(const std::string &path, const std::string &species,
                        const std::string &field, MPI_Comm comm) {
   h5::silence_errors();

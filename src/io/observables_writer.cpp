@@ -105,15 +105,35 @@ void ObservablesWriter::append_field(const std::string &name, std::int64_t step,
 
 void ObservablesWriter::write_result(
     const std::string &name, std::int64_t step, double time, std::span<const double> value,
-    const std::vector<std::pair<std::string, std::vector<double>>> &beside) {
+    const std::vector<std::pair<std::string, std::vector<double>>> &beside,
+    const std::vector<hsize_t> &shape, const std::vector<std::string> &shaped) {
   if (name.empty() || name.find('/') != std::string::npos || series_.count(name) != 0)
     throw Error(ExitCode::other, path_ + ": invalid or repeated observable name '" + name + "'");
+  hsize_t elements = 1;
+  for (const hsize_t n : shape)
+    elements *= n;
+  if (!shape.empty() && elements != value.size())
+    throw Error(ExitCode::other, path_ + ": observable '" + name + "' has " +
+                                     std::to_string(value.size()) +
+                                     " values, not the product of its shape");
   const h5::Group group = h5::create_group(observables_.get(), name, path_);
   h5::write_scalar<std::int64_t>(group.get(), "step", step, path_);
   h5::write_scalar<double>(group.get(), "time", time, path_);
-  h5::write_dataset<double>(group.get(), "value", value, path_);
+  const auto put = [&](const std::string &key, std::span<const double> data, bool like_value) {
+    if (like_value && !shape.empty()) {
+      if (data.size() != value.size())
+        throw Error(ExitCode::other,
+                    path_ + ": observable '" + name + "', " + key + " does not have its shape");
+      h5::write_dataset(group.get(), key, h5::native_type<double>(),
+                        std::span<const hsize_t>(shape), data.data(), path_);
+    } else {
+      h5::write_dataset<double>(group.get(), key, data, path_);
+    }
+  };
+  put("value", value, true);
   for (const auto &[key, data] : beside)
-    h5::write_dataset<double>(group.get(), key, std::span<const double>(data), path_);
+    put(key, std::span<const double>(data),
+        std::find(shaped.begin(), shaped.end(), key) != shaped.end());
 }
 
 void ObservablesWriter::flush() { h5::flush(file_, path_); }

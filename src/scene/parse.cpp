@@ -59,7 +59,8 @@ const std::vector<Section> &schema() {
       {"thermostat", {"kind", "gamma"}},
       {"colloids",
        {"radius", "radius_sd", "mass", "count", "placement", "positions", "positions_file",
-        "gravity", "md_substeps", "epsilon", "wall_sigma", "wall_q", "coupling", "contacts"}},
+        "gravity", "md_substeps", "epsilon", "wall_sigma", "wall_q", "coupling", "contacts", "kind",
+        "max_lag", "correlation_every", "kde_width", "statistics_from"}},
       {"kmc",
        {"length", "boundary", "rates", "left", "right", "initial", "time", "warmup", "replicas",
         "charge", "samples", "preset", "parameters", "fugacity", "boundary_rates",
@@ -92,9 +93,12 @@ const Section *find_section(const std::string &name) {
 constexpr std::int64_t max_cells_per_axis = std::int64_t{1} << 20;
 constexpr double max_particles = 1099511627776.0; // 2^40
 
-const char *const all_observables[] = {"temperature",       "momentum",         "velocity_profile",
-                                       "density_profile",   "viscosity",        "energy",
-                                       "settling_velocity", "colloid_positions"};
+const char *const all_observables[] = {
+    "temperature",       "momentum",          "velocity_profile",
+    "density_profile",   "viscosity",         "energy",
+    "settling_velocity", "colloid_positions", "colloid_vacf",
+    "colloid_diffusion", "colloid_msd",       "colloid_angular_vacf",
+    "density_kde"};
 
 // The names output.observables accepts with each engine.
 std::vector<std::string> engine_observables(Engine engine) {
@@ -826,6 +830,78 @@ std::array<double, 3> as_vector(const Ctx &c, const value &v, const std::string 
   return out;
 }
 
+// [[colloids.kind]]: an array of tables {radius, count, mass}. The one-kind keys radius,
+// radius_sd, mass and count cannot be given beside it.
+std::vector<ColloidKind> parse_colloid_kinds(const Ctx &c, const value *sec, const value &kinds) {
+  for (const char *key : {"radius", "radius_sd", "mass", "count"})
+    if (const value *v = find(sec, key))
+      c.fail(std::string("colloids.") + key,
+             std::string("colloids.") + key + " = " + repr(*v) +
+                 " cannot be mixed with [[colloids.kind]]; allowed: either the one-kind keys "
+                 "radius, radius_sd, mass, count or one [[colloids.kind]] table per kind with "
+                 "its radius, count and mass");
+  const std::string allowed = "an array of tables [[colloids.kind]], each with radius (> 0), "
+                              "count (>= 1) and optional mass (> 0)";
+  if (!kinds.is_array() || kinds.as_array().empty())
+    c.wrong_type("colloids.kind", kinds, allowed);
+  const auto positive = [](double x) { return x > 0.0; };
+  std::vector<ColloidKind> out;
+  const auto &a = kinds.as_array();
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const std::string key = "colloids.kind[" + std::to_string(i) + "]";
+    if (!a[i].is_table())
+      c.wrong_type(key, a[i], allowed);
+    for (const auto &[k, v] : in_file_order(a[i])) {
+      (void)v;
+      if (k != "radius" && k != "count" && k != "mass")
+        c.fail(key + "." + k, "unknown key '" + key + "." + k +
+                                  "'; allowed keys in [[colloids.kind]]: radius, count, mass");
+    }
+    ColloidKind kind;
+    if (const value *v = find(&a[i], "radius"))
+      kind.radius = as_number(c, *v, key + ".radius", "a number > 0 (cell units)", positive);
+    else
+      c.missing(key + ".radius", "a number > 0 (cell units)");
+    if (const value *v = find(&a[i], "count"))
+      kind.count = as_integer(c, *v, key + ".count", "an integer from 1 to 1000000",
+                              [](std::int64_t n) { return n >= 1 && n <= 1000000; });
+    else
+      c.missing(key + ".count", "an integer from 1 to 1000000");
+    if (const value *v = find(&a[i], "mass"))
+      kind.mass = as_number(c, *v, key + ".mass",
+                            "a number > 0 (default: fluid mass density times the colloid volume)",
+                            positive);
+    out.push_back(kind);
+  }
+  return out;
+}
+
+// The keys of the colloid statistics (observables colloid_vacf ... density_kde).
+void parse_colloid_statistics(const Ctx &c, const value *sec, Colloids &out) {
+  if (const value *v = find(sec, "correlation_every"))
+    out.correlation_every =
+        as_integer(c, *v, "colloids.correlation_every", "an integer from 1 to 1000000 (steps)",
+                   [](std::int64_t n) { return n >= 1 && n <= 1000000; });
+  const std::int64_t every = out.correlation_every;
+  if (const value *v = find(sec, "max_lag"))
+    out.max_lag = as_integer(
+        c, *v, "colloids.max_lag",
+        "a multiple of colloids.correlation_every = " + std::to_string(every) +
+            ", at most 100000 times it (steps)",
+        [every](std::int64_t n) { return n >= 0 && n % every == 0 && n / every <= 100000; });
+  else if (out.max_lag % every != 0)
+    c.fail("colloids.max_lag", "colloids.max_lag defaults to 1000, not a multiple of "
+                               "colloids.correlation_every = " +
+                                   std::to_string(every) +
+                                   "; allowed: an explicit max_lag, a multiple of it");
+  if (const value *v = find(sec, "kde_width"))
+    out.kde_width = as_number(c, *v, "colloids.kde_width", "a number > 0 (cell units)",
+                              [](double x) { return x > 0.0; });
+  if (const value *v = find(sec, "statistics_from"))
+    out.statistics_from = as_integer(c, *v, "colloids.statistics_from", "an integer >= 0 (step)",
+                                     [](std::int64_t n) { return n >= 0; });
+}
+
 std::optional<Colloids> parse_colloids(const Ctx &c, const value *sec, const Domain &domain,
                                        int dims, bool walls) {
   if (sec == nullptr)
@@ -833,10 +909,18 @@ std::optional<Colloids> parse_colloids(const Ctx &c, const value *sec, const Dom
   check_keys(c, sec, "colloids");
   Colloids out;
   const auto positive = [](double x) { return x > 0.0; };
-  if (const value *v = find(sec, "radius"))
+  const value *kinds = find(sec, "kind");
+  if (kinds != nullptr) {
+    out.kinds = parse_colloid_kinds(c, sec, *kinds);
+    for (const auto &k : out.kinds) {
+      out.radius = std::max(out.radius, k.radius);
+      out.count += k.count;
+    }
+  } else if (const value *v = find(sec, "radius")) {
     out.radius = as_number(c, *v, "colloids.radius", "a number > 0 (cell units)", positive);
-  else
+  } else {
     c.missing("colloids.radius", "a number > 0 (cell units; seed 000 uses 2)");
+  }
   const double r = out.radius;
   if (const value *v = find(sec, "radius_sd"))
     // Radii are drawn within +-3 sd of the mean: at most 0.2 r keeps every one >= 0.4 r.
@@ -908,6 +992,7 @@ std::optional<Colloids> parse_colloids(const Ctx &c, const value *sec, const Dom
             float_text(half_width) + "); allowed: a smaller radius" +
             (out.radius_sd > 0.0 ? " or radius_sd" : "") + " or an explicit wall_sigma");
   }
+  parse_colloid_statistics(c, sec, out);
   const value *count = find(sec, "count");
   const value *placement = find(sec, "placement");
   const value *positions = find(sec, "positions");
@@ -931,6 +1016,10 @@ std::optional<Colloids> parse_colloids(const Ctx &c, const value *sec, const Dom
       c.fail(key, key + " = " + found + " lies on a wall; allowed: 0 < y < L_y");
   };
   const std::string coords = std::string(dims == 3 ? "x y z" : "x y");
+  if (out.placement == ColloidPlacement::list && !out.kinds.empty())
+    c.fail("colloids.placement", "colloids.placement = " + repr(*placement) +
+                                     " cannot be mixed with [[colloids.kind]]; allowed with "
+                                     "several kinds: \"lattice\" or \"random\"");
   if (out.placement == ColloidPlacement::list) {
     const std::string source = from_file ? "colloids.positions_file" : "colloids.positions";
     if (count != nullptr)
@@ -1022,29 +1111,44 @@ std::optional<Colloids> parse_colloids(const Ctx &c, const value *sec, const Dom
       c.fail("colloids.positions_file",
              "colloids.positions_file needs placement = \"file\"; "
              "allowed with placement = \"lattice\" or \"random\": count");
-    if (count == nullptr)
-      c.missing("colloids.count", "an integer >= 1");
-    out.count = as_integer(c, *count, "colloids.count", "an integer from 1 to 1000000",
-                           [](std::int64_t n) { return n >= 1 && n <= 1000000; });
+    if (out.kinds.empty()) {
+      if (count == nullptr)
+        c.missing("colloids.count", "an integer >= 1");
+      out.count = as_integer(c, *count, "colloids.count", "an integer from 1 to 1000000",
+                             [](std::int64_t n) { return n >= 1 && n <= 1000000; });
+    } else if (out.count > 1000000) {
+      c.fail("colloids.kind", "colloids.kind: the kinds hold " + std::to_string(out.count) +
+                                  " colloids; allowed: 1 to 1000000 in all");
+    }
     const double sigma_cc = 2.0 * r_max;
     if (out.placement == ColloidPlacement::lattice &&
         static_cast<double>(out.count) * sigma_cc > domain.size[0])
-      c.fail("colloids.count",
-             "colloids.count = " + repr(*count) + " colloids of diameter " + float_text(sigma_cc) +
-                 largest + " do not fit in a row along x of length " + float_text(domain.size[0]) +
+      c.fail(out.kinds.empty() ? "colloids.count" : "colloids.kind",
+             (out.kinds.empty() ? "colloids.count = " + repr(*count)
+                                : "colloids.kind: " + std::to_string(out.count)) +
+                 " colloids of diameter " + float_text(sigma_cc) + largest +
+                 " do not fit in a row along x of length " + float_text(domain.size[0]) +
                  "; allowed: at most " +
                  std::to_string(static_cast<std::int64_t>(domain.size[0] / sigma_cc)) +
                  " (placement = \"lattice\")");
   }
-  double box_volume = 1.0, colloid_volume = dims == 2 ? 3.14159265358979 * r_max * r_max
-                                                      : 4.18879020478639 * r_max * r_max * r_max;
+  const auto volume_of = [dims](double r) {
+    return dims == 2 ? 3.14159265358979 * r * r : 4.18879020478639 * r * r * r;
+  };
+  double box_volume = 1.0, colloids_volume = static_cast<double>(out.count) * volume_of(r_max);
   for (int d = 0; d < dims; ++d)
     box_volume *= domain.size[d];
-  if (static_cast<double>(out.count) * colloid_volume > 0.9 * box_volume)
-    c.fail("colloids.count", "colloids.count = " + std::to_string(out.count) + " colloids" +
-                                 largest +
-                                 " fill more than 90 % of the box; allowed: fewer or "
-                                 "smaller colloids");
+  if (!out.kinds.empty()) {
+    colloids_volume = 0.0;
+    for (const auto &k : out.kinds)
+      colloids_volume += static_cast<double>(k.count) * volume_of(k.radius);
+  }
+  if (colloids_volume > 0.9 * box_volume)
+    c.fail(out.kinds.empty() ? "colloids.count" : "colloids.kind",
+           (out.kinds.empty()
+                ? "colloids.count = " + std::to_string(out.count) + " colloids" + largest
+                : "colloids.kind: the " + std::to_string(out.count) + " colloids of all kinds") +
+               " fill more than 90 % of the box; allowed: fewer or smaller colloids");
   return out;
 }
 
@@ -1070,13 +1174,22 @@ void check_no_slip(const Ctx &c, const Scene &s) {
   // share 2/3), with K = n S sqrt(kT / 2 pi) dt the particles that cross the surface S in a
   // step. Runs with f near 1 grew without bound (2D r 1 dt 0.3: f 0.96; 3D r 2 dt 0.5: f 1.0),
   // f <= 0.67 stayed stable (tests/cli/no_slip_scenes.sh): half of that is allowed.
-  {
-    const int d = s.run.dimensions;
-    const double pi = 3.14159265358979;
+  // With several kinds, each kind's radius and mass.
+  std::vector<std::pair<double, double>> sizes; // (radius, mass) of the smallest of each kind
+  const int d = s.run.dimensions;
+  if (col.kinds.empty()) {
     const double r_min = col.radius - 3.0 * col.radius_sd;
+    sizes.emplace_back(r_min, col.mass_of(d, s.fluid.density, r_min));
+  }
+  std::uint64_t first_id = 0;
+  for (const auto &kind : col.kinds) {
+    sizes.emplace_back(kind.radius, col.mass_of_id(d, s.fluid.density, first_id, kind.radius));
+    first_id += static_cast<std::uint64_t>(kind.count);
+  }
+  for (const auto &[r_min, mass] : sizes) {
+    const double pi = 3.14159265358979;
     const double surface = d == 2 ? 2.0 * pi * r_min : 4.0 * pi * r_min * r_min;
     const double hits = s.fluid.density * surface * std::sqrt(s.fluid.kT / (2.0 * pi)) * s.fluid.dt;
-    const double mass = col.mass_of(d, s.fluid.density, r_min);
     const double f = (d == 2 ? 4.0 : 10.0 / 3.0) * hits / mass;
     if (f > 0.5)
       c.fail("colloids.coupling",
@@ -1438,8 +1551,11 @@ Scene parse_scene(const std::string &text, const std::string &file,
   }
   const bool poiseuille = s.walls && s.body_force && s.body_force->kind == ForceKind::constant &&
                           s.body_force->value[0] != 0.0;
-  for (const char *name : {"settling_velocity", "colloid_positions"})
-    if (std::find(obs.begin(), obs.end(), name) != obs.end() && !s.colloids)
+  for (const char *name :
+       {"settling_velocity", "colloid_positions", "colloid_vacf", "colloid_diffusion",
+        "colloid_msd", "colloid_angular_vacf", "density_kde"})
+    if (std::find(obs.begin(), obs.end(), name) != obs.end() && !s.colloids &&
+        s.run.engine == Engine::mpcd)
       c.fail("output.observables", std::string("output.observables lists \"") + name +
                                        "\", which follows colloids; allowed only with [colloids]");
   if (std::find(obs.begin(), obs.end(), "viscosity") != obs.end() && !poiseuille)

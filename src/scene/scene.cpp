@@ -1,6 +1,7 @@
 // Names of the scene enums, as written in scene files and shown in messages.
 #include "narrows/scene/scene.hpp"
 
+#include <algorithm>
 #include <numbers>
 
 namespace narrows::scene {
@@ -49,6 +50,35 @@ const char *to_string(LgcaModel m) {
     return "dhumieres-1d";
   }
   return "unknown";
+}
+
+double Colloids::max_radius() const {
+  if (kinds.empty())
+    return radius + 3.0 * radius_sd;
+  double r = 0.0;
+  for (const auto &k : kinds)
+    r = std::max(r, k.radius);
+  return r;
+}
+
+std::size_t Colloids::kind_of(std::uint64_t id) const {
+  std::uint64_t end = 0;
+  for (std::size_t k = 0; k < kinds.size(); ++k) {
+    end += static_cast<std::uint64_t>(kinds[k].count);
+    if (id < end)
+      return k;
+  }
+  return kinds.empty() ? 0 : kinds.size() - 1;
+}
+
+double Colloids::mass_of_id(int dim, double density, std::uint64_t id, double r) const {
+  if (kinds.empty())
+    return mass_of(dim, density, r);
+  const double m = kinds[kind_of(id)].mass;
+  if (m > 0.0)
+    return m;
+  const double pi = std::numbers::pi;
+  return density * (dim == 2 ? pi * r * r : 4.0 / 3.0 * pi * r * r * r);
 }
 
 double Colloids::mass_of(int dim, double density, double r) const {

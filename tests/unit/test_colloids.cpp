@@ -484,3 +484,43 @@ TEST(ColloidForces, CellListEqualsTheDoubleLoopBitwise) {
     EXPECT_GT(e_cc, 0.0) << where;
   }
 }
+
+// Several kinds: ids kind by kind with their radii and masses (density-matched unless given),
+// random placement without any pair within its 48-24 cut-off and each kind off the walls by its
+// own wall cut-off, the same placement on every call (every rank places all), and the fluid
+// count excludes every colloid's area.
+TEST(ColloidPlacement, SeveralKindsRandomWithoutOverlap) {
+  scene::Colloids spec;
+  spec.kinds = {{2.0, 0.0, 60}, {4.0, 900.0, 15}};
+  spec.count = 75;
+  spec.radius = 4.0;
+  spec.placement = scene::ColloidPlacement::random;
+  mpcd::Box box = mpcd::make_periodic_box(2, {120, 40, 1});
+  box.walls_y = true;
+  const double density = 10.0;
+  const Colloids c = place_colloids(spec, box, density, 3);
+  ASSERT_EQ(c.size(), 75u);
+  double area = 0.0;
+  for (std::size_t a = 0; a < c.size(); ++a) {
+    const bool large = a >= 60;
+    EXPECT_EQ(c.id[a], a);
+    EXPECT_DOUBLE_EQ(c.radius[a], large ? 4.0 : 2.0);
+    EXPECT_NEAR(c.mass[a], large ? 900.0 : 3.14159265358979 * 4.0 * density, 1e-9);
+    const double band = wall_cutoff(2.0 * c.radius[a]);
+    EXPECT_GE(c.x[1][a], band) << a;
+    EXPECT_LE(c.x[1][a], 40.0 - band) << a;
+    area += 3.14159265358979 * c.radius[a] * c.radius[a];
+    for (std::size_t b = a + 1; b < c.size(); ++b) {
+      const double dx = mpcd::wrap_periodic(c.x[0][a] - c.x[0][b] + 60.0, 120.0) - 60.0;
+      EXPECT_GE(std::hypot(dx, c.x[1][a] - c.x[1][b]),
+                repulsive_cutoff(24, c.radius[a] + c.radius[b]))
+          << a << " " << b;
+    }
+  }
+  const Colloids again = place_colloids(spec, box, density, 3);
+  EXPECT_EQ(again.x[0], c.x[0]);
+  EXPECT_EQ(again.x[1], c.x[1]);
+  EXPECT_NE(place_colloids(spec, box, density, 4).x[0], c.x[0]); // the seed decides
+  EXPECT_EQ(fluid_count_with_colloids(spec, box, density, 3),
+            static_cast<std::uint64_t>(std::llround(density * (4800.0 - area))));
+}

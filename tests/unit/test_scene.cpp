@@ -581,3 +581,58 @@ TEST(SceneHostile, RunStepsFitTheCheckpointName) {
   bad(with("run", "steps = 10000000000"), {"run.steps = 10000000000", "from 0 to 9999999999"});
   EXPECT_EQ(parse_scene(with("run", "steps = 9999999999"), "run/ok.toml").run.steps, 9999999999);
 }
+
+// [[colloids.kind]]: several kinds, ids kind by kind, count the total, radius the largest;
+// the one-kind keys beside it, unknown keys and bad values are refused with one line.
+TEST(Scene, ColloidKinds) {
+  const std::string two = "placement = \"random\"\n[[colloids.kind]]\nradius = 1\ncount = 3\n"
+                          "[[colloids.kind]]\nradius = 1.5\ncount = 2\nmass = 40\n";
+  const Scene s = parse_scene(with("colloids", two, channel_scene), "c.toml");
+  const auto &c = *s.colloids;
+  ASSERT_EQ(c.kinds.size(), 2u);
+  EXPECT_EQ(c.count, 5);
+  EXPECT_EQ(c.kind_count(), 2u);
+  EXPECT_DOUBLE_EQ(c.max_radius(), 1.5);
+  EXPECT_EQ(c.kind_of(2), 0u);
+  EXPECT_EQ(c.kind_of(3), 1u);
+  EXPECT_EQ(c.kind_of(4), 1u);
+  EXPECT_NEAR(c.mass_of_id(2, 10.0, 0, 1.0), 3.14159265358979 * 10.0, 1e-9); // density-matched
+  EXPECT_DOUBLE_EQ(c.mass_of_id(2, 10.0, 3, 1.5), 40.0);                     // given
+  // Statistics keys and their defaults.
+  EXPECT_EQ(c.max_lag, 1000);
+  EXPECT_EQ(c.correlation_every, 1);
+  const Scene t = parse_scene(with("colloids",
+                                   "radius = 1\ncount = 1\nmax_lag = 40\ncorrelation_every = 4\n"
+                                   "kde_width = 0.5\nstatistics_from = 100",
+                                   channel_scene),
+                              "c.toml");
+  EXPECT_EQ(t.colloids->max_lag, 40);
+  EXPECT_EQ(t.colloids->correlation_every, 4);
+  EXPECT_DOUBLE_EQ(t.colloids->kde_width, 0.5);
+  EXPECT_EQ(t.colloids->statistics_from, 100);
+  EXPECT_EQ(t.colloids->kind_count(), 1u);
+  EXPECT_EQ(t.colloids->kind_of(0), 0u);
+}
+
+TEST(SceneErrors, ColloidKinds) {
+  const auto col = [](const std::string &lines) { return with("colloids", lines, channel_scene); };
+  const std::string kind = "[[colloids.kind]]\nradius = 1\ncount = 3\n";
+  bad(col("radius = 1\n" + kind), {"colloids.radius = 1", "cannot be mixed", "[[colloids.kind]]"});
+  bad(col("count = 2\n" + kind), {"colloids.count = 2", "cannot be mixed"});
+  bad(col("mass = 2\n" + kind), {"colloids.mass = 2", "cannot be mixed"});
+  bad(col("placement = \"list\"\n" + kind), {"colloids.placement", "\"lattice\" or \"random\""});
+  bad(col(kind + "colour = 2\n"), {"colloids.kind[0].colour", "radius, count, mass"});
+  bad(col("[[colloids.kind]]\ncount = 3\n"), {"colloids.kind[0].radius", "missing"});
+  bad(col(kind + "[[colloids.kind]]\nradius = 1\n"), {"colloids.kind[1].count", "missing"});
+  bad(col(kind + "[[colloids.kind]]\nradius = 1\ncount = 1\nmass = -1\n"),
+      {"colloids.kind[1].mass = -1", "> 0"});
+  bad(col("kind = 3"), {"colloids.kind", "array of tables"});
+  bad(col("[[colloids.kind]]\nradius = 1\ncount = 30\n"), {"colloids.kind", "row along x"});
+  bad(col("radius = 1\ncount = 1\ncorrelation_every = 3"),
+      {"colloids.max_lag", "multiple of colloids.correlation_every = 3"});
+  bad(col("radius = 1\ncount = 1\nmax_lag = 10\ncorrelation_every = 3"),
+      {"colloids.max_lag = 10", "multiple"});
+  bad(col("radius = 1\ncount = 1\nkde_width = 0"), {"colloids.kde_width = 0", "> 0"});
+  bad(with("output", "observables = [\"density_kde\"]", channel_scene),
+      {"density_kde", "[colloids]"});
+}

@@ -93,6 +93,10 @@ CheckpointInfo read_checkpoint_info(const std::string &path, MPI_Comm comm);
 std::vector<double> read_checkpoint_array(const std::string &path, const std::string &name,
                                           std::size_t size, MPI_Comm comm);
 
+// Whether the checkpoint holds the array `name` (collective), for state that a checkpoint has
+// only when its run computed it.
+bool has_checkpoint_array(const std::string &path, const std::string &name, MPI_Comm comm);
+
 // Reads and checks /parameters only (collective): for checkpoints without a fluid (lattice
 // engines). Same refusals as read_checkpoint_info for the file and the parameters.
 CheckpointInfo read_checkpoint_header(const std::string &path, MPI_Comm comm);

@@ -40,10 +40,13 @@ public:
 
   // A result of the whole run rather than a sample (e.g. a correlation function over lags):
   // /observables/<name>/{step, time} scalars, value of shape [n], and beside it the named
-  // 1-D datasets of `beside` (e.g. lags, error). Written once per name.
+  // 1-D datasets of `beside` (e.g. lags, error). Written once per name. With `shape`, value
+  // (and the datasets of `beside` named in `shaped`) have that shape (row-major) instead.
   void write_result(const std::string &name, std::int64_t step, double time,
                     std::span<const double> value,
-                    const std::vector<std::pair<std::string, std::vector<double>>> &beside);
+                    const std::vector<std::pair<std::string, std::vector<double>>> &beside,
+                    const std::vector<hsize_t> &shape = {},
+                    const std::vector<std::string> &shaped = {});
 
   // H5Fflush: what was appended so far survives a crash of the run.
   void flush();

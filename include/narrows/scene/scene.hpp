@@ -66,6 +66,14 @@ enum class ColloidPlacement { lattice, list, random };
 enum class ColloidCoupling { md, no_slip };
 enum class ColloidContacts { none, hard };
 
+// One kind of colloid of a [[colloids.kind]] table: `count` colloids of one radius and mass
+// (mass 0: fluid mass density times the volume).
+struct ColloidKind {
+  double radius = 2.0;
+  double mass = 0.0;
+  std::int64_t count = 0;
+};
+
 struct Colloids {
   double radius = 2.0;
   double radius_sd = 0.0; // standard deviation of the radii (0: all equal to radius)
@@ -83,11 +91,28 @@ struct Colloids {
   double epsilon = 1.0;                         // eps_cf = eps_cc = eps_w (kT units)
   double wall_sigma = 0.0; // sigma_w of the wall potential, 0: 2 r_a (seed 000 table 3.1)
   double wall_q = 1.0;     // q of eq 3.35
+  // Several kinds ([[colloids.kind]]; empty: the one kind of radius, radius_sd, mass, count).
+  // Ids are given kind by kind: kind 0 has ids 0..count_0-1, kind 1 the next count_1, ...;
+  // `count` is then the total, `radius` the largest radius.
+  std::vector<ColloidKind> kinds;
+  // Colloid statistics (observables colloid_vacf, colloid_diffusion, colloid_msd,
+  // colloid_angular_vacf, density_kde): velocities sampled every correlation_every steps,
+  // lags 0..max_lag steps, kernel width kde_width, time averages from step statistics_from.
+  std::int64_t max_lag = 1000;
+  std::int64_t correlation_every = 1;
+  double kde_width = 0.25;
+  std::int64_t statistics_from = 0;
 
-  // The largest radius a colloid can have: radius + 3 radius_sd (the truncation).
-  double max_radius() const { return radius + 3.0 * radius_sd; }
+  // The largest radius a colloid can have: radius + 3 radius_sd (the truncation), or the
+  // largest radius of the kinds.
+  double max_radius() const;
+  // The number of kinds (1 without [[colloids.kind]]) and the kind of colloid `id`.
+  std::size_t kind_count() const { return kinds.empty() ? 1 : kinds.size(); }
+  std::size_t kind_of(std::uint64_t id) const;
   // The mass of a colloid of radius r: `mass` if set, else fluid mass density times its volume.
   double mass_of(int dim, double density, double r) const;
+  // The mass of colloid `id` of radius r: its kind's mass if set (kinds), else mass_of.
+  double mass_of_id(int dim, double density, std::uint64_t id, double r) const;
   double effective_mass(int dim, double density) const { return mass_of(dim, density, radius); }
   // sigma_w of a colloid of radius r: `wall_sigma` if set, else 2 r.
   double wall_sigma_of(double r) const { return wall_sigma > 0.0 ? wall_sigma : 2.0 * r; }
