@@ -109,6 +109,31 @@ void parse_lattice_gas(const Checker &c, const toml::value *sec, Continuum &out)
                               "transition with a rate > 0");
 }
 
+// Refuses a key of the initial table that its kind does not have (`mine`: the kind's keys).
+void check_initial_keys(const Checker &c, const toml::value &v, const toml::value &kind,
+                        const std::vector<std::string> &mine) {
+  for (const auto &[key, x] : sorted(v)) {
+    (void)x;
+    if (std::find(mine.begin(), mine.end(), key) == mine.end()) {
+      std::string list;
+      for (const auto &m : mine)
+        list += (list.empty() ? "" : ", ") + m;
+      c.fail("continuum.initial." + key, "unknown key 'continuum.initial." + key + "' for kind = " +
+                                             repr(kind) + "; allowed keys: " + list);
+    }
+  }
+}
+
+// The value of continuum.initial.<name>, or a refusal saying what is allowed.
+const toml::value &required_initial(const Checker &c, const toml::value &v, const char *name,
+                                    const std::string &what) {
+  const toml::value *x = find(&v, name);
+  if (x == nullptr)
+    c.fail(std::string("continuum.initial.") + name,
+           std::string("missing required key 'continuum.initial.") + name + "'; allowed: " + what);
+  return *x;
+}
+
 void parse_initial(const Checker &c, const toml::value &v, const Range &range, Continuum &out) {
   const std::string allowed = "{ kind = \"riemann\", left, right, position } or { kind = "
                               "\"profile\" | \"cells\", values = [...] } or { kind = \"sine\", "
@@ -126,27 +151,9 @@ void parse_initial(const Checker &c, const toml::value &v, const Range &range, C
                                                    {"kind", "values"},
                                                    {"kind", "mean", "amplitude"},
                                                    {"kind", "values"}};
-  const std::vector<std::string> &mine = keys[k];
-  for (const auto &[key, x] : sorted(v)) {
-    (void)x;
-    bool ok = false;
-    for (const auto &m : mine)
-      ok = ok || key == m;
-    if (!ok) {
-      std::string list;
-      for (const auto &m : mine)
-        list += (list.empty() ? "" : ", ") + m;
-      c.fail("continuum.initial." + key, "unknown key 'continuum.initial." + key + "' for kind = " +
-                                             repr(*kind) + "; allowed keys: " + list);
-    }
-  }
+  check_initial_keys(c, v, *kind, keys[k]);
   const auto required = [&](const char *name, const std::string &what) -> const toml::value & {
-    const toml::value *x = find(&v, name);
-    if (x == nullptr)
-      c.fail(std::string("continuum.initial.") + name, std::string("missing required key "
-                                                                   "'continuum.initial.") +
-                                                           name + "'; allowed: " + what);
-    return *x;
+    return required_initial(c, v, name, what);
   };
   if (out.initial == ContinuumInitial::riemann) {
     out.left = density(c, required("left", range.text), "continuum.initial.left", range);
@@ -200,24 +207,9 @@ void parse_jamming_initial(const Checker &c, const toml::value &v, Continuum &ou
   const std::vector<std::vector<std::string>> keys{{"kind", "mean", "amplitude", "mode"},
                                                    {"kind", "mean", "amplitude", "seed"},
                                                    {"kind", "values", "velocity"}};
-  const std::vector<std::string> &mine = keys[k];
-  for (const auto &[key, x] : sorted(v)) {
-    (void)x;
-    if (std::find(mine.begin(), mine.end(), key) == mine.end()) {
-      std::string list;
-      for (const auto &m : mine)
-        list += (list.empty() ? "" : ", ") + m;
-      c.fail("continuum.initial." + key, "unknown key 'continuum.initial." + key + "' for kind = " +
-                                             repr(*kind) + "; allowed keys: " + list);
-    }
-  }
+  check_initial_keys(c, v, *kind, keys[k]);
   const auto required = [&](const char *name, const std::string &what) -> const toml::value & {
-    const toml::value *x = find(&v, name);
-    if (x == nullptr)
-      c.fail(std::string("continuum.initial.") + name,
-             std::string("missing required key 'continuum.initial.") + name +
-                 "'; allowed: " + what);
-    return *x;
+    return required_initial(c, v, name, what);
   };
   const std::string fraction = "an area fraction from 0 to 1";
   const auto in_unit = [](double x) { return x >= 0.0 && x <= 1.0; };

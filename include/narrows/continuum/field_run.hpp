@@ -1,0 +1,56 @@
+// The run loop every continuum model shares, over the run shell (run/shell.hpp): restart of its
+// fields from a checkpoint (with the time step checked), the log's description, observables at
+// each sample, checkpoints, the stop signals, the progress and Loop time lines. A model gives
+// its fields, its step, its check of the fields and what it writes at a sample and at the end.
+#pragma once
+
+#include "narrows/core/error.hpp"
+#include "narrows/io/observables_writer.hpp"
+#include "narrows/run/log.hpp"
+#include "narrows/run/shell.hpp"
+#include "narrows/scene/scene.hpp"
+
+#include <mpi.h>
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace narrows::continuum {
+
+struct FieldModel {
+  double dt = 0.0;                // time step
+  std::int64_t steps = 0;         // steps of the whole run
+  std::int64_t per_sample = 1;    // steps between samples
+  std::size_t points = 0;         // grid points (cells) of every field
+  const char *point = "cell";     // what a grid point is called in the log ("cell", "point")
+  std::vector<std::string> lines; // the description the log opens with
+  // The state, checkpointed as /continuum/<name> and restored on a restart (names in order).
+  std::vector<std::pair<std::string, std::vector<double> *>> fields;
+  std::function<void(double dt)> step;
+  // Throws invariant_error if the fields are no longer sound at this step.
+  std::function<void(std::int64_t step)> check;
+  // At a sample, on every rank; `writer` is rank 0's (nullptr elsewhere).
+  std::function<void(io::ObservablesWriter *writer, std::int64_t step, double t)> sample;
+  // The lines the log ends with after the last step (not after a stop signal).
+  std::function<void(run::Log &log, std::int64_t step)> summary;
+};
+
+void run_fields(const scene::Scene &scene, const run::Options &options, MPI_Comm comm,
+                FieldModel &model);
+
+// Small helpers of the model drivers: printf-style text of up to four numbers; whether
+// output.observables lists `name`; the model's plan, its refusal naming the scene file.
+std::string format(const char *format, double a, double b = 0.0, double c = 0.0, double d = 0.0);
+bool wants(const scene::Scene &scene, const char *name);
+template <class MakePlan> auto plan_of(const scene::Scene &scene, MakePlan make) {
+  try {
+    return make(*scene.continuum);
+  } catch (const Error &e) {
+    throw input_error(scene.file + ": " + e.what());
+  }
+}
+
+} // namespace narrows::continuum
