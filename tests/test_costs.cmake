@@ -6,6 +6,7 @@
 # The validation tests (defined at build time by gtest_discover_tests); the command-line and
 # MPI tests get theirs in tests/CMakeLists.txt, where they are defined.
 set_tests_properties("validation.PoiseuilleVirtualParticles.HoldTheFluidAtTheWall" PROPERTIES COST 115)
+set_tests_properties("validation.NoSlipColloid.FreeDiscInKolmogorovFlowSpinsWithTheShear" PROPERTIES COST 60)
 set_tests_properties("validation.Rules/Viscosity.KolmogorovFlowMatchesTheory/srd3d_a130_dt1" PROPERTIES COST 54)
 set_tests_properties("validation.FhpVacf.LongTimeTailApproachesOneOverT" PROPERTIES COST 50)
 set_tests_properties("validation.Rules/Viscosity.KolmogorovFlowMatchesTheory/srd2d_a140_dt0_5" PROPERTIES COST 43)
@@ -15,6 +16,7 @@ set_tests_properties("validation.Rules/Poiseuille.ViscosityFromTheProfile/at_a2d
 set_tests_properties("validation.Rules/Viscosity.KolmogorovFlowMatchesTheory/at_a3d_dt0_5_report" PROPERTIES COST 30)
 set_tests_properties("validation.LgcaVacf1d.InfiniteSystemHasNoPlateau" PROPERTIES COST 28)
 set_tests_properties("validation.Rules/Poiseuille.ViscosityFromTheProfile/at_a3d_dt0_01_n10_seed" PROPERTIES COST 25)
+set_tests_properties("validation.NoSlipColloid.FixedDiscInPoiseuilleFlowHasZeroFluidVelocityAtItsSurface" PROPERTIES COST 25)
 set_tests_properties("validation.Rules/Viscosity.KolmogorovFlowMatchesTheory/at_a2d_dt0_5_report" PROPERTIES COST 24)
 set_tests_properties("validation.PoiseuilleSeed000.Figure3_6" PROPERTIES COST 24)
 set_tests_properties("validation.Rules/Poiseuille.ViscosityFromTheProfile/at3d_dt0_5" PROPERTIES COST 24)
