@@ -6,7 +6,6 @@
 # The validation tests (defined at build time by gtest_discover_tests); the command-line and
 # MPI tests get theirs in tests/CMakeLists.txt, where they are defined.
 set_tests_properties("validation.PoiseuilleVirtualParticles.HoldTheFluidAtTheWall" PROPERTIES COST 115)
-set_tests_properties("validation.NoSlipColloid.FreeDiscInKolmogorovFlowSpinsWithTheShear" PROPERTIES COST 60)
 set_tests_properties("validation.Rules/Viscosity.KolmogorovFlowMatchesTheory/srd3d_a130_dt1" PROPERTIES COST 54)
 set_tests_properties("validation.FhpVacf.LongTimeTailApproachesOneOverT" PROPERTIES COST 50)
 set_tests_properties("validation.Rules/Viscosity.KolmogorovFlowMatchesTheory/srd2d_a140_dt0_5" PROPERTIES COST 43)

@@ -314,10 +314,12 @@ SpinResult spin_in_kolmogorov_flow(int blocks, double Lx) {
 
 } // namespace
 
-TEST(NoSlipColloid, FreeDiscInKolmogorovFlowSpinsWithTheShear) {
+// A diagnostic, not in the suite (~60 s): it pins today's measured excess (1.10), which is not
+// the physics the method should give, so it must not pass as a test; run it by hand
+// (--gtest_also_run_disabled_tests) when working on the spin coupling. A fix of the excess
+// spin moves the ratio to 1.
+TEST(NoSlipColloid, DISABLED_FreeDiscInKolmogorovFlowSpinsWithTheShear) {
   const SpinResult r = spin_in_kolmogorov_flow(20, 12.0);
-  // The long runs above (L_x = 12 and 24); a fix of the excess spin moves it to 1 (and this test
-  // then fails by design: update the reference with the long test's new figure).
   constexpr double reference = 1.10;
   EXPECT_NEAR(r.ratio, reference, 3.0 * r.error);
   EXPECT_LT(r.error, 0.05); // a spin far above the noise, else the test says nothing
