@@ -59,23 +59,7 @@ void ColloidLookup::build(const Colloids &c, const mpcd::Box &box, int first_col
   }
 }
 
-int ColloidLookup::cell_of(const double *p) const {
-  // Positions lie in [0, L) along periodic axes and [0, L_y] between walls (streamed and
-  // wrapped): truncation is the floor, and one subtraction wraps the column into the region.
-  const int L = box_.cells[0];
-  int ix = std::min(static_cast<int>(p[0]), L - 1) - lo_;
-  ix += ix < 0 ? L : 0;
-  if (ix >= nx_)
-    return -1;
-  const int iy = std::clamp(static_cast<int>(p[1]), 0, ny_ - 1); // y = L_y on a wall
-  const int iz = box_.dim == 3 ? std::clamp(static_cast<int>(p[2]), 0, nz_ - 1) : 0;
-  return ix + nx_ * (iy + ny_ * iz);
-}
-
-long ColloidLookup::inside(const Colloids &c, const double *p) const {
-  const int cell = cell_of(p);
-  if (cell < 0)
-    return -1;
+long ColloidLookup::inside_listed(const Colloids &c, const double *p, int cell) const {
   long best = -1;
   for (int e = head_[static_cast<std::size_t>(cell)]; e >= 0; e = next_[e]) {
     const auto a = static_cast<std::size_t>(row_[e]);

@@ -9,6 +9,7 @@
 #include "narrows/mpcd/streaming.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace narrows::colloids {
@@ -78,12 +79,16 @@ void NoSlipCoupling::add_ghost_particles(mpcd::Fluid &fluid, mpcd::CellGrid &gri
               rng::open01(rng::draw(params_.seed, rng::Purpose::ghost_position, step,
                                     ghost_key(c.id[a], gcell, 255))[0]) < fraction)
             ++tries;
+          rng::Block u{};
           for (int t = 0; t < tries; ++t) {
             const std::uint64_t key = ghost_key(c.id[a], gcell, static_cast<std::uint64_t>(t));
-            const auto u = rng::draw(params_.seed, rng::Purpose::ghost_position, step, key);
+            // A block of four words places two tries in 2D (words 0-1, 2-3), one in 3D.
+            const int word = dim_ == 2 ? 2 * (t & 1) : 0;
+            if (word == 0)
+              u = rng::draw(params_.seed, rng::Purpose::ghost_position, step, key);
             double r[3] = {0.0, 0.0, 0.0}, r2 = 0.0;
             for (int k = 0; k < dim_; ++k) {
-              r[k] = corner[k] + rng::open01(u[k]);
+              r[k] = corner[k] + rng::open01(u[word + k]);
               r2 += r[k] * r[k];
             }
             if (r2 >= R2)
@@ -91,25 +96,30 @@ void NoSlipCoupling::add_ghost_particles(mpcd::Fluid &fluid, mpcd::CellGrid &gri
             const double y = X[1] + r[1];
             if (walls && !(y >= 0.0 && y <= box_.length[1]))
               continue;
-            const auto g =
-                rng::gaussian4(rng::draw(params_.seed, rng::Purpose::ghost_velocity, step, key));
+            const auto block = rng::draw(params_.seed, rng::Purpose::ghost_velocity, step, key);
+            std::array<double, 4> g{0.0, 0.0, 0.0, 0.0};
+            if (dim_ == 2) { // two deviates: half the logarithms and sines
+              const auto g2 = rng::gaussian2(block);
+              g = {g2[0], g2[1], 0.0, 0.0};
+            } else {
+              g = rng::gaussian4(block);
+            }
             const double w[3] = {c.omega[0][a], c.omega[1][a], c.omega[2][a]};
             const double rigid[3] = {c.v[0][a] + w[1] * r[2] - w[2] * r[1],
                                      c.v[1][a] + w[2] * r[0] - w[0] * r[2],
                                      (dim_ == 3 ? c.v[2][a] : 0.0) + w[0] * r[1] - w[1] * r[0]};
-            const std::size_t row_index = fluid.size();
-            fluid.resize(row_index + 1);
             // The position from the cell's own corner, so that binning finds this cell.
             const double origin[3] = {column + sh[0], (walls ? j - 1 : row) + sh[1],
                                       dim_ == 3 ? layer + sh[2] : 0.0};
             for (int k = 0; k < dim_; ++k) {
-              double x = origin[k] + rng::open01(u[k]);
+              double x = origin[k] + rng::open01(u[word + k]);
               if (!(k == 1 && walls))
                 x = mpcd::wrap_periodic(x, box_.length[k]);
-              fluid.x[k][row_index] = x;
-              fluid.v[k][row_index] = rigid[k] + sigma * g[k];
+              fluid.x[k].push_back(x);
+              fluid.v[k].push_back(rigid[k] + sigma * g[k]);
             }
-            fluid.id[row_index] = ghost_particle_id | key;
+            fluid.id.push_back(ghost_particle_id | key);
+            fluid.cell.push_back(0); // binned below
             ghost_row_.push_back(static_cast<std::uint32_t>(a));
           }
         }

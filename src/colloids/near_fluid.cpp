@@ -80,12 +80,19 @@ void select(const CellList &cl, const mpcd::Fluid &f, const Colloids &c, const m
 } // namespace
 
 double fluid_reach(const mpcd::Fluid &f, double dt, double fluid_accel) {
-  const double half_a_dt2 = 0.5 * fluid_accel * dt * dt;
-  double max_reach = 0.0;
-  for (std::size_t i = 0; i < f.size(); ++i)
-    max_reach = std::max(max_reach, f.dim == 3 ? reach<3>(f, i, dt, half_a_dt2)
-                                               : reach<2>(f, i, dt, half_a_dt2));
-  return max_reach;
+  // The largest |v|^2, then one square root: the same number as the largest |v| dt + a dt^2/2
+  // (sqrt and the affine map are monotonic and correctly rounded), at a third of the cost.
+  double v2_max = 0.0;
+  const std::size_t n = f.size();
+  if (f.dim == 3) {
+    for (std::size_t i = 0; i < n; ++i)
+      v2_max =
+          std::max(v2_max, f.v[0][i] * f.v[0][i] + f.v[1][i] * f.v[1][i] + f.v[2][i] * f.v[2][i]);
+  } else {
+    for (std::size_t i = 0; i < n; ++i)
+      v2_max = std::max(v2_max, f.v[0][i] * f.v[0][i] + f.v[1][i] * f.v[1][i]);
+  }
+  return n == 0 ? 0.0 : std::sqrt(v2_max) * dt + 0.5 * fluid_accel * dt * dt;
 }
 
 void select_near_fluid(const CellList &cells, const mpcd::Fluid &f, const Colloids &c,

@@ -28,9 +28,9 @@ virtual_particles = true
 coupling = "no-slip"
 contacts = "hard"
 radius = 1.6
-count = 8
+count = 10
 placement = "random"
-gravity = [0.0, -0.05]
+gravity = [0.0, -0.1]
 [output]
 every = 50
 checkpoint_every = 100
@@ -85,7 +85,7 @@ refused "hard contacts with MD colloids" 'colloids.contacts = "hard".*allowed wi
 bad 's/contacts = "hard"/contacts = "spring"/'
 refused "spring contacts (not built)" 'colloids.contacts = "spring".*not built yet' \
   "$narrows" check "$tmp/bad.toml"
-bad 's/^count = 8/count = 8\nmd_substeps = 10/'
+bad 's/^count = 10/count = 10\nmd_substeps = 10/'
 refused "an MD key with no-slip" 'colloids.md_substeps = 10 sets the MD coupling' \
   "$narrows" check "$tmp/bad.toml"
 bad 's/dt = 0.05/dt = 0.4/'

@@ -7,6 +7,7 @@
 #include "narrows/colloids/colloids.hpp"
 #include "narrows/mpcd/fluid.hpp"
 
+#include <algorithm>
 #include <vector>
 
 namespace narrows::colloids {
@@ -15,11 +16,30 @@ class ColloidLookup {
 public:
   // Lists the rows of c (owned and ghosts) over the columns [first - extent, end + extent).
   void build(const Colloids &c, const mpcd::Box &box, int first_column, int columns, double extent);
-  // The row of the colloid whose interior holds p (the lowest id if several), or -1.
-  long inside(const Colloids &c, const double *p) const;
+  // The row of the colloid whose interior holds p (the lowest id if several), or -1. Inline:
+  // every fluid particle asks once a step, and most cells list no colloid.
+  long inside(const Colloids &c, const double *p) const {
+    const int cell = cell_of(p);
+    if (cell < 0 || head_[static_cast<std::size_t>(cell)] < 0)
+      return -1;
+    return inside_listed(c, p, cell);
+  }
 
 private:
-  int cell_of(const double *p) const; // -1 outside the region
+  // The cell of p, -1 outside the region. Positions lie in [0, L) along periodic axes and in
+  // [0, L_y] between walls (streamed and wrapped): truncation is the floor, and one addition
+  // wraps the column into the region.
+  int cell_of(const double *p) const {
+    const int L = box_.cells[0];
+    int ix = std::min(static_cast<int>(p[0]), L - 1) - lo_;
+    ix += ix < 0 ? L : 0;
+    if (ix >= nx_)
+      return -1;
+    const int iy = std::clamp(static_cast<int>(p[1]), 0, ny_ - 1); // y = L_y on a wall
+    const int iz = box_.dim == 3 ? std::clamp(static_cast<int>(p[2]), 0, nz_ - 1) : 0;
+    return ix + nx_ * (iy + ny_ * iz);
+  }
+  long inside_listed(const Colloids &c, const double *p, int cell) const;
   mpcd::Box box_;
   int lo_ = 0, nx_ = 1, ny_ = 1, nz_ = 1; // region: columns lo_ .. lo_ + nx_ - 1 (wrapped)
   std::vector<int> head_, next_, row_;
