@@ -24,6 +24,25 @@ constexpr double path_allowance = 0.25;
 
 } // namespace
 
+void rotate(Colloids &c, std::size_t a, double dt) {
+  // q <- exp(Omega dt / 2) q: the rotation by |Omega| dt about Omega (space frame), exact for an
+  // angular velocity constant over dt; renormalised against the drift of round-off.
+  const double w[3] = {c.omega[0][a], c.omega[1][a], c.omega[2][a]};
+  const double rate = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+  if (rate == 0.0)
+    return;
+  const double half = 0.5 * rate * dt, s = std::sin(half) / rate;
+  const double d[4] = {std::cos(half), w[0] * s, w[1] * s, w[2] * s};
+  const double q[4] = {c.q[0][a], c.q[1][a], c.q[2][a], c.q[3][a]};
+  double r[4] = {d[0] * q[0] - d[1] * q[1] - d[2] * q[2] - d[3] * q[3],
+                 d[0] * q[1] + d[1] * q[0] + d[2] * q[3] - d[3] * q[2],
+                 d[0] * q[2] - d[1] * q[3] + d[2] * q[0] + d[3] * q[1],
+                 d[0] * q[3] + d[1] * q[2] - d[2] * q[1] + d[3] * q[0]};
+  const double norm = 1.0 / std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + r[3] * r[3]);
+  for (int k = 0; k < 4; ++k)
+    c.q[k][a] = r[k] * norm;
+}
+
 NoSlipCoupling::NoSlipCoupling(const NoSlipParams &params, const mpcd::Box &box,
                                const parallel::Slabs &slabs)
     : params_(params), box_(box), dim_(box.dim), slabs_(slabs), ghosts_(slabs, box),
@@ -33,9 +52,11 @@ void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c) {
   const ScopedSeconds timed(seconds_);
   const double dt = params_.dt;
   const std::size_t owned = c.size();
-  for (std::size_t a = 0; a < owned; ++a) // gravity: a kick of the whole step
+  for (std::size_t a = 0; a < owned; ++a) { // gravity: a kick of the whole step
     for (int k = 0; k < dim_; ++k)
       c.v[k][a] += params_.gravity[k] * dt;
+    rotate(c, a, dt);
+  }
   // Each colloid's path this step: its speed, or with hard contacts up to twice the fastest
   // speed more (a collision can pass on the speed of the partner).
   double fastest = 0.0, v_max = 0.0;

@@ -14,6 +14,8 @@ parallel::SoaView colloid_view(Colloids &c) {
     v.reals.push_back(&c.v[k]);
   for (int k = 0; k < 3; ++k)
     v.reals.push_back(&c.omega[k]);
+  for (int k = 0; k < 4; ++k)
+    v.reals.push_back(&c.q[k]);
   v.reals.push_back(&c.radius);
   v.reals.push_back(&c.mass);
   v.words.push_back(&c.id);

@@ -17,10 +17,14 @@ namespace {
 const char *const spin_names[3] = {"angular_velocity_x", "angular_velocity_y",
                                    "angular_velocity_z"};
 int first_spin(int dim) { return dim == 2 ? 2 : 0; }
+// The orientation quaternion (w, x, y, z).
+const char *const orientation_names[4] = {"orientation_w", "orientation_x", "orientation_y",
+                                          "orientation_z"};
 
 // The stored fields of c: position, velocity, id, and (sizes) radius and mass, (spins) the
 // angular velocity.
-io::SpeciesFields fields_of(colloids::Colloids &c, bool sizes = true, bool spins = true) {
+io::SpeciesFields fields_of(colloids::Colloids &c, bool sizes = true, bool spins = true,
+                            bool orientations = true) {
   io::SpeciesFields s;
   s.name = "colloids";
   s.dim = c.dim;
@@ -34,6 +38,9 @@ io::SpeciesFields fields_of(colloids::Colloids &c, bool sizes = true, bool spins
   if (spins)
     for (int k = first_spin(c.dim); k < 3; ++k)
       s.scalars.push_back({spin_names[k], &c.omega[k]});
+  if (orientations)
+    for (int k = 0; k < 4; ++k)
+      s.scalars.push_back({orientation_names[k], &c.q[k]});
   return s;
 }
 
@@ -59,13 +66,16 @@ colloids::Colloids read_colloids(const std::string &path, const scene::Colloids 
                      io::has_species_field(path, "colloids", "mass", comm);
   // Checkpoints written before colloids could spin: they did not.
   const bool spins = io::has_species_field(path, "colloids", "angular_velocity_z", comm);
-  io::SpeciesFields s = fields_of(block, sizes, spins);
+  // ... nor orientations: the identity.
+  const bool orientations = io::has_species_field(path, "colloids", "orientation_w", comm);
+  io::SpeciesFields s = fields_of(block, sizes, spins, orientations);
   io::read_species(path, s, comm);
 
-  // Gather every rank's block everywhere: rows of 2 dim + 3 words (id, radius, mass) + 3 spins.
+  // Gather every rank's block everywhere: rows of 2 dim + 3 words (id, radius, mass), 3 spins
+  // and 4 orientation components.
   int ranks = 1;
   MPI_Comm_size(comm, &ranks);
-  const int row = 2 * dim + 6;
+  const int row = 2 * dim + 10;
   const int mine = static_cast<int>(block.id.size());
   std::vector<int> counts(ranks), displs(ranks, 0);
   MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
@@ -81,6 +91,8 @@ colloids::Colloids read_colloids(const std::string &path, const scene::Colloids 
     r[2 * dim + 2] = sizes ? block.mass[i] : 0.0;
     for (int k = 0; k < 3; ++k)
       r[2 * dim + 3 + k] = spins && k >= first_spin(dim) ? block.omega[k][i] : 0.0;
+    for (int k = 0; k < 4; ++k)
+      r[2 * dim + 6 + k] = orientations ? block.q[k][i] : (k == 0 ? 1.0 : 0.0);
   }
   int total = 0;
   for (int r = 0; r < ranks; ++r) {
@@ -137,6 +149,16 @@ colloids::Colloids read_colloids(const std::string &path, const scene::Colloids 
                           std::to_string(w) + "; allowed: a finite number");
       c.omega[k][id] = w;
     }
+    double norm2 = 0.0;
+    for (int k = 0; k < 4; ++k) {
+      c.q[k][id] = r[2 * dim + 6 + k];
+      norm2 += c.q[k][id] * c.q[k][id];
+    }
+    if (!(std::abs(norm2 - 1.0) < 1e-6))
+      throw input_error(path + ": /particles/colloids/orientation_*" + at +
+                        " is not a unit "
+                        "quaternion (|q|^2 = " +
+                        std::to_string(norm2) + "); allowed: w^2 + x^2 + y^2 + z^2 = 1");
     if (sizes) { // restored exactly as they were written
       const double radius = r[2 * dim + 1], mass = r[2 * dim + 2];
       if (!(radius > 0.0 && std::isfinite(radius) && mass > 0.0 && std::isfinite(mass)))

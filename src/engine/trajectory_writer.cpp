@@ -87,6 +87,10 @@ TrajectoryWriter::TrajectoryWriter(const std::string &h5_path, const std::string
     spin_step_ = h5::create_series(g.get(), "step", H5T_STD_I64LE, {}, path_);
     spin_time_ = h5::create_series(g.get(), "time", H5T_IEEE_F64LE, {}, path_);
     spin_value_ = h5::create_series(g.get(), "value", H5T_IEEE_F64LE, {colloid_rows_, 3}, path_);
+    const h5::Group o = h5::create_group(group.get(), "orientation", path_);
+    turn_step_ = h5::create_series(o.get(), "step", H5T_STD_I64LE, {}, path_);
+    turn_time_ = h5::create_series(o.get(), "time", H5T_IEEE_F64LE, {}, path_);
+    turn_value_ = h5::create_series(o.get(), "value", H5T_IEEE_F64LE, {colloid_rows_, 4}, path_);
   }
   h5::flush(file_, path_);
 }
@@ -125,6 +129,15 @@ void TrajectoryWriter::write_colloid_frame(std::int64_t step, double time,
   h5::write_row(spin_time_, frame, H5T_NATIVE_DOUBLE, {}, &time, path_, prefix + "time");
   h5::write_row(spin_value_, frame, H5T_NATIVE_DOUBLE, {colloid_rows_, 3}, position_.data(), path_,
                 prefix + "value");
+  velocity_.assign(colloid_rows_ * 4, 0.0); // the orientation quaternion (w, x, y, z)
+  for (std::size_t a = 0; a < colloid_rows_; ++a)
+    for (int k = 0; k < 4; ++k)
+      velocity_[a * 4 + k] = c.q[k][a];
+  const std::string turn = "/particles/colloids/orientation/";
+  h5::write_row(turn_step_, frame, H5T_NATIVE_INT64, {}, &step, path_, turn + "step");
+  h5::write_row(turn_time_, frame, H5T_NATIVE_DOUBLE, {}, &time, path_, turn + "time");
+  h5::write_row(turn_value_, frame, H5T_NATIVE_DOUBLE, {colloid_rows_, 4}, velocity_.data(), path_,
+                turn + "value");
 }
 
 void TrajectoryWriter::write_frame(std::int64_t step, double time, const mpcd::Fluid &fluid,

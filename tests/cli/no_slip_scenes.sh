@@ -45,7 +45,8 @@ def state(path, species, fields):
         order = np.argsort(p["id/value"][:])
         return [p[name + "/value"][:][order] for name in fields]
 pairs = [("fluid", ["id", "position", "velocity"]),
-         ("colloids", ["id", "position", "velocity", "angular_velocity_z"])]
+         ("colloids", ["id", "position", "velocity", "angular_velocity_z", "orientation_w",
+                       "orientation_z"])]
 for species, fields in pairs:
     a, b = state(sys.argv[1], species, fields), state(sys.argv[2], species, fields)
     for name, x, y in zip(fields, a, b):
@@ -54,6 +55,7 @@ for species, fields in pairs:
 PY
 runs --err "$tmp/err1" "1 rank" "$narrows" run "$tmp/n.toml" --out "$tmp/one" > "$tmp/log1"
 check "the log counts the contacts" 'grep -q "colloid contacts: [1-9][0-9]* colloid-colloid" "$tmp/log1"'
+check "the colloids turned: orientation (cos t/2, 0, 0, sin t/2), a unit quaternion" '$py -c "import h5py,sys,numpy as np; g=h5py.File(sys.argv[1])[\"/particles/colloids\"]; w=g[\"orientation_w/value\"][:]; z=g[\"orientation_z/value\"][:]; assert np.allclose(w*w+z*z, 1.0) and np.abs(z).max() > 1e-3 and not g[\"orientation_x/value\"][:].any()" "$tmp/one/checkpoint-0000000200.h5"'
 check "the colloids spin" '$py -c "import h5py,sys,numpy as np; f=h5py.File(sys.argv[1]); assert np.abs(f[\"/particles/colloids/angular_velocity_z/value\"][:]).max() > 1e-4" "$tmp/one/checkpoint-0000000200.h5"'
 runs "2 ranks" "${mpi[@]}" -n 2 "$narrows" run "$tmp/n.toml" --out "$tmp/two" > /dev/null 2>&1
 check "2 ranks bitwise equal to 1 rank" \

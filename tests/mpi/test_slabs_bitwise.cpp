@@ -166,6 +166,9 @@ TEST_P(Bitwise, RanksEqualOneRank) {
   for (int k = 0; k < 3; ++k) // angular velocities (no-slip colloids spin)
     for (std::size_t a = 0; a < ca.size(); ++a)
       colloid_differ += std::memcmp(&ca.omega[k][a], &cb.omega[k][a], sizeof(double)) != 0;
+  for (int k = 0; k < 4; ++k) // and turn
+    for (std::size_t a = 0; a < ca.size(); ++a)
+      colloid_differ += std::memcmp(&ca.q[k][a], &cb.q[k][a], sizeof(double)) != 0;
   for (std::size_t a = 0; a < ca.size(); ++a) // radii and masses (drawn from the seed)
     colloid_differ += std::memcmp(&ca.radius[a], &cb.radius[a], sizeof(double)) != 0 ||
                       std::memcmp(&ca.mass[a], &cb.mass[a], sizeof(double)) != 0;

@@ -1,5 +1,5 @@
 // The colloid species as a structure of arrays (seed 000 §3.4): position, velocity, angular
-// velocity (kept for the no-slip and contact models of later issues), radius, mass, global id.
+// velocity and orientation (no-slip colloids spin), radius, mass, global id.
 #pragma once
 
 #include <array>
@@ -14,6 +14,10 @@ namespace narrows::colloids {
 struct Colloids {
   int dim = 2;
   std::array<std::vector<double>, 3> x, v, omega; // components k < dim (omega: all 3, zero)
+  // Orientation as a unit quaternion (w, x, y, z): the rotation from the initial orientation,
+  // advanced by omega (no-slip colloids spin; MD colloids keep the identity). In 2D a rotation
+  // by theta about z is (cos theta/2, 0, 0, sin theta/2).
+  std::array<std::vector<double>, 4> q;
   std::vector<double> radius, mass;
   std::vector<std::uint64_t> id;
 
@@ -24,6 +28,9 @@ struct Colloids {
       v[k].resize(k < dim ? n : 0);
       omega[k].resize(n);
     }
+    q[0].resize(n, 1.0); // new rows: the identity
+    for (int k = 1; k < 4; ++k)
+      q[k].resize(n, 0.0);
     radius.resize(n);
     mass.resize(n);
     id.resize(n);

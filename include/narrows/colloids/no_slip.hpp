@@ -4,7 +4,8 @@
 // take part in the collision. Every momentum and angular momentum the fluid loses goes to the
 // colloids (summed in fixed point, so the result does not depend on the order of particles or
 // on the number of ranks). The MPCD step calls, in order:
-//   move_colloids          ghosts for the step; gravity kick U += g dt; every colloid moves
+//   move_colloids          orientation turned by Omega dt (the step's starting spin); gravity
+//                          kick U += g dt; ghosts for the step; every colloid moves
 //                          U dt (contacts = "none") or by event-driven rough hard spheres
 //                          (contacts = "hard", hard_spheres.hpp)
 //   (the engine streams all fluid the whole step with the kernel its plan chose)
@@ -48,6 +49,9 @@ struct NoSlipParams {
   double sine_amplitude = 0.0; // Kolmogorov force on the fluid, a_x = A sin(2 pi y / L_y)
   bool hard_contacts = false;
 };
+
+// Turns colloid a's orientation by its angular velocity over time dt.
+void rotate(Colloids &c, std::size_t a, double dt);
 
 // Fluid ids at or above this are ghost particles (they exist only within a step).
 inline constexpr std::uint64_t ghost_particle_id = 1ull << 63;

@@ -13,7 +13,8 @@
 
 namespace narrows::colloids {
 
-// Every per-colloid array of c (position, velocity, angular velocity, radius, mass, id): what
+// Every per-colloid array of c (position, velocity, angular velocity, orientation, radius,
+// mass, id): what
 // migrates with a colloid and what a ghost copy carries.
 parallel::SoaView colloid_view(Colloids &c);
 

@@ -10,7 +10,8 @@
 //   /particles/fluid/id                 [M]: row j holds the particle with id j * subsample
 //   /particles/colloids/...             with colloids: every colloid, the same box, position and
 //                                       velocity series, id [N_c] and radius [N_c], and
-//                                       angular_velocity/{value [T][N_c][3], step, time}
+//                                       angular_velocity/{value [T][N_c][3], step, time},
+//                                       orientation/{value [T][N_c][4] (w, x, y, z), step, time}
 //   /parameters/{scene, subsample}
 // Rows are ordered by id, so a row is the same particle in every frame, on any rank count.
 // The XDMF has a temporal grid per species (colloids with their radius, for glyphs).
@@ -59,6 +60,7 @@ private:
   std::size_t colloid_rows_ = 0;                 // 0: no colloid species
   io::h5::Dataset colloid_step_[2], colloid_time_[2], colloid_value_[2];
   io::h5::Dataset spin_step_, spin_time_, spin_value_; // colloids' angular velocity [T][N_c][3]
+  io::h5::Dataset turn_step_, turn_time_, turn_value_; // their orientation [T][N_c][4]
   std::vector<double> frame_times_;
   std::vector<std::uint64_t> send_rows_, recv_rows_;
   std::vector<double> send_values_, recv_values_, position_, velocity_;
