@@ -80,14 +80,15 @@ void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c) {
                                  params_.fluid_accel[2] * params_.fluid_accel[2]) +
                        std::abs(params_.sine_amplitude);
   const double reach = ghosts_.active() ? fluid_reach(fluid, dt, accel) : 0.0;
-  // With contacts the region reaches two collision distances further, so that the ghosts an
-  // owned colloid can meet, and theirs, are all here (trusted_rows; a longer chain is refused).
+  // With contacts the region reaches four collision distances further, so that the ghosts an
+  // owned colloid can meet in a chain of up to three contacts within the step are all here and
+  // trusted (trusted_rows; a longer chain is refused).
   double m_max = 0.0, m_own = 0.0;
   for (std::size_t a = 0; a < owned; ++a)
     m_own = std::max(m_own, margin_[a]);
   MPI_Allreduce(&m_own, &m_max, 1, MPI_DOUBLE, MPI_MAX, slabs_.comm());
   const double contact = 2.0 * r_max + 2.0 * m_max;
-  ghosts_.add_for_step(c, margin_, reach, params_.hard_contacts ? 2.0 * contact : 0.0);
+  ghosts_.add_for_step(c, margin_, reach, params_.hard_contacts ? 4.0 * contact : 0.0);
   std::array<std::vector<double>, 3> start;
   for (int k = 0; k < dim_; ++k)
     start[k].assign(c.x[k].begin(), c.x[k].begin() + static_cast<std::ptrdiff_t>(owned));
