@@ -2,6 +2,7 @@
 #include "narrows/continuum/jamming_plan.hpp"
 
 #include "narrows/continuum/jamming_model.hpp"
+#include "narrows/continuum/plan.hpp"
 #include "narrows/core/error.hpp"
 #include "narrows/core/rng.hpp"
 
@@ -60,14 +61,10 @@ JammingPlan make_jamming_plan(const scene::Continuum &m) {
   for (double x : v)
     p.speed_bound = std::max(p.speed_bound, std::abs(x));
   const double dt_max = m.cfl * p.dx / p.speed_bound;
-  const double per = std::ceil(m.time / static_cast<double>(m.samples) / dt_max);
-  if (!(per * static_cast<double>(m.samples) <= 9e9))
-    throw input_error("continuum: " + std::to_string(per * static_cast<double>(m.samples)) +
-                      " steps (continuum.time / the CFL time step); allowed: at most 9e9 "
-                      "(fewer continuum.cells, a shorter continuum.time)");
-  p.per_sample = std::max<std::int64_t>(1, static_cast<std::int64_t>(per));
-  p.steps = p.per_sample * m.samples;
-  p.dt = m.time / static_cast<double>(p.steps);
+  const SampleSteps steps = sample_steps(m.time, m.samples, dt_max);
+  p.per_sample = steps.per_sample;
+  p.steps = steps.steps;
+  p.dt = steps.dt;
   p.courant = p.speed_bound * p.dt / p.dx;
   return p;
 }

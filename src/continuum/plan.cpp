@@ -73,6 +73,19 @@ std::vector<double> cell_centres(const Grid &grid) {
   return x;
 }
 
+SampleSteps sample_steps(double time, std::int64_t samples, double dt_max) {
+  const double per = std::ceil(time / static_cast<double>(samples) / dt_max);
+  if (!(per * static_cast<double>(samples) <= 9e9))
+    throw input_error("continuum: " + std::to_string(per * static_cast<double>(samples)) +
+                      " steps (continuum.time / the CFL time step); allowed: at most 9e9 "
+                      "(fewer continuum.cells, a shorter continuum.time)");
+  SampleSteps out;
+  out.per_sample = std::max<std::int64_t>(1, static_cast<std::int64_t>(per));
+  out.steps = out.per_sample * samples;
+  out.dt = time / static_cast<double>(out.steps);
+  return out;
+}
+
 Plan make_plan(const scene::Continuum &m) {
   Plan p;
   p.grid.cells = m.cells;
@@ -90,15 +103,10 @@ Plan make_plan(const scene::Continuum &m) {
   const Flux flux(m);
   p.max_speed = flux.max_speed(p.lo, p.hi);
   const double dt_max = stable_dt(p.max_speed, p.grid.dx, m.diffusion, m.cfl);
-  const double per_sample_time = m.time / static_cast<double>(m.samples);
-  const double per = std::ceil(per_sample_time / dt_max);
-  if (!(per * static_cast<double>(m.samples) <= 9e9))
-    throw input_error("continuum: " + std::to_string(per * static_cast<double>(m.samples)) +
-                      " steps (continuum.time / the CFL time step); allowed: at most 9e9 "
-                      "(fewer continuum.cells, a shorter continuum.time)");
-  p.per_sample = std::max<std::int64_t>(1, static_cast<std::int64_t>(per));
-  p.steps = p.per_sample * m.samples;
-  p.dt = m.time / static_cast<double>(p.steps);
+  const SampleSteps steps = sample_steps(m.time, m.samples, dt_max);
+  p.per_sample = steps.per_sample;
+  p.steps = steps.steps;
+  p.dt = steps.dt;
   p.courant = p.max_speed * p.dt / p.grid.dx;
   p.diffusion_number = m.diffusion * p.dt / (p.grid.dx * p.grid.dx);
   return p;

@@ -21,6 +21,15 @@ struct Plan {
   double diffusion_number = 0.0; // D dt / dx^2
 };
 
+// The steps of a run of `time` with `samples` samples at a step no longer than dt_max: the
+// largest dt <= dt_max that puts every sample time k time / samples on a step (input_error
+// beyond 9e9 steps). Shared by the continuum models.
+struct SampleSteps {
+  double dt = 0.0;
+  std::int64_t steps = 0, per_sample = 0;
+};
+SampleSteps sample_steps(double time, std::int64_t samples, double dt_max);
+
 // dt is the largest step <= stable_dt (scheme.hpp) that puts every sample time
 // k continuum.time / continuum.samples on a step, so samples are exact in time and the run
 // ends at continuum.time.
