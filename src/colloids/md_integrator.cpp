@@ -4,6 +4,7 @@
 #include "narrows/colloids/near_fluid.hpp"
 #include "narrows/colloids/ownership.hpp"
 #include "narrows/colloids/pair_geometry.hpp"
+#include "narrows/colloids/paths.hpp"
 #include "narrows/core/error.hpp"
 #include "narrows/core/fixed_point.hpp"
 #include "narrows/mpcd/streaming.hpp"
@@ -90,13 +91,7 @@ void MdIntegrator::substeps(Colloids &colloids, const FluidStream &stream) {
   for (int s = 0; s < params_.substeps; ++s) {
     kick(near_, colloids);
     stream(near_, tau);
-    for (std::size_t a = 0; a < owned; ++a)
-      for (int k = 0; k < dim_; ++k) {
-        double x = colloids.x[k][a] + colloids.v[k][a] * tau;
-        if (!(k == 1 && box_.walls_y))
-          x = mpcd::wrap_periodic(x, box_.length[k]);
-        colloids.x[k][a] = x;
-      }
+    move_ballistic(colloids, owned, box_, tau);
     ghosts_.refresh_positions(colloids);
     forces_.compute(near_, colloids, &ghosts_, comm);
     kick(near_, colloids);
@@ -115,23 +110,9 @@ void MdIntegrator::put_back_near_fluid(mpcd::Fluid &fluid) const {
 
 void MdIntegrator::check_paths(const Colloids &colloids) const {
   ghosts_.check_region(near_);
-  for (std::size_t a = 0; a < ghosts_.owned(); ++a) {
-    double d2 = 0.0;
-    for (int k = 0; k < dim_; ++k) {
-      double d = colloids.x[k][a] - start_[k][a];
-      if (!(k == 1 && box_.walls_y))
-        d = minimum_image(d, box_.length[k]);
-      d2 += d * d;
-    }
-    if (std::sqrt(d2) > margin_[a] + 1e-12) {
-      std::ostringstream os;
-      os << "colloid id " << colloids.id[a] << " moved " << std::sqrt(d2)
-         << " in one step, more than the " << margin_[a]
-         << " its velocity and force allowed (a sudden force: more colloids.md_substeps or a "
-            "smaller fluid.dt)";
-      throw invariant_error(os.str());
-    }
-  }
+  colloids::check_paths(colloids, ghosts_.owned(), start_, margin_, box_, 1e-12,
+                        "its velocity and force allowed (a sudden force: more "
+                        "colloids.md_substeps or a smaller fluid.dt)");
 }
 
 void MdIntegrator::hand_over(Colloids &colloids) {

@@ -5,6 +5,7 @@
 #include "narrows/colloids/near_fluid.hpp"
 #include "narrows/colloids/ownership.hpp"
 #include "narrows/colloids/pair_geometry.hpp"
+#include "narrows/colloids/paths.hpp"
 #include "narrows/core/error.hpp"
 #include "narrows/core/fixed_point.hpp"
 #include "narrows/core/timer.hpp"
@@ -89,17 +90,15 @@ void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c) {
   MPI_Allreduce(&m_own, &m_max, 1, MPI_DOUBLE, MPI_MAX, slabs_.comm());
   const double contact = 2.0 * r_max + 2.0 * m_max;
   ghosts_.add_for_step(c, margin_, reach, params_.hard_contacts ? 4.0 * contact : 0.0);
-  std::array<std::vector<double>, 3> start;
   for (int k = 0; k < dim_; ++k)
-    start[k].assign(c.x[k].begin(), c.x[k].begin() + static_cast<std::ptrdiff_t>(owned));
+    start_[k].assign(c.x[k].begin(), c.x[k].begin() + static_cast<std::ptrdiff_t>(owned));
   if (params_.hard_contacts) {
-    std::vector<std::uint8_t> trusted;
-    ghosts_.trusted_rows(c, contact, trusted);
-    const HardSphereStats e = advance_hard_spheres(c, box_, dt, &trusted);
+    ghosts_.trusted_rows(c, contact, trusted_);
+    const HardSphereStats e = advance_hard_spheres(c, box_, dt, &trusted_);
     contacts_.pair_collisions += e.pair_collisions;
     contacts_.wall_collisions += e.wall_collisions;
     for (std::size_t a = 0; a < owned; ++a)
-      if (!trusted[a]) {
+      if (!trusted_[a]) {
         std::ostringstream os;
         os << "colloid id " << c.id[a]
            << " took part in a chain of contacts reaching beyond the ghost colloids of this "
@@ -109,30 +108,10 @@ void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c) {
     ghosts_.refresh_positions(c); // the owners' paths (a ghost may have missed a partner)
     ghosts_.refresh_motion(c);
   } else {
-    for (std::size_t a = 0; a < c.size(); ++a) // owned and ghost rows alike: the same bits
-      for (int k = 0; k < dim_; ++k) {
-        double x = c.x[k][a] + c.v[k][a] * dt;
-        if (!(k == 1 && box_.walls_y))
-          x = mpcd::wrap_periodic(x, box_.length[k]);
-        c.x[k][a] = x;
-      }
+    move_ballistic(c, c.size(), box_, dt); // owned and ghost rows alike: the same bits
   }
-  for (std::size_t a = 0; a < owned; ++a) {
-    double d2 = 0.0;
-    for (int k = 0; k < dim_; ++k) {
-      double d = c.x[k][a] - start[k][a];
-      if (!(k == 1 && box_.walls_y))
-        d = minimum_image(d, box_.length[k]);
-      d2 += d * d;
-    }
-    if (std::sqrt(d2) > margin_[a]) {
-      std::ostringstream os;
-      os << "colloid id " << c.id[a] << " moved " << std::sqrt(d2) << " in one step, more than "
-         << margin_[a]
-         << " its speed and those of the others allowed (allowed: a smaller fluid.dt)";
-      throw invariant_error(os.str());
-    }
-  }
+  check_paths(c, owned, start_, margin_, box_, 0.0,
+              "its speed and those of the others allowed (allowed: a smaller fluid.dt)");
   lookup_.build(c, box_, slabs_.first_column(), slabs_.local_columns(), ghosts_.extent());
   impulse_.assign(c.size() * static_cast<std::size_t>(stride_), 0);
 }

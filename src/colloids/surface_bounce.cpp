@@ -51,19 +51,17 @@ BounceStats NoSlipCoupling::bounce_back(mpcd::Fluid &fluid, Colloids &c,
     }
     batch_.id[j] = fluid.id[batch_index_[j]];
   }
-  // `active` lists the batch rows still inside a colloid; each level halves the interval.
-  std::vector<std::size_t> active(m);
+  // `active_` lists the batch rows still inside a colloid; each level halves the interval.
+  active_.resize(m);
   for (std::size_t j = 0; j < m; ++j)
-    active[j] = j;
-  std::vector<std::size_t> still;
+    active_[j] = j;
   const double two_pi_over_ly = 2.0 * std::numbers::pi / box_.length[1];
   double T = params_.dt;
-  mpcd::Fluid level;
-  level.dim = dim_;
-  for (int depth = 1; !active.empty(); ++depth) {
+  level_.dim = dim_;
+  for (int depth = 1; !active_.empty(); ++depth) {
     stats.deepest = depth;
     const bool last = depth > max_halvings;
-    for (const std::size_t j : active) {
+    for (const std::size_t j : active_) {
       const auto a = static_cast<std::size_t>(batch_hit_[j]);
       double r[3] = {0.0, 0.0, 0.0}, vb[3] = {0.0, 0.0, 0.0}, g[3] = {0.0, 0.0, 0.0};
       for (int k = 0; k < dim_; ++k)
@@ -114,30 +112,30 @@ BounceStats NoSlipCoupling::bounce_back(mpcd::Fluid &fluid, Colloids &c,
     if (last)
       break;
     // Forward half the interval from the surface, walls and body force exact.
-    level.resize(active.size());
-    for (std::size_t q = 0; q < active.size(); ++q)
+    level_.resize(active_.size());
+    for (std::size_t q = 0; q < active_.size(); ++q)
       for (int k = 0; k < dim_; ++k) {
-        level.x[k][q] = batch_.x[k][active[q]];
-        level.v[k][q] = batch_.v[k][active[q]];
-        level.id[q] = batch_.id[active[q]];
+        level_.x[k][q] = batch_.x[k][active_[q]];
+        level_.v[k][q] = batch_.v[k][active_[q]];
+        level_.id[q] = batch_.id[active_[q]];
       }
-    stream(level, 0.5 * T);
-    still.clear();
-    for (std::size_t q = 0; q < active.size(); ++q) {
-      const std::size_t j = active[q];
+    stream(level_, 0.5 * T);
+    still_.clear();
+    for (std::size_t q = 0; q < active_.size(); ++q) {
+      const std::size_t j = active_[q];
       double p[3] = {0.0, 0.0, 0.0};
       for (int k = 0; k < dim_; ++k) {
-        batch_.x[k][j] = level.x[k][q];
-        batch_.v[k][j] = level.v[k][q];
-        p[k] = level.x[k][q];
+        batch_.x[k][j] = level_.x[k][q];
+        batch_.v[k][j] = level_.v[k][q];
+        p[k] = level_.x[k][q];
       }
       const long a = lookup_.inside(c, p);
       if (a >= 0) {
         batch_hit_[j] = a;
-        still.push_back(j);
+        still_.push_back(j);
       }
     }
-    active.swap(still);
+    active_.swap(still_);
     T *= 0.5;
   }
   // No fluid inside a colloid after the step (seed 001 §4.2.1): checked for every particle

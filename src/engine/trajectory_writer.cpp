@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdio>
 #include <fstream>
+#include <tuple>
 
 namespace narrows::engine {
 
@@ -83,14 +84,15 @@ TrajectoryWriter::TrajectoryWriter(const std::string &h5_path, const std::string
     const h5::Group group =
         species("colloids", colloids->id, colloid_step_, colloid_time_, colloid_value_);
     h5::write_dataset<double>(group.get(), "radius", colloids->radius, path_);
-    const h5::Group g = h5::create_group(group.get(), "angular_velocity", path_);
-    spin_step_ = h5::create_series(g.get(), "step", H5T_STD_I64LE, {}, path_);
-    spin_time_ = h5::create_series(g.get(), "time", H5T_IEEE_F64LE, {}, path_);
-    spin_value_ = h5::create_series(g.get(), "value", H5T_IEEE_F64LE, {colloid_rows_, 3}, path_);
-    const h5::Group o = h5::create_group(group.get(), "orientation", path_);
-    turn_step_ = h5::create_series(o.get(), "step", H5T_STD_I64LE, {}, path_);
-    turn_time_ = h5::create_series(o.get(), "time", H5T_IEEE_F64LE, {}, path_);
-    turn_value_ = h5::create_series(o.get(), "value", H5T_IEEE_F64LE, {colloid_rows_, 4}, path_);
+    for (auto [series, name, m] : {std::tuple{&spin_, "angular_velocity", hsize_t{3}},
+                                   std::tuple{&turn_, "orientation", hsize_t{4}}}) {
+      const h5::Group g = h5::create_group(group.get(), name, path_);
+      series->name = name;
+      series->step = h5::create_series(g.get(), "step", H5T_STD_I64LE, {}, path_);
+      series->time = h5::create_series(g.get(), "time", H5T_IEEE_F64LE, {}, path_);
+      series->value =
+          h5::create_series(g.get(), "value", H5T_IEEE_F64LE, {colloid_rows_, m}, path_);
+    }
   }
   h5::flush(file_, path_);
 }
@@ -120,24 +122,21 @@ void TrajectoryWriter::write_colloid_frame(std::int64_t step, double time,
     h5::write_row(colloid_value_[f], frame, H5T_NATIVE_DOUBLE, shape, data[f], path_,
                   prefix + "value");
   }
-  position_.assign(colloid_rows_ * 3, 0.0); // the angular velocity, all three components
-  for (std::size_t a = 0; a < colloid_rows_; ++a)
-    for (int k = 0; k < 3; ++k)
-      position_[a * 3 + k] = c.omega[k][a];
-  const std::string prefix = "/particles/colloids/angular_velocity/";
-  h5::write_row(spin_step_, frame, H5T_NATIVE_INT64, {}, &step, path_, prefix + "step");
-  h5::write_row(spin_time_, frame, H5T_NATIVE_DOUBLE, {}, &time, path_, prefix + "time");
-  h5::write_row(spin_value_, frame, H5T_NATIVE_DOUBLE, {colloid_rows_, 3}, position_.data(), path_,
-                prefix + "value");
-  velocity_.assign(colloid_rows_ * 4, 0.0); // the orientation quaternion (w, x, y, z)
-  for (std::size_t a = 0; a < colloid_rows_; ++a)
-    for (int k = 0; k < 4; ++k)
-      velocity_[a * 4 + k] = c.q[k][a];
-  const std::string turn = "/particles/colloids/orientation/";
-  h5::write_row(turn_step_, frame, H5T_NATIVE_INT64, {}, &step, path_, turn + "step");
-  h5::write_row(turn_time_, frame, H5T_NATIVE_DOUBLE, {}, &time, path_, turn + "time");
-  h5::write_row(turn_value_, frame, H5T_NATIVE_DOUBLE, {colloid_rows_, 4}, velocity_.data(), path_,
-                turn + "value");
+  // Angular velocity (all three components) and orientation (w, x, y, z): a series each.
+  const auto rows = [&](ColloidSeries &series, const auto &components) {
+    const std::size_t m = components.size();
+    position_.assign(colloid_rows_ * m, 0.0);
+    for (std::size_t a = 0; a < colloid_rows_; ++a)
+      for (std::size_t k = 0; k < m; ++k)
+        position_[a * m + k] = components[k][a];
+    const std::string prefix = "/particles/colloids/" + series.name + "/";
+    h5::write_row(series.step, frame, H5T_NATIVE_INT64, {}, &step, path_, prefix + "step");
+    h5::write_row(series.time, frame, H5T_NATIVE_DOUBLE, {}, &time, path_, prefix + "time");
+    h5::write_row(series.value, frame, H5T_NATIVE_DOUBLE, {colloid_rows_, m}, position_.data(),
+                  path_, prefix + "value");
+  };
+  rows(spin_, c.omega);
+  rows(turn_, c.q);
 }
 
 void TrajectoryWriter::write_frame(std::int64_t step, double time, const mpcd::Fluid &fluid,

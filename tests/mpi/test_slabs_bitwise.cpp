@@ -112,7 +112,8 @@ TEST_P(Bitwise, RanksEqualOneRank) {
   // Colloid cases must move colloids from slab to slab, else the comparison is empty for them;
   // the moves are counted both ways (to the right and to the left neighbour's slab).
   std::vector<int> slab_of;
-  for (double x : par.gather_colloids().x[0])
+  const auto start = par.gather_colloids(); // held: a range over a temporary's member dangles
+  for (double x : start.x[0])
     slab_of.push_back(owner(par.slabs(), x));
   int moves_right = 0, moves_left = 0;
   std::size_t misplaced = 0;

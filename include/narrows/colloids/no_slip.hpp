@@ -97,6 +97,10 @@ private:
   parallel::Exchange migration_;
   ColloidLookup lookup_;
   std::vector<double> margin_;
+  std::array<std::vector<double>, 3> start_; // owned colloid positions at the start of the step
+  std::vector<std::uint8_t> trusted_;        // per row, for the hard contacts
+  std::vector<std::size_t> active_, still_;  // bounce-back: batch rows still inside, per level
+  mpcd::Fluid level_;                        // their copy while they fly
   std::vector<std::int64_t> impulse_; // per row: momentum (dim) and angular momentum (1 or 3)
   int stride_ = 3;
   // Bounce-back scratch: the particles being bounced, their fluid rows and colloid rows.

@@ -59,8 +59,12 @@ private:
   io::h5::Dataset step_[2], time_[2], value_[2]; // position, velocity
   std::size_t colloid_rows_ = 0;                 // 0: no colloid species
   io::h5::Dataset colloid_step_[2], colloid_time_[2], colloid_value_[2];
-  io::h5::Dataset spin_step_, spin_time_, spin_value_; // colloids' angular velocity [T][N_c][3]
-  io::h5::Dataset turn_step_, turn_time_, turn_value_; // their orientation [T][N_c][4]
+  // A colloid series beside position and velocity: /particles/colloids/<name>/{step,time,value}.
+  struct ColloidSeries {
+    std::string name;
+    io::h5::Dataset step, time, value;
+  };
+  ColloidSeries spin_, turn_; // angular velocity [T][N_c][3], orientation [T][N_c][4]
   std::vector<double> frame_times_;
   std::vector<std::uint64_t> send_rows_, recv_rows_;
   std::vector<double> send_values_, recv_values_, position_, velocity_;
