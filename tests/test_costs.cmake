@@ -31,6 +31,7 @@ set_tests_properties("validation.FhpViscosity.HalfFillingRegressionAgainstOwnEar
 set_tests_properties("validation.FhpViscosity.FhpIIIHalfFillingIsBoltzmann" PROPERTIES COST 13)
 set_tests_properties("validation.Rules/Poiseuille.ViscosityFromTheProfile/at_a2d_dt0_01_n50_seed_report" PROPERTIES COST 12)
 set_tests_properties("validation.Rules/Poiseuille.ViscosityFromTheProfile/srd3d_a90_dt1" PROPERTIES COST 11)
+set_tests_properties("validation.KmcAgainstContinuum.Family2ShockPosition" PROPERTIES COST 10)
 set_tests_properties("validation.JammingWave.PulseGrownInThePDEIsATravellingWave" PROPERTIES COST 9)
 set_tests_properties("validation.Rules/Poiseuille.ViscosityFromTheProfile/srd3d_a130_dt1" PROPERTIES COST 9)
 set_tests_properties("validation.Srd/SelfDiffusion.MatchesKineticTheory/srd3d_a90_dt1" PROPERTIES COST 9)
