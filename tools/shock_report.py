@@ -10,7 +10,16 @@ the mean shock position against time (kmc, continuum, Rankine-Hugoniot, the seed
 its variance (kmc against 2 D_s t). A table of shock speed and diffusion constant from each
 source is printed and written next to the PNG (same name, .txt).
 
+Three ways (issue 22 item 4, --chain RUN_DIR): a second row for a sedimenting colloid chain, an
+mpcd run with colloids (run/seed000_chain_31.toml, seed 000 §4.5 and ch.5; see chain_shock.py):
+the chain's line density at four times against the continuum engine's colloid-chain flux (eq
+5.3, c and c' of --c, --c-prime; co-moving frame, v_cm = 0), the head shock's position against
+time (mpcd, continuum, Rankine-Hugoniot c rho0 + c'), and the mean square of its displacement
+about the mean drift against the lag (2 D_s tau). The table gains the chain's rows.
+tools/shock_three_ways.sh runs all three and writes the report with one command.
+
 Usage: tools/shock_report.py KMC_OUT/observables.h5 [--png FILE] [--block B] [--narrows PATH]
+                             [--chain MPCD_RUN_DIR [--c C] [--c-prime C1]]
 """
 import argparse
 import math
@@ -20,6 +29,8 @@ import sys
 import h5py
 import numpy as np
 
+from chain_shock import (continuum_chain, density, fit_line, read_chain,
+                         speed_and_diffusion)
 from continuum_run import find_narrows, kmc_flux_lines, run_continuum
 
 
@@ -48,13 +59,95 @@ def smeared(profile, sigma):
     return np.convolve(ext, g, mode="valid")
 
 
+def three_ways(narrows, args):
+    """The colloid chain's rows of the table and its row of panels (a function of three axes)."""
+    ch = read_chain(args.chain)
+    t, x = ch["t"], ch["x"]
+    half = 0.5 / ch["rho0"]
+    xs = x[:, 0] + half  # the head colloid plus half a spacing
+    v, v_err, D, D_err, tau, msd = speed_and_diffusion(t, xs)
+    tc, xc, rho_c, xs_c = continuum_chain(narrows, ch, args.c, args.c_prime)
+    ok = np.isfinite(xs_c)
+    v_c = fit_line(tc[ok][len(tc[ok]) // 2:], xs_c[ok][len(tc[ok]) // 2:])[1]
+    rh = args.c * ch["rho0"] + args.c_prime
+    rh_seed = 5.71 * ch["rho0"] / float(ch["scene"]["domain"]["size"][1]) + 0.019
+    mid = x[:, x.shape[1] // 3: 2 * x.shape[1] // 3].mean(axis=1)  # the chain's middle third
+    v_mid = fit_line(t, mid)[1]
+    # The same law with c from the chain's own bulk: c rho0 + c' = the middle third's speed.
+    c_bulk = (v_mid - args.c_prime) / ch["rho0"]
+    tb, _, _, xs_b = continuum_chain(narrows, ch, c_bulk, args.c_prime)
+    okb = np.isfinite(xs_b)
+    v_b = fit_line(tb[okb][len(tb[okb]) // 2:], xs_b[okb][len(tb[okb]) // 2:])[1]
+    L = ch["L"]
+    table = [f"colloid chain: {x.shape[1]} colloids at spacing {ch['d0']:.4g} (rho0 = "
+             f"{ch['rho0']:.4g} per length) in a {L:g} channel, t = {t[0]:g} .. {t[-1]:g}, "
+             f"frame of the centre of mass (mean v_cm {np.mean(ch['v_cm']):.3g})",
+             "| source | speed (length/time, along gravity) | diffusion D_s |", "|---|---|---|",
+             f"| colloid chain, mpcd (head colloid + d0/2: slope; residual MSD over lags "
+             f"{tau[0]:.3g}-{tau[-1]:.3g}) | {v:.5g} +- {v_err:.2g} | {D:.5g} +- {D_err:.2g} |",
+             f"| colloid chain, continuum engine (flux colloid-chain, c = {args.c:g}, c' = "
+             f"{args.c_prime:g}, D = 0) | {v_c:.5g} | 0 |",
+             f"| colloid chain, Rankine-Hugoniot c rho0 + c' | {rh:.5g} | |",
+             f"| colloid chain, Rankine-Hugoniot with seed 000 fig 5.1's c = 5.71, c' = 0.019 "
+             f"(rho read as colloids per unit area, rho0 / L_y) | {rh_seed:.5g} | |",
+             f"| colloid chain, mpcd middle third (bulk settling velocity, for c rho0 + c') | "
+             f"{v_mid:.5g} | |",
+             f"| colloid chain, continuum engine with c = {c_bulk:.4g} from that bulk velocity "
+             f"| {v_b:.5g} | 0 |"]
+
+    def plot(axes):
+        ax = axes[0]
+        picks = sorted(set([0, len(t) // 3, 2 * len(t) // 3, len(t) - 1]))
+        width = 2.0 / ch["rho0"]
+        lo = x.min() - width
+        edges = lo + width * np.arange(int((x.max() - lo) / width) + 3)
+        for k, i in enumerate(picks):
+            near = slice(max(0, i - 2), min(len(t), i + 3))  # five samples around t_i
+            rho = np.mean([density(row, edges) for row in x[near]], axis=0)
+            ax.step(edges[:-1], rho, where="post", color=f"C{k}", lw=1)
+            j = int(np.argmin(np.abs(tc - t[i])))
+            ax.plot(xc, rho_c[j], "--", color=f"C{k}", lw=1, label=f"t = {t[i]:.4g}")
+        ax.set_xlabel("x along gravity (co-moving frame)")
+        ax.set_ylabel("colloids per unit length")
+        ax.set_title(f"colloid chain: mpcd (steps, bins of {width:g}), continuum (dashed)",
+                     fontsize=9)
+        ax.legend(fontsize=8)
+        ax = axes[1]
+        ax.plot(t, xs, ".", ms=2, label=f"mpcd head ({v:.4g})")
+        ax.plot(tc[ok], xs_c[ok], "-", label=f"continuum engine ({v_c:.4g})")
+        ax.plot(t, xs[0] + rh * (t - t[0]), ":", color="k", label=f"Rankine-Hugoniot ({rh:.4g})")
+        ax.plot(tb[okb], xs_b[okb], "-.", label=f"continuum, c from the bulk ({v_b:.4g})")
+        ax.set_xlabel("time")
+        ax.set_ylabel("head shock position")
+        ax.set_title("colloid chain: shock position")
+        ax.legend(fontsize=8)
+        ax = axes[2]
+        ax.plot(tau, msd, "o", label="mpcd: increments about the mean drift")
+        ax.plot(tau, 2 * D * tau, "-", label=f"2 D_s tau (D_s = {D:.3g})")
+        ax.set_xlabel("lag tau")
+        ax.set_ylabel("mean square displacement")
+        ax.set_title("colloid chain: shock spread (continuum: sharp, 0)")
+        ax.legend(fontsize=8)
+
+    return {"table": table, "plot": plot}
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("kmc", help="observables.h5 of a kmc run with a shock (kmc.samples > 0)")
     ap.add_argument("--png", default=None, help="output PNG (default: next to the kmc file)")
     ap.add_argument("--block", type=int, default=10, help="sites per coarse-graining block")
     ap.add_argument("--narrows", default=None, help="the narrows binary (default: build/narrows)")
+    ap.add_argument("--chain", default=None,
+                    help="three ways: the run directory of a sedimenting colloid chain (mpcd)")
+    ap.add_argument("--c", type=float, default=0.1605,
+                    help="c of eq 5.2 for the chain, velocity x length (default: the settling "
+                    "velocities of run/seed000_sedimentation_1000.toml, 0.02057 and 0.03341 at "
+                    "10 and 90 colloids per 1000)")
+    ap.add_argument("--c-prime", type=float, default=0.0190,
+                    help="c' of eq 5.2, the settling velocity of a lone colloid (same source)")
     args = ap.parse_args()
+    narrows = find_narrows(args.narrows)
 
     f = h5py.File(args.kmc, "r")
     obs = f["observables"]
@@ -86,7 +179,7 @@ def main():
     left, right = q[:, 10:lo].mean(), q[:, hi:L - 10].mean()
     rh = (np.interp(left, dens, flux) - np.interp(right, dens, flux)) / (left - right)
     cont = run_continuum(
-        find_narrows(args.narrows),
+        narrows,
         kmc_flux_lines(scene_text) + f'length = {float(L)!r}\ncells = {L}\nboundary = "open"\n'
         f'initial = {{ kind = "riemann", left = {float(left)!r}, right = {float(right)!r}, '
         f"position = {float(s0)!r} }}\ntime = {float(t[-1])!r}\nsamples = {len(t) - 1}\n")
@@ -106,9 +199,13 @@ def main():
     if v_seed is not None:
         rows.append(("seed 000 eq 2.115-2.116 (shock random walk)", f"{v_seed:.5g}",
                      f"{d_seed:.5g}"))
-    table = [f"shock {left:.4f} | {right:.4f} at site {s0}, L = {L}, t = 0 .. {t[-1]:g}",
+    table = [f"lattice gas: shock {left:.4f} | {right:.4f} at site {s0}, L = {L}, "
+             f"t = 0 .. {t[-1]:g}",
              "| source | speed (sites/time, to the right) | diffusion D_s |", "|---|---|---|"]
     table += [f"| {a} | {b} | {c} |" for a, b, c in rows]
+    chain = three_ways(narrows, args) if args.chain else None
+    if chain:
+        table += [""] + chain["table"]
     print("\n".join(table))
 
     import matplotlib
@@ -116,7 +213,9 @@ def main():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(1, 3, figsize=(16, 4.4))
+    fig, grid = plt.subplots(2 if chain else 1, 3, figsize=(16, 8.8 if chain else 4.4),
+                             squeeze=False)
+    axes = grid[0]
     b = max(1, args.block)
     xb = block(np.arange(1, L + 1, dtype=float), b)
     xc = np.arange(L) + 1.0  # continuum cell i covers [i, i + 1): site i + 1
@@ -129,7 +228,8 @@ def main():
         ax.plot(xc, smeared(rho_c[i], math.sqrt(2.0 * d_use * t[i])), "--", color=f"C{c}", lw=1)
     ax.set_xlabel("site")
     ax.set_ylabel("density (charge per site)")
-    ax.set_title("kmc (dots), continuum (lines), smeared by 2 D_s t (dashed)", fontsize=9)
+    ax.set_title("lattice gas: kmc (dots), continuum (lines), smeared by 2 D_s t (dashed)",
+                 fontsize=9)
     ax.legend(fontsize=8)
 
     ax = axes[1]
@@ -152,6 +252,8 @@ def main():
     ax.set_title("shock position variance (continuum: sharp, 0)")
     ax.legend(fontsize=8)
 
+    if chain:
+        chain["plot"](grid[1])
     fig.tight_layout()
     png = args.png or os.path.join(os.path.dirname(os.path.abspath(args.kmc)), "shock_report.png")
     fig.savefig(png, dpi=110)
