@@ -23,12 +23,7 @@ import h5py
 import numpy as np
 
 from continuum_run import run_continuum
-
-
-def unwrap(x, L):
-    d = np.diff(x, axis=0)
-    d -= L * np.round(d / L)
-    return np.concatenate([x[:1], x[:1] + np.cumsum(d, axis=0)])
+from sedimentation import unwrap
 
 
 def read_chain(run):
