@@ -13,7 +13,8 @@ rho0 = 1 / d0); the colloids ahead of it in the direction of gravity are the hea
 convex in rho (c > 0) the head is a shock (the denser chain behind it settles faster and catches
 up), moving at the Rankine-Hugoniot speed (J(rho0) - J(0)) / rho0 = c rho0 + c', and the tail
 a rarefaction fan from c' to 2 c rho0 + c'. Shock position: the head colloid plus half a
-spacing, 1 / (2 rho0) (where the initial step of the coarse-grained density sits).
+spacing, 1 / (2 rho0) (where the initial step of the coarse-grained density sits); the front
+colloid at each time, not a labelled one: in the zigzag they pass each other.
 """
 import math
 import sys

@@ -64,7 +64,7 @@ def three_ways(narrows, args):
     ch = read_chain(args.chain)
     t, x = ch["t"], ch["x"]
     half = 0.5 / ch["rho0"]
-    xs = x[:, 0] + half  # the head colloid plus half a spacing
+    xs = x.max(axis=1) + half  # the front colloid (they pass each other in a zigzag) + d0/2
     v, v_err, D, D_err, tau, msd = speed_and_diffusion(t, xs)
     tc, xc, rho_c, xs_c = continuum_chain(narrows, ch, args.c, args.c_prime)
     ok = np.isfinite(xs_c)
@@ -83,7 +83,7 @@ def three_ways(narrows, args):
              f"{ch['rho0']:.4g} per length) in a {L:g} channel, t = {t[0]:g} .. {t[-1]:g}, "
              f"frame of the centre of mass (mean v_cm {np.mean(ch['v_cm']):.3g})",
              "| source | speed (length/time, along gravity) | diffusion D_s |", "|---|---|---|",
-             f"| colloid chain, mpcd (head colloid + d0/2: slope; residual MSD over lags "
+             f"| colloid chain, mpcd (front colloid + d0/2: slope; residual MSD over lags "
              f"{tau[0]:.3g}-{tau[-1]:.3g}) | {v:.5g} +- {v_err:.2g} | {D:.5g} +- {D_err:.2g} |",
              f"| colloid chain, continuum engine (flux colloid-chain, c = {args.c:g}, c' = "
              f"{args.c_prime:g}, D = 0) | {v_c:.5g} | 0 |",
@@ -113,7 +113,7 @@ def three_ways(narrows, args):
                      fontsize=9)
         ax.legend(fontsize=8)
         ax = axes[1]
-        ax.plot(t, xs, ".", ms=2, label=f"mpcd head ({v:.4g})")
+        ax.plot(t, xs, ".", ms=2, label=f"mpcd front colloid + d0/2 ({v:.4g})")
         ax.plot(tc[ok], xs_c[ok], "-", label=f"continuum engine ({v_c:.4g})")
         ax.plot(t, xs[0] + rh * (t - t[0]), ":", color="k", label=f"Rankine-Hugoniot ({rh:.4g})")
         ax.plot(tb[okb], xs_b[okb], "-.", label=f"continuum, c from the bulk ({v_b:.4g})")
