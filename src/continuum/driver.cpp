@@ -7,6 +7,7 @@
 #include "narrows/continuum/jamming_driver.hpp"
 #include "narrows/continuum/plan.hpp"
 #include "narrows/continuum/scheme.hpp"
+#include "narrows/continuum/segregation_driver.hpp"
 #include "narrows/continuum/shock.hpp"
 #include "narrows/core/error.hpp"
 #include "narrows/io/checkpoint.hpp"
@@ -41,6 +42,8 @@ bool riemann_of(const scene::Continuum &m, const Flux &flux, Riemann &out) {
 std::vector<std::string> describe(const scene::Scene &scene) {
   if (scene.continuum->model == scene::ContinuumModel::jamming)
     return describe_jamming(scene);
+  if (scene.continuum->model == scene::ContinuumModel::segregation)
+    return describe_segregation(scene);
   const scene::Continuum &m = *scene.continuum;
   const Flux flux(m);
   const Plan p = plan_of(scene, make_plan);
@@ -98,6 +101,10 @@ std::vector<std::string> describe(const scene::Scene &scene) {
 void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm comm) {
   if (scene.continuum->model == scene::ContinuumModel::jamming) {
     run_jamming(scene, options, comm);
+    return;
+  }
+  if (scene.continuum->model == scene::ContinuumModel::segregation) {
+    run_segregation(scene, options, comm);
     return;
   }
   const scene::Continuum &m = *scene.continuum;

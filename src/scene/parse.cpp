@@ -72,7 +72,8 @@ const std::vector<Section> &schema() {
       {"continuum",
        {"model", "flux", "rates", "parameters", "c", "c_prime", "v_cm", "length", "cells",
         "diffusion", "boundary", "reservoirs", "initial", "time", "samples", "cfl", "limiter", "mu",
-        "drive"}},
+        "drive", "dimensions", "half_width", "centre_speed", "shear", "k_c", "k_eta", "k_d",
+        "max_packing", "kind"}},
       {"colloid",
        {"position", "radius", "mass", "velocity", "held", "max_lag", "displacement_lag",
         "displacement_every"}},
@@ -107,7 +108,7 @@ std::vector<std::string> engine_observables(Engine engine) {
   if (engine == Engine::lgca)
     return {"shear_wave", "density", "velocity", "vacf", "colloid_vacf", "colloid_diffusion"};
   if (engine == Engine::continuum)
-    return {"density", "shock_position", "velocity"};
+    return {"density", "shock_position", "velocity", "evolution", "steady_density"};
   return std::vector<std::string>(std::begin(all_observables), std::end(all_observables));
 }
 
@@ -1498,6 +1499,8 @@ Scene parse_scene(const std::string &text, const std::string &file,
     s.output.observables = {"density", "shock_position"};
     if (s.continuum->model == ContinuumModel::jamming)
       s.output.observables = {"density", "velocity"};
+    if (s.continuum->model == ContinuumModel::segregation)
+      s.output.observables = {"density", "evolution", "steady_density"};
   } else if (s.run.engine == Engine::lgca) {
     refuse_sections(
         {"domain", "fluid", "body_force", "walls", "colloids", "thermostat", "kmc", "continuum"},
@@ -1541,13 +1544,23 @@ Scene parse_scene(const std::string &text, const std::string &file,
   parse_output(c, section(c, root, "output"), s.run.engine, s.output);
   const auto &obs = s.output.observables;
   if (s.continuum) {
-    const bool jamming = s.continuum->model == ContinuumModel::jamming;
-    const char *other = jamming ? "shock_position" : "velocity";
-    if (std::find(obs.begin(), obs.end(), other) != obs.end())
-      c.fail("output.observables",
-             std::string("output.observables lists \"") + other + "\", which continuum.model = \"" +
-                 (jamming ? "jamming" : "conservation-law") + "\" does not write; allowed: " +
-                 (jamming ? "\"density\", \"velocity\"" : "\"density\", \"shock_position\""));
+    // The observables each continuum model writes (by model: conservation-law, jamming,
+    // segregation).
+    const std::vector<std::vector<std::string>> writes{{"density", "shock_position"},
+                                                       {"density", "velocity"},
+                                                       {"density", "evolution", "steady_density"}};
+    const char *const models[] = {"conservation-law", "jamming", "segregation"};
+    const auto model = static_cast<std::size_t>(s.continuum->model);
+    const auto &mine = writes[model];
+    for (const auto &name : obs)
+      if (std::find(mine.begin(), mine.end(), name) == mine.end()) {
+        std::string list;
+        for (const auto &x : mine)
+          list += (list.empty() ? "\"" : ", \"") + x + "\"";
+        c.fail("output.observables", "output.observables lists \"" + name +
+                                         "\", which continuum.model = \"" + models[model] +
+                                         "\" does not write; allowed: " + list);
+      }
   }
   const bool poiseuille = s.walls && s.body_force && s.body_force->kind == ForceKind::constant &&
                           s.body_force->value[0] != 0.0;

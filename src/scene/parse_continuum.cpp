@@ -257,6 +257,114 @@ void parse_jamming_initial(const Checker &c, const toml::value &v, Continuum &ou
   }
 }
 
+// The keys only model "segregation" reads.
+const std::vector<const char *> segregation_keys{"dimensions", "half_width", "centre_speed",
+                                                 "shear",      "k_c",        "k_eta",
+                                                 "k_d",        "max_packing", "kind"};
+
+// Refuses the segregation model's keys under another model (`name`, `allowed` its own keys).
+void refuse_segregation_keys(const Checker &c, const toml::value *sec, const std::string &name,
+                             const std::string &allowed) {
+  for (const char *k : segregation_keys)
+    if (find(sec, k) != nullptr)
+      c.fail(std::string("continuum.") + k,
+             std::string("continuum.") + k +
+                 " is a key of continuum.model = \"segregation\"; allowed with \"" + name +
+                 "\": " + allowed);
+}
+
+// model = "segregation": the channel, the flow, the constants of the theory and the kinds; the
+// other models' keys are refused.
+void parse_segregation(const Checker &c, const toml::value *sec, Continuum &out) {
+  for (const char *k : {"flux", "rates", "parameters", "c", "c_prime", "v_cm", "reservoirs",
+                        "limiter", "mu", "drive", "diffusion", "boundary", "length", "initial"})
+    if (find(sec, k) != nullptr)
+      c.fail(std::string("continuum.") + k,
+             std::string("continuum.") + k +
+                 " is not a key of continuum.model = \"segregation\"; allowed: dimensions, "
+                 "half_width, cells, centre_speed, shear, k_c, k_eta, k_d, max_packing, kind, "
+                 "time, samples, cfl");
+  const auto required = [&](const char *name, const std::string &what) -> const toml::value & {
+    const toml::value *x = find(sec, name);
+    if (x == nullptr)
+      c.fail(std::string("continuum.") + name,
+             std::string("missing required key 'continuum.") + name + "'; allowed: " + what);
+    return *x;
+  };
+  Segregation &s = out.segregation;
+  if (const toml::value *v = find(sec, "dimensions"))
+    s.dimensions = static_cast<int>(c.integer(*v, "continuum.dimensions", "2 or 3",
+                                              [](std::int64_t d) { return d == 2 || d == 3; }));
+  s.max_packing = s.dimensions == 2 ? 0.82 : 0.64;
+  s.k_d = s.dimensions == 2 ? 7.46 : 0.61;
+  const std::string w_allowed = "a number > 0 (walls at y = -half_width and +half_width)";
+  s.half_width = c.number(required("half_width", w_allowed), "continuum.half_width", w_allowed,
+                          [](double x) { return x > 0.0; });
+  out.length = 2.0 * s.half_width;
+  const std::string cells_allowed = "an even integer from 4 to 1000000 (cells across the channel)";
+  out.cells = c.integer(required("cells", cells_allowed), "continuum.cells", cells_allowed,
+                        [](std::int64_t n) { return n >= 4 && n <= 1000000 && n % 2 == 0; });
+  const std::string v_allowed = "a number >= 0 (centre speed v0 of the Poiseuille flow)";
+  s.centre_speed = c.number(required("centre_speed", v_allowed), "continuum.centre_speed",
+                            v_allowed, [](double x) { return x >= 0.0; });
+  if (const toml::value *v = find(sec, "shear"))
+    s.shear = choice(c, *v, "continuum.shear", {"poiseuille", "viscous"}) == 0
+                  ? SegregationShear::poiseuille
+                  : SegregationShear::viscous;
+  const auto positive = [](double x) { return x > 0.0; };
+  if (const toml::value *v = find(sec, "k_c"))
+    s.k_c = c.number(*v, "continuum.k_c", "a number > 0 (K_c of eq 5.3)", positive);
+  if (const toml::value *v = find(sec, "k_eta"))
+    s.k_eta = c.number(*v, "continuum.k_eta", "a number >= 0 (K_eta of eq 5.3)",
+                       [](double x) { return x >= 0.0; });
+  if (const toml::value *v = find(sec, "k_d"))
+    s.k_d = c.number(*v, "continuum.k_d", "a number > 0 (K_d of eq 5.23)", positive);
+  if (const toml::value *v = find(sec, "max_packing"))
+    s.max_packing = c.number(*v, "continuum.max_packing",
+                             "a number > 0 and < 1 (phi_M of eq 5.29)",
+                             [](double x) { return x > 0.0 && x < 1.0; });
+  const std::string kinds_allowed =
+      "one or two tables [[continuum.kind]] with radius, fraction, diffusivity";
+  const toml::value &kinds = required("kind", kinds_allowed);
+  if (!kinds.is_array() || kinds.as_array().empty() || kinds.as_array().size() > 2)
+    c.wrong_type("continuum.kind", kinds, kinds_allowed);
+  double total = 0.0;
+  for (std::size_t i = 0; i < kinds.as_array().size(); ++i) {
+    const toml::value &k = kinds.as_array()[i];
+    const std::string key = "continuum.kind[" + std::to_string(i) + "]";
+    if (!k.is_table())
+      c.wrong_type(key, k, "a table with radius, fraction, diffusivity");
+    for (const auto &[name, x] : sorted(k)) {
+      (void)x;
+      if (name != "radius" && name != "fraction" && name != "diffusivity")
+        c.fail(key + "." + name, "unknown key '" + key + "." + name +
+                                     "'; allowed keys: radius, fraction, diffusivity");
+    }
+    const auto field = [&](const char *name, const std::string &what) -> const toml::value & {
+      const toml::value *x = find(&k, name);
+      if (x == nullptr)
+        c.fail(key + "." + name,
+               "missing required key '" + key + "." + name + "'; allowed: " + what);
+      return *x;
+    };
+    SegregationKind kind;
+    const double w = s.half_width;
+    const std::string r_allowed = "a number > 0 and < continuum.half_width (the colloid radius)";
+    kind.radius = c.number(field("radius", r_allowed), key + ".radius", r_allowed,
+                           [w](double x) { return x > 0.0 && x < w; });
+    const std::string f_allowed = "a number > 0 (mean area/volume fraction; all kinds together "
+                                  "below max_packing = " +
+                                  repr(toml::value(s.max_packing)) + ")";
+    kind.fraction = c.number(field("fraction", f_allowed), key + ".fraction", f_allowed,
+                             [&](double x) { return x > 0.0 && total + x < s.max_packing; });
+    total += kind.fraction;
+    const std::string d_allowed = "a number > 0 (single-colloid diffusivity D_0)";
+    kind.diffusivity =
+        c.number(field("diffusivity", d_allowed), key + ".diffusivity", d_allowed, positive);
+    s.kinds.push_back(kind);
+  }
+}
+
 // model = "jamming": its own keys, and a refusal of the conservation law's.
 void parse_jamming(const Checker &c, const toml::value *sec, Continuum &out) {
   for (const char *k :
@@ -319,19 +427,27 @@ Continuum parse_continuum(const toml::value *sec, const SectionFail &fail) {
              std::string("missing required key 'continuum.") + name + "'; allowed: " + what);
     return *x;
   };
-  out.model = choice(c, required("model", "\"conservation-law\", \"jamming\""), "continuum.model",
-                     {"conservation-law", "jamming"}) == 0
-                  ? ContinuumModel::conservation_law
-                  : ContinuumModel::jamming;
-  if (out.model == ContinuumModel::jamming)
+  out.model = static_cast<ContinuumModel>(
+      choice(c, required("model", "\"conservation-law\", \"jamming\", \"segregation\""),
+             "continuum.model", {"conservation-law", "jamming", "segregation"}));
+  if (out.model == ContinuumModel::jamming) {
+    refuse_segregation_keys(c, sec, "jamming",
+                            "mu, drive, diffusion, length, cells, boundary, initial, time, "
+                            "samples, cfl");
     parse_jamming(c, sec, out);
-  else
+  } else if (out.model == ContinuumModel::segregation) {
+    parse_segregation(c, sec, out);
+  } else {
+    refuse_segregation_keys(c, sec, "conservation-law",
+                            "flux and its parameters, length, cells, diffusion, boundary, "
+                            "reservoirs, initial, time, samples, cfl, limiter");
     for (const char *k : {"mu", "drive"})
       if (find(sec, k) != nullptr)
         c.fail(std::string("continuum.") + k,
                std::string("continuum.") + k +
                    " is a key of continuum.model = \"jamming\"; allowed with "
                    "\"conservation-law\": none");
+  }
   if (out.model == ContinuumModel::conservation_law)
     parse_conservation_law(c, sec, out);
   const std::string time_allowed = "a number > 0 (simulated time)";

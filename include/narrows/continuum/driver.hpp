@@ -1,4 +1,5 @@
-// Engine "continuum" (model "conservation-law"; "jamming" is dispatched to jamming_driver.hpp):
+// Engine "continuum" (model "conservation-law"; "jamming" and "segregation" are dispatched to
+// jamming_driver.hpp and segregation_driver.hpp):
 // the run/check/info commands over the run shell (run/shell.hpp): output folder, log,
 // observables (density, shock_position), checkpoints of the cell averages and bitwise restarts.
 #pragma once

@@ -225,12 +225,33 @@ struct LgcaColloid {
 // `lattice_gas` holds their rates (tasep and family2: preset family2, tasep with c = 0).
 // Model "jamming": phi_t + (phi v)_x = D phi_xx, v_t + v v_x = sigma - xi(phi) v (seed 001 eq
 // 6.2-6.6, xi = sigma / v_ss with v_ss fitted in Table 6.2), periodic, pseudo-spectral.
-enum class ContinuumModel { conservation_law, jamming };
+// Model "segregation": the area (volume) fractions phi_i(y, t) of one or two colloid kinds across
+// a channel y in [-w, w] in Poiseuille flow (seed 001 eq 5.13-5.30), finite volumes, RK4.
+enum class ContinuumModel { conservation_law, jamming, segregation };
 enum class JammingFit { mu_infinity, mu_1, mu_half, mu_0 }; // the columns of Table 6.2
 enum class ContinuumFlux { burgers, tasep, family1, family2, colloid_chain };
 enum class ContinuumBoundary { open, periodic };
 enum class ContinuumInitial { riemann, profile, sine, cells, random };
 enum class ContinuumLimiter { mc, minmod };
+enum class SegregationShear { poiseuille, viscous };
+
+// One colloid kind of the segregation model ([[continuum.kind]]).
+struct SegregationKind {
+  double radius = 0.0;      // a_i
+  double fraction = 0.0;    // mean area (volume) fraction phi_i over the channel
+  double diffusivity = 0.0; // single-colloid D_0^i
+};
+
+// The segregation model's parameters (seed 001 ch.5); the channel is [-half_width, half_width].
+struct Segregation {
+  int dimensions = 2;   // d of eq 5.13 and the structure factor (5.19-5.20 or 5.21-5.22)
+  double half_width = 0.0;
+  double centre_speed = 0.0; // v0: shear rate 2 v0 |y| / w^2 of the uniform suspension
+  SegregationShear shear = SegregationShear::poiseuille;
+  double k_c = 1.0, k_eta = 1.51, k_d = 7.46; // K_c, K_eta, K_d (eq 5.3, 5.23)
+  double max_packing = 0.82;                  // phi_M of eq 5.29
+  std::vector<SegregationKind> kinds;
+};
 
 struct Continuum {
   ContinuumModel model = ContinuumModel::conservation_law;
@@ -256,6 +277,7 @@ struct Continuum {
   std::int64_t mode = 1;             // sine: mean + amplitude sin(2 pi mode x / length)
   std::uint64_t seed = 1;            // random: mean + amplitude * uniform(-1, 1) per point
   std::vector<double> velocity;      // cells: the initial v (empty: v_ss(phi) at each point)
+  Segregation segregation;           // segregation only (length = 2 half_width)
 };
 
 struct Scene {
