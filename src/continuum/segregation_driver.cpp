@@ -37,8 +37,9 @@ std::vector<std::string> describe_segregation(const scene::Scene &scene) {
                 "5.13-5.30), " +
                 std::to_string(s.dimensions) + "D, " + std::to_string(n) +
                 (n == 1 ? " kind" : " kinds"));
-  out.push_back("constants: " + format("K_c = %g, K_eta = %g, K_d = %g (K_eta/K_c = %.4g, ", s.k_c,
-                                       s.k_eta, s.k_d, s.k_eta / s.k_c) +
+  out.push_back("constants: " +
+                format("K_c = %g, K_eta = %g, K_d = %g (K_eta/K_c = %.4g, ", s.k_c, s.k_eta, s.k_d,
+                       s.k_eta / s.k_c) +
                 format("K_d/K_c = %.4g)", s.k_d / s.k_c));
   for (std::size_t i = 0; i < n; ++i) {
     const auto &k = s.kinds[i];
@@ -75,8 +76,8 @@ std::vector<std::string> describe_segregation(const scene::Scene &scene) {
                            phi[last * n + i], phi[i] / s.kinds[i].fraction) +
                     format("migration/diffusion K_c a^2 gdot phi / (K_d D_0) at the wall %.4g",
                            model.migration_ratio(i, &phi[last * n], s.half_width)));
-    out.push_back("steady state: RK4 from the centre to the wall in " +
-                  std::to_string(last) + " steps, centre values by Newton's method (" +
+    out.push_back("steady state: RK4 from the centre to the wall in " + std::to_string(last) +
+                  " steps, centre values by Newton's method (" +
                   std::to_string(p.steady.iterations) + " iterations" +
                   format(", means within %.2g)", p.steady.mass_error));
   } else {
@@ -85,12 +86,12 @@ std::vector<std::string> describe_segregation(const scene::Scene &scene) {
   }
   out.push_back("scheme: finite volumes, the current of eq 5.14 at each face from its two cells "
                 "(second order), RK4 in time (seed sec 5.2.4)");
-  out.push_back("time step: dt = " +
-                format("%.6g (cfl %g: dt (%.4g / h^2 + %.4g / h) = ", p.dt, m.cfl, p.diffusive,
-                       p.drift) +
-                format("%.4g with the largest |M| row sum and drift speed of the start and the "
-                       "steady state)",
-                       p.number));
+  out.push_back(
+      "time step: dt = " +
+      format("%.6g (cfl %g: dt (%.4g / h^2 + %.4g / h) = ", p.dt, m.cfl, p.diffusive, p.drift) +
+      format("%.4g with the largest |M| row sum and drift speed of the start and the "
+             "steady state)",
+             p.number));
   out.push_back("time: " + format("%g", m.time) + " in " + std::to_string(p.steps) + " steps; " +
                 std::to_string(m.samples) + " samples (every " + std::to_string(p.per_sample) +
                 " steps) and t = 0");

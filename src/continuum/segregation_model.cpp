@@ -53,9 +53,9 @@ double SegregationModel::structure_factor(const double *phi) const {
     const std::size_t s = p_.kinds[0].radius <= p_.kinds[1].radius ? 0 : 1, l = 1 - s;
     const double alpha = p_.kinds[s].radius / p_.kinds[l].radius, x = c[s] / csum;
     const double q = x + (1.0 - x) * alpha * alpha * alpha;
-    delta = 3.0 * x * (1.0 - x) * total * (1.0 - alpha) * (1.0 - alpha) / q *
-            ((2.0 + total) * (1.0 + alpha) +
-             3.0 * total * alpha / q * ((1.0 - x) * alpha * alpha + x));
+    delta =
+        3.0 * x * (1.0 - x) * total * (1.0 - alpha) * (1.0 - alpha) / q *
+        ((2.0 + total) * (1.0 + alpha) + 3.0 * total * alpha / q * ((1.0 - x) * alpha * alpha + x));
   }
   const double u = 1.0 - total, v = 1.0 + 2.0 * total;
   return u * u * u * u / (v * v - delta);
@@ -99,8 +99,7 @@ void SegregationModel::coefficients(const double *phi, double y, double *m, doub
   }
 }
 
-void SegregationModel::rates(const double *phi, double y, double &diffusive,
-                             double &drift) const {
+void SegregationModel::rates(const double *phi, double y, double &diffusive, double &drift) const {
   double m[max_segregation_kinds * max_segregation_kinds], b[max_segregation_kinds];
   coefficients(phi, y, m, b);
   diffusive = 0.0;

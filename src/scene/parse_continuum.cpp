@@ -258,8 +258,8 @@ void parse_jamming_initial(const Checker &c, const toml::value &v, Continuum &ou
 }
 
 // The keys only model "segregation" reads.
-const std::vector<const char *> segregation_keys{"dimensions", "half_width", "centre_speed",
-                                                 "shear",      "k_c",        "k_eta",
+const std::vector<const char *> segregation_keys{"dimensions", "half_width",  "centre_speed",
+                                                 "shear",      "k_c",         "k_eta",
                                                  "k_d",        "max_packing", "kind"};
 
 // Refuses the segregation model's keys under another model (`name`, `allowed` its own keys).
@@ -320,8 +320,7 @@ void parse_segregation(const Checker &c, const toml::value *sec, Continuum &out)
   if (const toml::value *v = find(sec, "k_d"))
     s.k_d = c.number(*v, "continuum.k_d", "a number > 0 (K_d of eq 5.23)", positive);
   if (const toml::value *v = find(sec, "max_packing"))
-    s.max_packing = c.number(*v, "continuum.max_packing",
-                             "a number > 0 and < 1 (phi_M of eq 5.29)",
+    s.max_packing = c.number(*v, "continuum.max_packing", "a number > 0 and < 1 (phi_M of eq 5.29)",
                              [](double x) { return x > 0.0 && x < 1.0; });
   const std::string kinds_allowed =
       "one or two tables [[continuum.kind]] with radius, fraction, diffusivity";

@@ -244,7 +244,7 @@ struct SegregationKind {
 
 // The segregation model's parameters (seed 001 ch.5); the channel is [-half_width, half_width].
 struct Segregation {
-  int dimensions = 2;   // d of eq 5.13 and the structure factor (5.19-5.20 or 5.21-5.22)
+  int dimensions = 2; // d of eq 5.13 and the structure factor (5.19-5.20 or 5.21-5.22)
   double half_width = 0.0;
   double centre_speed = 0.0; // v0: shear rate 2 v0 |y| / w^2 of the uniform suspension
   SegregationShear shear = SegregationShear::poiseuille;
