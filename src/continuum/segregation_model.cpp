@@ -11,6 +11,7 @@ SegregationModel::SegregationModel(const scene::Segregation &s)
   const double d = s.dimensions;
   for (std::size_t i = 0; i < n_; ++i) {
     mean_ += s.kinds[i].fraction;
+    volume_[i] = std::pow(s.kinds[i].radius, d);
     for (std::size_t j = 0; j < n_; ++j) {
       const double ai = s.kinds[i].radius, aj = s.kinds[j].radius, r = ai / aj;
       a_[i][j] = (ai + aj) * (ai + aj) / std::pow(2.0, d + 1.0) * std::pow(1.0 + r, d) /
@@ -29,7 +30,7 @@ double SegregationModel::structure_factor(const double *phi) const {
   double total = 0.0, c[max_segregation_kinds]{}, csum = 0.0;
   for (std::size_t i = 0; i < n_; ++i) {
     total += phi[i];
-    c[i] = phi[i] / std::pow(p_.kinds[i].radius, p_.dimensions); // number density up to a factor
+    c[i] = phi[i] / volume_[i]; // number density up to a constant factor
     csum += c[i];
   }
   if (p_.dimensions == 2) {

@@ -61,6 +61,10 @@ for k in ("density", "evolution"):
 assert np.array_equal(fa["steady_density/value"][()], fb["steady_density/value"][()])
 PY'
 
+runs "bench --continuum" "$narrows" bench --continuum 200 > "$tmp/bench.txt" 2>&1
+check "bench: cell-steps/s of the segregation model" \
+  'grep -q "^continuum segregation 200 cells: .* cell-steps/s on one core" "$tmp/bench.txt"'
+
 refused "flux with segregation" 'continuum.flux is not a key of continuum.model = "segregation"' \
   "$narrows" check "$scene" --set continuum.flux=burgers
 refused "odd cells" "continuum.cells = 41 is out of range; allowed: an even integer" \

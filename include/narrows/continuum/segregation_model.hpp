@@ -54,6 +54,7 @@ private:
   std::size_t n_ = 1;
   double w_ = 1.0, mean_ = 0.0, eta_mean_ = 1.0;
   std::array<std::array<double, max_segregation_kinds>, max_segregation_kinds> a_{};
+  std::array<double, max_segregation_kinds> volume_{}; // a_i^d (number density c_i ~ phi_i / a_i^d)
 };
 
 } // namespace narrows::continuum
