@@ -15,9 +15,42 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <string>
 #include <vector>
 
 namespace narrows::continuum {
+
+namespace {
+
+// Steps for at least a second (and 3 steps); returns the steps and their seconds.
+template <class Step> std::int64_t timed(Step step, double &seconds) {
+  Stopwatch clock;
+  std::int64_t steps = 0;
+  while (clock.seconds() < 1.0 || steps < 3) {
+    step();
+    ++steps;
+  }
+  seconds = clock.seconds();
+  return steps;
+}
+
+// One case's line (or JSON object): `what` = "cell" or "point", `size` of them per step.
+void report(std::ostream &out, bool json, bool &first, const std::string &name, const char *what,
+            double size, double rate, std::int64_t steps, const char *how) {
+  char buf[300];
+  if (json)
+    std::snprintf(buf, sizeof buf,
+                  "%s{\"case\": \"%s\", \"%ss\": %.17g, \"%s_steps_per_s\": %.17g}",
+                  first ? "" : ", ", name.c_str(), what, size, what, rate);
+  else
+    std::snprintf(buf, sizeof buf,
+                  "continuum %s %.6g %ss: %.3g %s-steps/s on one core (%lld steps, %s)\n",
+                  name.c_str(), size, what, rate, what, static_cast<long long>(steps), how);
+  out << buf;
+  first = false;
+}
+
+} // namespace
 
 void run_bench(std::ostream &out, double cells, bool json) {
   struct Case {
@@ -49,26 +82,10 @@ void run_bench(std::ostream &out, double cells, bool json) {
     Scheme scheme(flux, p.grid, 0.0, c.model.limiter);
     std::vector<double> u = initial_cells(c.model);
     scheme.step(u, p.dt); // warm-up
-    Stopwatch clock;
-    std::int64_t steps = 0;
-    while (clock.seconds() < 1.0 || steps < 3) {
-      scheme.step(u, p.dt);
-      ++steps;
-    }
-    const double rate = static_cast<double>(steps) * cells / clock.seconds();
-    if (json) {
-      out << (first ? "" : ", ") << "{\"case\": \"" << c.name << "\", \"cells\": " << cells
-          << ", \"cell_steps_per_s\": " << rate << "}";
-    } else {
-      char buf[200];
-      std::snprintf(
-          buf, sizeof buf,
-          "continuum %-8s %.3g cells: %.3g cell-steps/s on one core (%lld steps, SSP-RK2: "
-          "two flux sweeps each)",
-          c.name, cells, rate, static_cast<long long>(steps));
-      out << buf << '\n';
-    }
-    first = false;
+    double seconds = 0.0;
+    const std::int64_t steps = timed([&] { scheme.step(u, p.dt); }, seconds);
+    const double rate = static_cast<double>(steps) * cells / seconds;
+    report(out, json, first, c.name, "cell", cells, rate, steps, "SSP-RK2: two flux sweeps each");
   }
   // The jamming model (pseudo-spectral, Strang splitting) on an even number of points, dx = 0.2,
   // unstable flow at phi = 0.75 with a small sine (the state stays smooth for the timing).
@@ -84,24 +101,11 @@ void run_bench(std::ostream &out, double cells, bool json) {
     }
     JammingSolver solver(model, n, length);
     solver.step(phi, v, dt); // warm-up
-    Stopwatch clock;
-    std::int64_t steps = 0;
-    while (clock.seconds() < 1.0 || steps < 3) {
-      solver.step(phi, v, dt);
-      ++steps;
-    }
-    const double rate = static_cast<double>(steps) * static_cast<double>(n) / clock.seconds();
-    if (json) {
-      out << (first ? "" : ", ") << "{\"case\": \"jamming\", \"points\": " << n
-          << ", \"point_steps_per_s\": " << rate << "}";
-    } else {
-      char buf[200];
-      std::snprintf(buf, sizeof buf,
-                    "continuum jamming %zu points: %.3g point-steps/s on one core (%lld steps, "
-                    "Strang splitting, IF-RK4: 20 real FFTs of n points each)",
-                    n, rate, static_cast<long long>(steps));
-      out << buf << '\n';
-    }
+    double seconds = 0.0;
+    const std::int64_t steps = timed([&] { solver.step(phi, v, dt); }, seconds);
+    report(out, json, first, "jamming", "point", static_cast<double>(n),
+           static_cast<double>(steps) * static_cast<double>(n) / seconds, steps,
+           "Strang splitting, IF-RK4: 20 real FFTs of n points each");
   }
   // The segregation model: two kinds (seed 001 fig 5.6, 2D, phi = 0.5) on an even number of
   // cells across the channel, from the uniform start at a stable dt.
@@ -117,24 +121,11 @@ void run_bench(std::ostream &out, double cells, bool json) {
     std::vector<std::vector<double>> phi{std::vector<double>(n, 0.25),
                                          std::vector<double>(n, 0.25)};
     solver.step(phi, dt); // warm-up
-    Stopwatch clock;
-    std::int64_t steps = 0;
-    while (clock.seconds() < 1.0 || steps < 3) {
-      solver.step(phi, dt);
-      ++steps;
-    }
-    const double rate = static_cast<double>(steps) * static_cast<double>(n) / clock.seconds();
-    if (json) {
-      out << ", {\"case\": \"segregation\", \"cells\": " << n << ", \"cell_steps_per_s\": " << rate
-          << "}";
-    } else {
-      char buf[200];
-      std::snprintf(buf, sizeof buf,
-                    "continuum segregation %zu cells: %.3g cell-steps/s on one core (%lld steps, "
-                    "two kinds, RK4: four current sweeps each)",
-                    n, rate, static_cast<long long>(steps));
-      out << buf << '\n';
-    }
+    double seconds = 0.0;
+    const std::int64_t steps = timed([&] { solver.step(phi, dt); }, seconds);
+    report(out, json, first, "segregation", "cell", static_cast<double>(n),
+           static_cast<double>(steps) * static_cast<double>(n) / seconds, steps,
+           "two kinds, RK4: four current sweeps each");
   }
   if (json)
     out << "]}\n";

@@ -37,6 +37,16 @@ std::size_t choice(const Checker &c, const toml::value &v, const std::string &ke
 
 bool finite(double) { return true; }
 
+// The value of continuum.<name>, or a refusal saying what is allowed.
+const toml::value &required_key(const Checker &c, const toml::value *sec, const char *name,
+                                const std::string &what) {
+  const toml::value *x = find(sec, name);
+  if (x == nullptr)
+    c.fail(std::string("continuum.") + name,
+           std::string("missing required key 'continuum.") + name + "'; allowed: " + what);
+  return *x;
+}
+
 // The densities a flux is defined for: charge sigma in [-1, 1] (family 1), particle density in
 // [0, 1] (tasep, family 2), any number (burgers, colloid-chain).
 struct Range {
@@ -285,11 +295,7 @@ void parse_segregation(const Checker &c, const toml::value *sec, Continuum &out)
                  "half_width, cells, centre_speed, shear, k_c, k_eta, k_d, max_packing, kind, "
                  "time, samples, cfl");
   const auto required = [&](const char *name, const std::string &what) -> const toml::value & {
-    const toml::value *x = find(sec, name);
-    if (x == nullptr)
-      c.fail(std::string("continuum.") + name,
-             std::string("missing required key 'continuum.") + name + "'; allowed: " + what);
-    return *x;
+    return required_key(c, sec, name, what);
   };
   Segregation &s = out.segregation;
   if (const toml::value *v = find(sec, "dimensions"))
@@ -375,11 +381,7 @@ void parse_jamming(const Checker &c, const toml::value *sec, Continuum &out) {
                  "\"jamming\": mu, drive, diffusion, length, cells, boundary, initial, time, "
                  "samples, cfl");
   const auto required = [&](const char *name, const std::string &what) -> const toml::value & {
-    const toml::value *x = find(sec, name);
-    if (x == nullptr)
-      c.fail(std::string("continuum.") + name,
-             std::string("missing required key 'continuum.") + name + "'; allowed: " + what);
-    return *x;
+    return required_key(c, sec, name, what);
   };
   if (const toml::value *v = find(sec, "mu"))
     out.fit = static_cast<JammingFit>(choice(c, *v, "continuum.mu", {"infinity", "1", "1/2", "0"}));
@@ -420,11 +422,7 @@ Continuum parse_continuum(const toml::value *sec, const SectionFail &fail) {
                         "required keys: model, flux, length, cells, initial, time");
   Continuum out;
   const auto required = [&](const char *name, const std::string &what) -> const toml::value & {
-    const toml::value *x = find(sec, name);
-    if (x == nullptr)
-      c.fail(std::string("continuum.") + name,
-             std::string("missing required key 'continuum.") + name + "'; allowed: " + what);
-    return *x;
+    return required_key(c, sec, name, what);
   };
   out.model = static_cast<ContinuumModel>(
       choice(c, required("model", "\"conservation-law\", \"jamming\", \"segregation\""),
@@ -467,11 +465,7 @@ namespace {
 // model = "conservation-law": flux and its parameters, grid, boundary, initial data, limiter.
 void parse_conservation_law(const Checker &c, const toml::value *sec, Continuum &out) {
   const auto required = [&](const char *name, const std::string &what) -> const toml::value & {
-    const toml::value *x = find(sec, name);
-    if (x == nullptr)
-      c.fail(std::string("continuum.") + name,
-             std::string("missing required key 'continuum.") + name + "'; allowed: " + what);
-    return *x;
+    return required_key(c, sec, name, what);
   };
   const std::vector<std::string> fluxes{"burgers", "tasep", "family1", "family2", "colloid-chain"};
   out.flux = static_cast<ContinuumFlux>(
