@@ -15,9 +15,11 @@ relative to them. For each trial K_d the continuum engine computes the steady pr
 observable steady_density, by shooting). Data and model are compared as shapes over
 |y - w| <= w - exclude (default: twice the largest radius, the wall layers the theory does not
 have), each normalised to its mean there, at bins every 2 kernel widths (nearly independent),
-weighted by the run's block errors. K_d minimises chi^2 (golden section in log K_d); its error
-is where chi^2 rises by max(1, chi^2/dof). Prints one line "K_d = ... +- ..." and the fit's
-details; --plot writes RUN_DIR/segregation_fit.png.
+weighted by the run's block errors. K_d minimises chi^2 (golden section in log K_d); its
+interval is where the parabola through chi^2 at the minimum and +-0.02 in log K_d rises by
+max(1, chi^2/dof) (printed as K_d +- half its width, and the interval). Prints one line
+"K_d = ... +- ...", the chi^2 of uniform profiles (the evidence for any segregation) and the
+fit's details; --plot writes RUN_DIR/segregation_fit.png.
 """
 
 import argparse
@@ -193,6 +195,12 @@ def main(argv):
             fitted = model(k_best)
         print(f"K_d = {k_best:.5g} +- {0.5 * (k_hi - k_lo):.2g} (chi^2 + {rise:.3g} at "
               f"[{k_lo:.5g}, {k_hi:.5g}]; K_c = 1, K_eta = {a.k_eta:g})")
+        flat = float(np.sum(((data - 1.0) / err) ** 2))
+        if best <= math.log(a.range[0]) + 0.3 or best >= math.log(a.range[1]) - 0.3:
+            print(f"warning: K_d at the edge of --range {a.range[0]:g} {a.range[1]:g}: no "
+                  "minimum inside it")
+        print(f"uniform profiles (K_d -> infinity): chi^2 = {flat:.4g} (minus the fit's: "
+              f"{flat - cmin:.3g}, the evidence for segregation)")
         print(f"chi^2 / dof = {cmin:.4g} / {dof} over {len(keep)} bins per kind, |y - w| <= "
               f"{w - exclude:g} (every {stride} bins)")
         for i, k in enumerate(kinds):
