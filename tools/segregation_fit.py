@@ -33,6 +33,8 @@ import tomllib
 import h5py
 import numpy as np
 
+from continuum_run import find_narrows
+
 
 class InputError(Exception):
     pass
@@ -92,7 +94,7 @@ def steady(narrows, dims, w, kinds, v0, k_d, k_eta, cells, work):
     for k in kinds:
         text += (f"[[continuum.kind]]\nradius = {k['radius']!r}\nfraction = {k['fraction']!r}\n"
                  f"diffusivity = {k['diffusivity']!r}\n")
-    text += "[output]\nobservables = [\"steady_density\"]\n"
+    text += "[output]\nobservables = [\"steady_density\"]\nprogress = false\n"
     scene = os.path.join(work, "fit.toml")
     with open(scene, "w") as f:
         f.write(text)
@@ -119,13 +121,14 @@ def main(argv):
                    metavar=("LO", "HI"), help="search interval of K_d")
     p.add_argument("--exclude", type=float, help="wall strip left out (default 2 max radius)")
     p.add_argument("--cells", type=int, default=400)
-    p.add_argument("--narrows", default=os.path.join(os.path.dirname(__file__), "..", "build",
-                                                     "narrows"))
+    p.add_argument("--narrows", help="the narrows binary (default: $NARROWS, build/narrows, "
+                                      "the PATH)")
     p.add_argument("--plot", action="store_true")
     a = p.parse_args(argv)
     try:
         if any(d <= 0 for d in a.diffusivity):
             raise InputError("--diffusivity: allowed: numbers > 0")
+        a.narrows = find_narrows(a.narrows)
         run = read_run(a.run_dir)
         dims, w, kinds, v0 = channel(run, a.diffusivity, a.centre_speed)
         exclude = a.exclude if a.exclude is not None else 2.0 * max(k["radius"] for k in kinds)
