@@ -1,0 +1,59 @@
+// Contact history of the spring contacts (seed 001 §4.2.3): the tangential spring of each
+// contact that lasts, as data of its own. A contact is keyed by the ids of its two colloids,
+// (owner, partner) with owner < partner, or (owner, wall) for a colloid touching a wall; it is
+// owned by the colloid `owner` and lives on the rank that owns that colloid, which alone
+// computes the pair (springs.hpp), so there is no copy on the other side that could disagree.
+// It migrates with its owner colloid, is gathered in key order for checkpoints and is dropped
+// as soon as the two bodies separate. Rows are kept sorted by key.
+#pragma once
+
+#include "narrows/colloids/colloids.hpp"
+#include "narrows/parallel/exchange.hpp"
+#include "narrows/parallel/slabs.hpp"
+
+#include <mpi.h>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace narrows::colloids {
+
+// Partner ids of the walls at y = 0 and y = L_y (no colloid has them: ids are < 2^53).
+inline constexpr std::uint64_t wall_low_id = ~std::uint64_t{0};
+inline constexpr std::uint64_t wall_high_id = ~std::uint64_t{0} - 1;
+inline bool is_wall_id(std::uint64_t id) { return id >= wall_high_id; }
+
+struct ContactHistory {
+  int dim = 2;
+  std::vector<std::uint64_t> owner, partner;
+  std::array<std::vector<double>, 3> xi; // tangential displacement, components k < dim
+
+  std::size_t size() const { return owner.size(); }
+  void resize(std::size_t n) {
+    owner.resize(n);
+    partner.resize(n);
+    for (int k = 0; k < 3; ++k)
+      xi[k].resize(k < dim ? n : 0);
+  }
+  // Row of the contact (owner, partner), or -1.
+  long find(std::uint64_t o, std::uint64_t p) const;
+  // Sorts the rows by (owner, partner).
+  void sort();
+};
+
+// Every array of h (what migrates and what a checkpoint holds).
+parallel::SoaView contact_view(ContactHistory &h);
+
+// Sends each contact to the rank that will own its owner colloid (call before the colloids of
+// c, which this rank owns, in id order, migrate); collective.
+void migrate_contacts(ContactHistory &h, const Colloids &c, const parallel::Slabs &slabs,
+                      parallel::Exchange &exchange);
+
+// Keeps the contacts whose owner colloid is one of c's (owned rows in id order).
+void keep_contacts_of(ContactHistory &h, const Colloids &c);
+
+// All contacts of every rank, in key order, on every rank (collective).
+ContactHistory gather_contacts(const ContactHistory &mine, MPI_Comm comm);
+
+} // namespace narrows::colloids

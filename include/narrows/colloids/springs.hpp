@@ -1,0 +1,101 @@
+// Linear springs with Coulomb friction (seed 001 §4.2.3, eq 4.39-4.42, fig 4.6), the contacts of
+// `[colloids] contacts = "spring"`. Two overlapping bodies (colloid-colloid, or colloid and a
+// wall at rest at y = 0 or y = L_y) feel
+//   normal:      F_n = -k_n delta_n n           (delta_n the overlap, n towards the partner)
+//   tangential:  F_t = -k_t xi                  (xi the tangential spring of the contact)
+// on the first body and the opposite on the second, with torques r n x F_t on both (lever arm
+// the radius, towards the contact). The spring xi lives as long as the contact (contact
+// history, contact_history.hpp). Each sub-step it is first turned into the current tangent
+// plane keeping its length (eq 4.40), then stretched by the tangential relative velocity of
+// the contact points times the sub-step (eq 4.39), and cut back to |F_t| = mu |F_n| when it is
+// longer (Coulomb, eq 4.41-4.42: the contact slides). mu = 0: no tangential force; mu = inf:
+// never slides. Separate mu colloid-colloid and colloid-wall. The seed has no damping: sigma of
+// its Table 6.1 is the pressure gradient of the drive; the fluid damps the collisions.
+//
+// Integration: velocity Verlet sub-steps (half kick, drift, springs updated with the half-step
+// relative velocity at the new positions, forces, half kick). Forces are pure functions of the
+// positions and springs, so the force of the first half kick of an MPCD step is recomputed
+// from the state the last step left (the same bits, on any number of ranks and on restart).
+//
+// Parallel model: each pair is computed once, on the rank that owns the colloid of the smaller
+// id (it owns the contact's history); the force and torque on a partner held as a ghost row go
+// back to its owner as fixed-point sums (ghosts.hpp reverse), so every sum is exact and the run
+// is bitwise that of one rank. Ghost rows are refreshed from their owners after every drift.
+#pragma once
+
+#include "narrows/colloids/colloids.hpp"
+#include "narrows/colloids/contact_history.hpp"
+#include "narrows/colloids/forces.hpp"
+#include "narrows/mpcd/cell_grid.hpp"
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <vector>
+
+namespace narrows::colloids {
+
+struct SpringParams {
+  double kn = 2500.0, kt = 2500.0; // kT / a^2 (seed 001 Table 6.1)
+  double mu_cc = 1.0, mu_cw = 1.0; // infinity: never slides
+  int substeps = 10;               // velocity-Verlet sub-steps per MPCD step
+};
+
+inline constexpr double never_slides = std::numeric_limits<double>::infinity();
+
+// How the sub-steps reach other ranks (both collective); empty on one process.
+struct SpringHooks {
+  std::function<void(Colloids &)> refresh;                       // ghosts' x, v, omega
+  std::function<void(std::vector<std::int64_t> &, int)> reverse; // ghost rows' sums to owners
+};
+
+class SpringContacts {
+public:
+  SpringContacts(const SpringParams &params, const mpcd::Box &box);
+
+  // Numbers per row of the sums: the force (dim) and the torque (1 in 2D, 3 in 3D).
+  int stride() const { return dim_ == 2 ? 3 : 6; }
+
+  // Contact forces and torques of the current positions into sums() (fixed point, [row *
+  // stride + j], every row of c; ghost rows hold what goes back to their owners). `owned`:
+  // rows before it are this rank's. With `step` > 0 the springs are first advanced by that
+  // time with the current velocities (turned, stretched, capped) and `h` becomes the set of
+  // current contacts of this rank; with 0, `h` is read only.
+  void compute(const Colloids &c, std::size_t owned, ContactHistory &h, double step);
+  const std::vector<std::int64_t> &sums() const { return sums_; }
+  std::vector<std::int64_t> &sums() { return sums_; }
+
+  // Moves the first `owned` rows of c over time dt in params().substeps velocity-Verlet
+  // sub-steps under the contact forces (plus `external`, a constant force [a * dim + k] on
+  // each owned row, if given). Positions end wrapped along the periodic axes; with hooks the
+  // ghost rows follow their owners (refreshed after each drift, not after the last kick).
+  void advance(Colloids &c, std::size_t owned, ContactHistory &h, double dt,
+               const SpringHooks *hooks = nullptr, const std::vector<double> *external = nullptr);
+
+  // Elastic energy of the contacts of c (all rows owned) with springs h: sum of k_n delta^2 / 2
+  // + k_t |xi|^2 / 2 (for tests; the wall and pair contacts alike).
+  double elastic_energy(const Colloids &c, const ContactHistory &h) const;
+
+  // Contacts this rank computed since the start (pairs and wall contacts, summed over the
+  // sub-steps), and those that slid.
+  std::uint64_t contact_updates() const { return updates_; }
+  std::uint64_t sliding_updates() const { return sliding_; }
+  const SpringParams &params() const { return params_; }
+
+private:
+  template <int D, bool WallsY>
+  void compute(const Colloids &c, std::size_t owned, ContactHistory &h, double step);
+  void kick(Colloids &c, std::size_t owned, double h, const std::vector<double> *external) const;
+
+  SpringParams params_;
+  mpcd::Box box_;
+  int dim_;
+  CellList cells_;
+  double cell_cut_ = -1.0;
+  std::vector<int> cell_of_;
+  std::vector<std::int64_t> sums_;
+  ContactHistory next_; // the contacts being found
+  std::uint64_t updates_ = 0, sliding_ = 0;
+};
+
+} // namespace narrows::colloids
