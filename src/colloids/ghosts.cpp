@@ -118,6 +118,19 @@ void ColloidGhosts::refresh_motion(Colloids &c) {
   exchange_.refresh(motion_, list_, owned_);
 }
 
+void ColloidGhosts::refresh_state(Colloids &c) {
+  if (!active())
+    return;
+  state_.clear();
+  for (int k = 0; k < c.dim; ++k)
+    state_.push_back(&c.x[k]);
+  for (int k = 0; k < c.dim; ++k)
+    state_.push_back(&c.v[k]);
+  for (int k = 0; k < 3; ++k)
+    state_.push_back(&c.omega[k]);
+  exchange_.refresh(state_, list_, owned_);
+}
+
 void ColloidGhosts::reverse(std::vector<std::int64_t> &per_row, int k) {
   if (!active())
     return;

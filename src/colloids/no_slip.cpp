@@ -47,19 +47,31 @@ void rotate(Colloids &c, std::size_t a, double dt) {
 NoSlipCoupling::NoSlipCoupling(const NoSlipParams &params, const mpcd::Box &box,
                                const parallel::Slabs &slabs)
     : params_(params), box_(box), dim_(box.dim), slabs_(slabs), ghosts_(slabs, box),
-      migration_(slabs.comm()), stride_(box.dim == 2 ? 3 : 6) {}
+      migration_(slabs.comm()), stride_(box.dim == 2 ? 3 : 6), contact_migration_(slabs.comm()) {
+  history_.dim = dim_;
+  if (params_.spring_contacts) {
+    springs_.emplace(params_.spring, box_);
+    // Ghosts follow their owners after each drift; their forces go back to the owners.
+    spring_hooks_.refresh = [this](Colloids &c) { ghosts_.refresh_state(c); };
+    spring_hooks_.reverse = [this](std::vector<std::int64_t> &sums, int k) {
+      ghosts_.reverse(sums, k);
+    };
+  }
+}
 
 void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c) {
   const ScopedSeconds timed(seconds_);
   const double dt = params_.dt;
   const std::size_t owned = c.size();
   for (std::size_t a = 0; a < owned; ++a) { // gravity: a kick of the whole step
-    for (int k = 0; k < dim_; ++k)
-      c.v[k][a] += params_.gravity[k] * dt;
+    if (!params_.spring_contacts) // (springs: a force in each sub-step, balanced by contacts)
+      for (int k = 0; k < dim_; ++k)
+        c.v[k][a] += params_.gravity[k] * dt;
     rotate(c, a, dt);
   }
-  // Each colloid's path this step: its speed, or with hard contacts up to twice the fastest
-  // speed more (a collision can pass on the speed of the partner).
+  // Each colloid's path this step: its speed, or with contacts up to twice the fastest speed
+  // more (a collision can pass on the speed of the partner).
+  const bool contacts = params_.hard_contacts || params_.spring_contacts;
   double fastest = 0.0, v_max = 0.0;
   margin_.resize(owned);
   for (std::size_t a = 0; a < owned; ++a) {
@@ -71,8 +83,8 @@ void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c) {
   }
   MPI_Allreduce(&fastest, &v_max, 1, MPI_DOUBLE, MPI_MAX, slabs_.comm());
   for (std::size_t a = 0; a < owned; ++a)
-    margin_[a] = params_.hard_contacts ? (margin_[a] + 2.0 * v_max) * dt + path_allowance
-                                       : margin_[a] * dt * (1.0 + 1e-12) + 1e-12;
+    margin_[a] = contacts ? (margin_[a] + 2.0 * v_max) * dt + path_allowance
+                          : margin_[a] * dt * (1.0 + 1e-12) + 1e-12;
   const double r_max = ghosts_.largest_radius(c);
   // The fluid's reach sizes the regions of other ranks (a pass over the fluid): not needed on
   // one rank, where every colloid is owned and nothing is copied.
@@ -107,6 +119,15 @@ void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c) {
       }
     ghosts_.refresh_positions(c); // the owners' paths (a ghost may have missed a partner)
     ghosts_.refresh_motion(c);
+  } else if (springs_) { // every pair once, on the owner of its smaller id; ghosts follow
+    const bool falling = params_.gravity != std::array<double, 3>{0.0, 0.0, 0.0};
+    weight_.resize(owned * static_cast<std::size_t>(dim_));
+    for (std::size_t a = 0; a < owned; ++a)
+      for (int k = 0; k < dim_; ++k)
+        weight_[a * static_cast<std::size_t>(dim_) + k] = c.mass[a] * params_.gravity[k];
+    springs_->advance(c, owned, history_, dt, ghosts_.active() ? &spring_hooks_ : nullptr,
+                      falling ? &weight_ : nullptr);
+    ghosts_.refresh_motion(c); // the last half kick
   } else {
     move_ballistic(c, c.size(), box_, dt); // owned and ghost rows alike: the same bits
   }
@@ -151,8 +172,11 @@ void NoSlipCoupling::apply_impulses(Colloids &c, bool refresh) {
 void NoSlipCoupling::hand_over(Colloids &c) {
   const ScopedSeconds timed(seconds_);
   ghosts_.remove(c, &margin_);
-  if (ghosts_.active())
+  if (ghosts_.active()) {
+    if (springs_) // each contact goes where its owner colloid goes
+      migrate_contacts(history_, c, slabs_, contact_migration_);
     migrate_colloids(c, slabs_, migration_);
+  }
 }
 
 } // namespace narrows::colloids

@@ -24,6 +24,73 @@ constexpr double surface_gap = 1e-12;
 
 } // namespace
 
+int NoSlipCoupling::leave_overlaps(const Colloids &c, std::size_t a, double *s) const {
+  // The surface point s (relative to colloid a's centre) may lie inside a colloid b that a
+  // overlaps, or beyond a wall a overlaps (spring contacts are soft). Then s moves to the
+  // nearest point of the rim where the two surfaces meet (the circle where a's surface crosses b's
+  // or the wall plane), a hair outside it: a point of a's surface outside both. Where three
+  // overlap, the rim may lie inside a third: a few tries, then the caller's check refuses.
+  const double ra = c.radius[a];
+  const double hair = 1e-9 * ra;
+  const auto &L = box_.length;
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    double q[3] = {0.0, 0.0, 0.0};
+    for (int k = 0; k < dim_; ++k) {
+      q[k] = c.x[k][a] + s[k];
+      if (!(k == 1 && box_.walls_y))
+        q[k] = mpcd::wrap_periodic(q[k], L[k]);
+    }
+    double e[3] = {0.0, 0.0, 0.0}, t = 0.0, rho2 = 0.0;
+    if (box_.walls_y && (q[1] < 0.0 || q[1] > L[1])) { // the rim on the wall plane
+      t = (q[1] < 0.0 ? 0.0 : L[1]) - c.x[1][a];
+      e[1] = t < 0.0 ? -1.0 : 1.0;
+      t = std::abs(t);
+    } else {
+      const long b = lookup_.inside(c, q);
+      if (b < 0)
+        return attempt > 0 ? 1 : 0;
+      double d2 = 0.0;
+      for (int k = 0; k < dim_; ++k) {
+        e[k] = c.x[k][static_cast<std::size_t>(b)] - c.x[k][a];
+        if (!(k == 1 && box_.walls_y))
+          e[k] = minimum_image(e[k], L[k]);
+        d2 += e[k] * e[k];
+      }
+      const double d = std::sqrt(d2), rb = c.radius[static_cast<std::size_t>(b)];
+      if (!(d > 0.0))
+        return -1;
+      for (int k = 0; k < dim_; ++k)
+        e[k] /= d;
+      t = (d2 + ra * ra - rb * rb) / (2.0 * d); // the rim's plane from a's centre along e
+    }
+    rho2 = ra * ra - t * t;
+    if (!(rho2 > 0.0))
+      return -1; // one inside the other
+    // The direction of s across e (any, if s lies along e).
+    double se = 0.0, w[3] = {0.0, 0.0, 0.0}, w2 = 0.0;
+    for (int k = 0; k < dim_; ++k)
+      se += s[k] * e[k];
+    for (int k = 0; k < dim_; ++k) {
+      w[k] = s[k] - se * e[k];
+      w2 += w[k] * w[k];
+    }
+    if (!(w2 > 1e-24 * ra * ra)) {
+      w[0] = -e[1], w[1] = e[0], w[2] = 0.0;
+      if (dim_ == 3 && std::abs(e[2]) > 0.9)
+        w[0] = 1.0, w[1] = 0.0, w[2] = 0.0;
+      w2 = 0.0;
+      for (int k = 0; k < dim_; ++k) {
+        w[k] -= (w[0] * e[0] + w[1] * e[1] + w[2] * e[2]) * e[k];
+        w2 += w[k] * w[k];
+      }
+    }
+    const double rim = (std::sqrt(rho2) + hair) / std::sqrt(w2);
+    for (int k = 0; k < dim_; ++k)
+      s[k] = t * e[k] + rim * w[k];
+  }
+  return -1;
+}
+
 BounceStats NoSlipCoupling::bounce_back(mpcd::Fluid &fluid, Colloids &c,
                                         const FluidStream &stream) {
   const ScopedSeconds timed(seconds_);
@@ -91,6 +158,13 @@ BounceStats NoSlipCoupling::bounce_back(mpcd::Fluid &fluid, Colloids &c,
       double s[3] = {0.0, 0.0, 0.0}, u[3], dp[3];
       for (int k = 0; k < dim_; ++k)
         s[k] = d[k] * scale; // the surface point relative to the centre
+      // Soft contacts overlap: a surface point inside a partner or beyond a wall goes to the
+      // rim where the surfaces meet, and the particle stays there for the rest of the step (a
+      // flight from the rim would only run into one of the two again, and a particle bounced
+      // to and fro between two surfaces closing in gains energy).
+      bool settled = false;
+      if (params_.spring_contacts)
+        settled = leave_overlaps(c, a, s) != 0;
       // The rigid-body velocity there: U + Omega x s.
       const double w[3] = {c.omega[0][a], c.omega[1][a], c.omega[2][a]};
       u[0] = c.v[0][a] + w[1] * s[2] - w[2] * s[1];
@@ -108,9 +182,15 @@ BounceStats NoSlipCoupling::bounce_back(mpcd::Fluid &fluid, Colloids &c,
         batch_.v[k][j] = v_new;
       }
       add_impulse(a, s, dp);
+      if (settled)
+        batch_hit_[j] = -1; // stays on the rim
     }
     if (last)
       break;
+    if (params_.spring_contacts)
+      active_.erase(std::remove_if(active_.begin(), active_.end(),
+                                   [&](std::size_t j) { return batch_hit_[j] < 0; }),
+                    active_.end());
     // Forward half the interval from the surface, walls and body force exact.
     level_.resize(active_.size());
     for (std::size_t q = 0; q < active_.size(); ++q)

@@ -172,4 +172,69 @@ colloids::Colloids read_colloids(const std::string &path, const scene::Colloids 
   return c;
 }
 
+namespace {
+
+io::SpeciesFields fields_of(colloids::ContactHistory &h) {
+  io::SpeciesFields s;
+  s.name = "contacts";
+  s.dim = h.dim;
+  s.words.push_back({"owner_id", &h.owner});
+  s.words.push_back({"partner_id", &h.partner});
+  s.vectors.push_back({"tangential_displacement", {&h.xi[0], &h.xi[1], &h.xi[2]}});
+  return s;
+}
+
+} // namespace
+
+io::SpeciesFields contact_fields(colloids::ContactHistory &all, colloids::ContactHistory &empty,
+                                 MPI_Comm comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  if (rank == 0)
+    return fields_of(all);
+  empty.dim = all.dim;
+  empty.resize(0);
+  return fields_of(empty);
+}
+
+colloids::ContactHistory read_contacts(const std::string &path, std::int64_t colloids, int dim,
+                                       bool walls, MPI_Comm comm) {
+  colloids::ContactHistory block;
+  block.dim = dim;
+  if (!io::has_species_field(path, "contacts", "owner_id", comm))
+    return block;
+  io::SpeciesFields s = fields_of(block);
+  io::read_species(path, s, comm);
+  block.resize(block.owner.size());
+  colloids::ContactHistory all = colloids::gather_contacts(block, comm);
+  // Every rank holds all rows (in key order): the same refusal everywhere.
+  const auto n = static_cast<std::uint64_t>(colloids);
+  const std::string set = path + ": /particles/contacts/";
+  for (std::size_t j = 0; j < all.size(); ++j) {
+    const std::string at =
+        " (contact " + std::to_string(all.owner[j]) + "-" +
+        (colloids::is_wall_id(all.partner[j])
+             ? std::string(all.partner[j] == colloids::wall_low_id ? "wall y = 0" : "wall y = L_y")
+             : std::to_string(all.partner[j])) +
+        ")";
+    if (all.owner[j] >= n)
+      throw input_error(set + "owner_id/value holds " + std::to_string(all.owner[j]) + at +
+                        "; allowed: a colloid id, 0 to " + std::to_string(n - 1));
+    const std::uint64_t p = all.partner[j];
+    if (colloids::is_wall_id(p) ? !walls : (p >= n || p <= all.owner[j]))
+      throw input_error(set + "partner_id/value holds " + std::to_string(p) + at +
+                        "; allowed: a colloid id above the owner's, up to " +
+                        std::to_string(n - 1) +
+                        (walls ? ", or a wall (2^64 - 1: y = 0, 2^64 - 2: y = L_y)" : ""));
+    if (j > 0 && all.owner[j] == all.owner[j - 1] && p == all.partner[j - 1])
+      throw input_error(set + "owner_id/value and partner_id/value hold the same contact twice" +
+                        at + "; allowed: each pair once");
+    for (int k = 0; k < dim; ++k)
+      if (!std::isfinite(all.xi[k][j]))
+        throw input_error(set + "tangential_displacement/value component " + std::to_string(k) +
+                          " = " + std::to_string(all.xi[k][j]) + at + "; allowed: a finite number");
+  }
+  return all;
+}
+
 } // namespace narrows::engine

@@ -113,10 +113,16 @@ std::string no_slip_text(const scene::Scene &s, const MpcdPlan &p) {
                                ? "r " + format_number(c.radius) +
                                      (c.radius_sd > 0.0 ? " sd " + format_number(c.radius_sd) : "")
                                : kinds_text(c, p.dim, s.fluid.density);
-  std::string t = "no-slip colloids: " + std::to_string(c.count) + " (" + size + ") move " +
-                  (p.no_slip_params.hard_contacts
-                       ? "with event-driven rough hard-sphere contacts (seed 001 eq 4.19-4.30)"
-                       : "ballistically (no contacts)");
+  std::string t =
+      "no-slip colloids: " + std::to_string(c.count) + " (" + size + ") move " +
+      (p.no_slip_params.hard_contacts
+           ? "with event-driven rough hard-sphere contacts (seed 001 eq 4.19-4.30)"
+       : p.no_slip_params.spring_contacts
+           ? "with linear springs and Coulomb friction (seed 001 eq 4.39-4.42: kn " +
+                 format_number(c.spring.kn) + ", kt " + format_number(c.spring.kt) + ", mu_cc " +
+                 format_number(c.spring.mu_cc) + ", mu_cw " + format_number(c.spring.mu_cw) + ", " +
+                 std::to_string(c.spring.substeps) + " sub-steps per step)"
+           : "ballistically (no contacts)");
   if (c.gravity != std::array<double, 3>{0.0, 0.0, 0.0})
     t += ", gravity";
   return t;
@@ -174,6 +180,8 @@ MpcdPlan make_plan(const scene::Scene &s, const mpcd::Box &box, int ranks) {
       if (s.body_force && s.body_force->kind == scene::ForceKind::sine)
         q.sine_amplitude = s.body_force->amplitude;
       q.hard_contacts = c.contacts == scene::ColloidContacts::hard;
+      q.spring_contacts = c.contacts == scene::ColloidContacts::spring;
+      q.spring = {c.spring.kn, c.spring.kt, c.spring.mu_cc, c.spring.mu_cw, c.spring.substeps};
     }
   }
   p.ranks = ranks;

@@ -141,6 +141,22 @@ colloids::Colloids MpcdSimulation::gather_colloids() const {
   return colloids::gather_colloids(colloids_, comm_);
 }
 
+colloids::ContactHistory MpcdSimulation::gather_contacts() const {
+  if (!no_slip_) {
+    colloids::ContactHistory none;
+    none.dim = box_.dim;
+    return none;
+  }
+  return colloids::gather_contacts(no_slip_->contact_history(), comm_);
+}
+
+void MpcdSimulation::restore_contacts(colloids::ContactHistory &&all) {
+  if (!no_slip_)
+    return;
+  colloids::keep_contacts_of(all, colloids_);
+  no_slip_->contact_history() = std::move(all);
+}
+
 std::uint64_t MpcdSimulation::colloid_bytes_sent() const {
   return md_ ? md_->bytes_sent() : no_slip_ ? no_slip_->bytes_sent() : 0;
 }

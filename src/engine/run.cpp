@@ -184,6 +184,9 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
       run::collectively(comm, [&] {
         sim.restore_colloids(read_colloids(file, *scene.colloids, scene.run.dimensions,
                                            scene.fluid.density, scene.run.seed, comm));
+        if (scene.colloids->contacts == scene::ColloidContacts::spring)
+          sim.restore_contacts(read_contacts(file, scene.colloids->count, scene.run.dimensions,
+                                             scene.walls.has_value(), comm));
       });
       // Every colloid (gathered from the owners) against this rank's fluid.
       check_fluid_outside_colloids(sim.fluid(), sim.gather_colloids(), sim.box(),
@@ -211,6 +214,9 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
   const colloids::Colloids *colloids = scene.colloids ? &all_colloids : nullptr;
   if (colloids)
     all_colloids = sim.gather_colloids();
+  // The spring contacts' history, gathered in key order for checkpoints.
+  const bool springs = scene.colloids && scene.colloids->contacts == scene::ColloidContacts::spring;
+  colloids::ContactHistory all_contacts;
   if (scene.output.trajectory_every > 0) {
     const std::string file = shell.output_file("trajectory");
     trajectory.emplace(file, scene.text, sim.box(), particle_count(scene),
@@ -236,9 +242,14 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
       info.walls_y = sim.box().walls_y;
       std::vector<io::SpeciesFields> species{fluid_fields(sim.fluid())};
       colloids::Colloids none;
+      colloids::ContactHistory no_contacts;
       if (colloids) {
         all_colloids = sim.gather_colloids();
         species.push_back(colloid_fields(all_colloids, none, comm));
+      }
+      if (springs) {
+        all_contacts = sim.gather_contacts();
+        species.push_back(contact_fields(all_contacts, no_contacts, comm));
       }
       const double bytes =
           io::write_checkpoint(path, info, species, comm, observer.checkpoint_arrays());
@@ -300,6 +311,17 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
                     "resolved on rank 0 (ghosts included)",
                     static_cast<unsigned long long>(ns->contacts().pair_collisions),
                     static_cast<unsigned long long>(ns->contacts().wall_collisions));
+      log.line(text);
+    }
+    if (const auto *ns = sim.no_slip(); ns && ns->springs()) {
+      const double mine[2] = {static_cast<double>(ns->springs()->contact_updates()),
+                              static_cast<double>(ns->springs()->sliding_updates())};
+      double all[2] = {0.0, 0.0};
+      MPI_Reduce(mine, all, 2, MPI_DOUBLE, MPI_SUM, 0, comm);
+      std::snprintf(text, sizeof text,
+                    "spring contacts: %.4g contact updates (sub-steps times contacts), %.1f %% "
+                    "of them sliding",
+                    all[0], all[0] > 0.0 ? 100.0 * all[1] / all[0] : 0.0);
       log.line(text);
     }
   }

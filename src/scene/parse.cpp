@@ -57,10 +57,11 @@ const std::vector<Section> &schema() {
       {"body_force", {"kind", "value", "amplitude"}},
       {"walls", {"slip", "virtual_particles", "virtual_flow"}},
       {"thermostat", {"kind", "gamma"}},
-      {"colloids",
-       {"radius", "radius_sd", "mass", "count", "placement", "positions", "positions_file",
-        "gravity", "md_substeps", "epsilon", "wall_sigma", "wall_q", "coupling", "contacts", "kind",
-        "max_lag", "correlation_every", "kde_width", "statistics_from"}},
+      {"colloids", {"radius",      "radius_sd",         "mass",           "count",
+                    "placement",   "positions",         "positions_file", "gravity",
+                    "md_substeps", "epsilon",           "wall_sigma",     "wall_q",
+                    "coupling",    "contacts",          "kind",           "spring",
+                    "max_lag",     "correlation_every", "kde_width",      "statistics_from"}},
       {"kmc",
        {"length", "boundary", "rates", "left", "right", "initial", "time", "warmup", "replicas",
         "charge", "samples", "preset", "parameters", "fugacity", "boundary_rates",
@@ -878,6 +879,49 @@ std::vector<ColloidKind> parse_colloid_kinds(const Ctx &c, const value *sec, con
   return out;
 }
 
+// [colloids.spring]: kn, kt, mu_cc, mu_cw (a number >= 0 or inf) and substeps.
+ColloidSprings parse_colloid_springs(const Ctx &c, const value &sec) {
+  if (!sec.is_table())
+    c.wrong_type("colloids.spring", sec, "a table [colloids.spring]");
+  for (const auto &[k, v] : in_file_order(sec)) {
+    (void)v;
+    if (k != "kn" && k != "kt" && k != "mu_cc" && k != "mu_cw" && k != "substeps")
+      c.fail("colloids.spring." + k, "unknown key 'colloids.spring." + k +
+                                         "'; allowed keys in [colloids.spring]: kn, kt, mu_cc, "
+                                         "mu_cw, substeps");
+  }
+  ColloidSprings out;
+  if (const value *v = find(&sec, "kn"))
+    out.kn = as_number(c, *v, "colloids.spring.kn", "a number > 0 (kT / a^2)",
+                       [](double x) { return x > 0.0; });
+  if (const value *v = find(&sec, "kt"))
+    out.kt = as_number(c, *v, "colloids.spring.kt", "a number >= 0 (kT / a^2)",
+                       [](double x) { return x >= 0.0; });
+  // A friction coefficient: a number >= 0, or infinity (the TOML float inf or the string "inf").
+  const auto mu = [&](const char *name, double &x) {
+    const value *v = find(&sec, name);
+    if (v == nullptr)
+      return;
+    const std::string key = std::string("colloids.spring.") + name;
+    const std::string allowed = "a number >= 0, or \"inf\" (never slides)";
+    if ((v->is_string() && v->as_string() == "inf") ||
+        (v->is_floating() && std::isinf(v->as_floating()) && v->as_floating() > 0.0)) {
+      x = std::numeric_limits<double>::infinity();
+      return;
+    }
+    if (v->is_string())
+      c.out_of_range(key, *v, allowed);
+    x = as_number(c, *v, key, allowed, [](double y) { return y >= 0.0; });
+  };
+  mu("mu_cc", out.mu_cc);
+  mu("mu_cw", out.mu_cw);
+  if (const value *v = find(&sec, "substeps"))
+    out.substeps =
+        static_cast<int>(as_integer(c, *v, "colloids.spring.substeps", "an integer from 1 to 10000",
+                                    [](std::int64_t n) { return n >= 1 && n <= 10000; }));
+  return out;
+}
+
 // The keys of the colloid statistics (observables colloid_vacf ... density_kde).
 void parse_colloid_statistics(const Ctx &c, const value *sec, Colloids &out) {
   if (const value *v = find(sec, "correlation_every"))
@@ -942,15 +986,19 @@ std::optional<Colloids> parse_colloids(const Ctx &c, const value *sec, const Dom
         as_choice(c, *v, "colloids.coupling", "a known coupling", {"md", "no-slip"}));
   const bool no_slip = out.coupling == ColloidCoupling::no_slip;
   if (const value *v = find(sec, "contacts")) {
-    if (v->is_string() && v->as_string() == "spring")
-      c.fail("colloids.contacts", "colloids.contacts = \"spring\" (linear springs with Coulomb "
-                                  "friction) is not built yet; allowed: \"none\" or \"hard\"");
     out.contacts = static_cast<ColloidContacts>(
-        as_choice(c, *v, "colloids.contacts", "a known contact model", {"none", "hard"}));
-    if (out.contacts == ColloidContacts::hard && !no_slip)
+        as_choice(c, *v, "colloids.contacts", "a known contact model", {"none", "hard", "spring"}));
+    if (out.contacts != ColloidContacts::none && !no_slip)
       c.fail("colloids.contacts",
-             "colloids.contacts = \"hard\" resolves contacts of no-slip colloids; allowed with "
-             "coupling = \"md\": \"none\" (the 48-24 potential keeps MD colloids apart)");
+             "colloids.contacts = " + repr(*v) +
+                 " resolves contacts of no-slip colloids; allowed with coupling = \"md\": "
+                 "\"none\" (the 48-24 potential keeps MD colloids apart)");
+  }
+  if (const value *v = find(sec, "spring")) {
+    if (out.contacts != ColloidContacts::spring)
+      c.fail("colloids.spring", "[colloids.spring] sets the spring contacts; allowed only with "
+                                "colloids.contacts = \"spring\"");
+    out.spring = parse_colloid_springs(c, *v);
   }
   if (no_slip) // these set the MD potentials, which no-slip colloids do not have
     for (const char *key : {"md_substeps", "epsilon", "wall_sigma", "wall_q"})
@@ -1202,11 +1250,33 @@ void check_no_slip(const Ctx &c, const Scene &s) {
                  " (explicit coupling, unstable near 1); allowed: f <= 0.5, i.e. a smaller "
                  "fluid.dt, larger or heavier colloids");
   }
+  if (col.contacts == ColloidContacts::spring) {
+    // The fastest spring oscillation, a tangential one of the lightest pair (the tangential
+    // spring acts through 1/m_t = 3/m_red for disks, 3.5/m_red for spheres; a wall contact has
+    // m_red = M), times the sub-step: velocity Verlet is stable below 2 and accurate to
+    // (omega h)^2 / 24 in the contact time; beyond 0.25 the several contacts of a packed colloid
+    // (frequencies up to about sqrt(2 z) higher) come near the limit.
+    double m_min = std::numeric_limits<double>::infinity();
+    for (const auto &[r_min, mass] : sizes)
+      m_min = std::min(m_min, mass);
+    const auto &k = col.spring;
+    const double stiff = std::max(k.kn, (d == 2 ? 3.0 : 3.5) * k.kt);
+    const double omega_h = std::sqrt(stiff / (0.5 * m_min)) * s.fluid.dt / k.substeps;
+    if (omega_h > 0.25)
+      c.fail("colloids.spring.substeps",
+             "colloids.spring.substeps = " + std::to_string(k.substeps) +
+                 ": the stiffest contact of the lightest colloids (M " + float_text(m_min) +
+                 ") oscillates " + float_text(omega_h) +
+                 " radians per sub-step; allowed: at most 0.25, i.e. substeps >= " +
+                 std::to_string(static_cast<int>(std::ceil(k.substeps * omega_h / 0.25))) +
+                 ", or softer springs");
+  }
   if (col.contacts == ColloidContacts::none && (s.walls || col.count > 1))
     c.fail("colloids.contacts",
            std::string("colloids.contacts = \"none\" with no-slip colloids and ") +
                (s.walls ? "[walls]" : "colloids.count = " + std::to_string(col.count)) +
-               ": they could overlap each other or a wall; allowed: contacts = \"hard\", or "
+               ": they could overlap each other or a wall; allowed: contacts = \"hard\" or "
+               "\"spring\", or "
                "one colloid in a periodic box");
 }
 

@@ -84,9 +84,6 @@ refused "no-slip without contacts in a channel" 'colloids.contacts.*could overla
 bad 's/coupling = "no-slip"/coupling = "md"/'
 refused "hard contacts with MD colloids" 'colloids.contacts = "hard".*allowed with coupling = "md": "none"' \
   "$narrows" check "$tmp/bad.toml"
-bad 's/contacts = "hard"/contacts = "spring"/'
-refused "spring contacts (not built)" 'colloids.contacts = "spring".*not built yet' \
-  "$narrows" check "$tmp/bad.toml"
 bad 's/^count = 10/count = 10\nmd_substeps = 10/'
 refused "an MD key with no-slip" 'colloids.md_substeps = 10 sets the MD coupling' \
   "$narrows" check "$tmp/bad.toml"

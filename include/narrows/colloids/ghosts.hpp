@@ -47,6 +47,8 @@ public:
   void refresh_positions(Colloids &c);
   // The ghosts' velocities and angular velocities from their owners again (collective).
   void refresh_motion(Colloids &c);
+  // The ghosts' positions, velocities and angular velocities from their owners (collective).
+  void refresh_state(Colloids &c);
   // Appends the ghosts for a whole step with this rank's region widened by `more` beyond what
   // add_for_step takes (room for chains of contacts; collective).
   void add_for_step(Colloids &c, std::vector<double> &margin, double fluid_reach, double more);
@@ -85,6 +87,7 @@ private:
   std::vector<std::int64_t> ghost_values_;
   std::vector<std::vector<double> *> positions_; // the fields refresh_positions() sends
   std::vector<std::vector<double> *> motion_;    // the fields refresh_motion() sends
+  std::vector<std::vector<double> *> state_;     // the fields refresh_state() sends
 };
 
 } // namespace narrows::colloids

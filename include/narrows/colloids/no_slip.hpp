@@ -5,9 +5,13 @@
 // colloids (summed in fixed point, so the result does not depend on the order of particles or
 // on the number of ranks). The MPCD step calls, in order:
 //   move_colloids          orientation turned by Omega dt (the step's starting spin); gravity
-//                          kick U += g dt; ghosts for the step; every colloid moves
-//                          U dt (contacts = "none") or by event-driven rough hard spheres
-//                          (contacts = "hard", hard_spheres.hpp)
+//                          kick U += g dt (springs: the force M g in each sub-step, so that a
+//                          colloid resting on others does not bounce each step); ghosts for the
+//                          step; every colloid moves
+//                          U dt (contacts = "none"), by event-driven rough hard spheres
+//                          (contacts = "hard", hard_spheres.hpp) or in velocity-Verlet
+//                          sub-steps under linear springs with Coulomb friction (contacts =
+//                          "spring", springs.hpp; the ghosts follow their owners each sub-step)
 //   (the engine streams all fluid the whole step with the kernel its plan chose)
 //   bounce_back            every fluid particle that ended inside a colloid: back half the
 //                          interval, onto the surface, v' = 2 (U + Omega x r) - v (eq 4.15),
@@ -21,15 +25,18 @@
 //   (the engine collides)
 //   take_back_ghost_particles  their momentum and angular momentum change to the colloids;
 //                          they leave the fluid arrays and the cell sums
-//   hand_over              ghost colloids go; colloids that left the slab change owner
+//   hand_over              ghost colloids go; colloids that left the slab change owner (with
+//                          the contact history they own)
 // All calls are collective over the slabs' communicator.
 #pragma once
 
 #include "narrows/colloids/colloid_lookup.hpp"
 #include "narrows/colloids/colloids.hpp"
+#include "narrows/colloids/contact_history.hpp"
 #include "narrows/colloids/ghosts.hpp"
 #include "narrows/colloids/hard_spheres.hpp"
 #include "narrows/colloids/md_integrator.hpp"
+#include "narrows/colloids/springs.hpp"
 #include "narrows/mpcd/cell_grid.hpp"
 #include "narrows/mpcd/fluid.hpp"
 #include "narrows/parallel/exchange.hpp"
@@ -37,6 +44,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace narrows::colloids {
@@ -48,6 +56,8 @@ struct NoSlipParams {
   std::array<double, 3> fluid_accel{0.0, 0.0, 0.0}; // constant body force on the fluid
   double sine_amplitude = 0.0; // Kolmogorov force on the fluid, a_x = A sin(2 pi y / L_y)
   bool hard_contacts = false;
+  bool spring_contacts = false; // springs with friction (then `spring` holds their constants)
+  SpringParams spring;
 };
 
 // Turns colloid a's orientation by its angular velocity over time dt.
@@ -79,10 +89,19 @@ public:
   double seconds() const { return seconds_; }
   // Hard-sphere collisions this rank resolved since the start (ghost rows included).
   const HardSphereStats &contacts() const { return contacts_; }
+  // The spring contacts (nullptr unless contacts = "spring") and the contact history this rank
+  // owns (the contacts of its colloids with larger ids and with the walls).
+  const SpringContacts *springs() const { return springs_ ? &*springs_ : nullptr; }
+  ContactHistory &contact_history() { return history_; }
+  const ContactHistory &contact_history() const { return history_; }
   // Ghost particles added in the last step on this rank.
   std::size_t ghost_particles() const { return ghost_row_.size(); }
 
 private:
+  // Spring contacts: moves the surface point s of colloid a (relative to its centre) out of the
+  // colloids and walls a overlaps, onto the rim where the surfaces meet: 0 if it was outside
+  // them, 1 if it moved, -1 if it could not (the rim inside a third).
+  int leave_overlaps(const Colloids &c, std::size_t a, double *s) const;
   // Adds the impulse dp (on the colloid, at offset r from its centre) to row a's sums.
   void add_impulse(std::size_t a, const double *r, const double *dp);
   // Sends the ghost rows' sums to their owners, which change U and Omega; zeroes the sums;
@@ -112,6 +131,11 @@ private:
   std::vector<std::uint32_t> ghost_row_;
   std::array<std::vector<double>, 3> ghost_v0_;
   HardSphereStats contacts_;
+  std::optional<SpringContacts> springs_;
+  ContactHistory history_;
+  parallel::Exchange contact_migration_;
+  SpringHooks spring_hooks_;
+  std::vector<double> weight_; // M g of each owned colloid, a force in the spring sub-steps
   double seconds_ = 0.0;
 };
 

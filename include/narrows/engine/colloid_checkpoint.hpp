@@ -6,6 +6,7 @@
 #pragma once
 
 #include "narrows/colloids/colloids.hpp"
+#include "narrows/colloids/contact_history.hpp"
 #include "narrows/io/checkpoint.hpp"
 #include "narrows/scene/scene.hpp"
 
@@ -25,5 +26,18 @@ io::SpeciesFields colloid_fields(colloids::Colloids &c, colloids::Colloids &empt
 // its count differs from the scene's, or a stored radius or mass is not a finite number > 0.
 colloids::Colloids read_colloids(const std::string &path, const scene::Colloids &spec, int dim,
                                  double density, std::uint64_t seed, MPI_Comm comm);
+
+// The contact history of spring contacts as the species "contacts" (owner_id, partner_id,
+// tangential_displacement; partner ids 2^64 - 1 and 2^64 - 2 are the walls at y = 0 and L_y),
+// all rows in key order on rank 0, none elsewhere.
+io::SpeciesFields contact_fields(colloids::ContactHistory &all, colloids::ContactHistory &empty,
+                                 MPI_Comm comm);
+
+// All contacts of a checkpoint on every rank, in key order (collective); empty if the
+// checkpoint has none (written before contacts had a history). input_error naming the dataset
+// and row for a damaged one: an id outside the colloids, a partner not above its owner (or a
+// wall without walls), a key twice, a displacement that is not finite.
+colloids::ContactHistory read_contacts(const std::string &path, std::int64_t colloids, int dim,
+                                       bool walls, MPI_Comm comm);
 
 } // namespace narrows::engine

@@ -65,6 +65,12 @@ public:
   const colloids::Colloids &colloids() const { return colloids_; }
   // All colloids in id order, on every rank (collective): for observables and output.
   colloids::Colloids gather_colloids() const;
+  // The spring contacts' history of every rank in key order, on every rank (collective; empty
+  // without spring contacts).
+  colloids::ContactHistory gather_contacts() const;
+  // A checkpoint's contact history (all of it, every rank): each rank keeps the contacts of the
+  // colloids it owns (after restore_colloids).
+  void restore_contacts(colloids::ContactHistory &&all);
   // Bytes this rank sent for colloids (ghosts, their forces, migration) since the start.
   std::uint64_t colloid_bytes_sent() const;
   // The MD integrator with [colloids] (nullptr without).

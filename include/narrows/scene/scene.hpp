@@ -62,9 +62,18 @@ enum class ColloidPlacement { lattice, list, random };
 // How colloids meet the fluid: "md" (seed 000 §3.4: WCA forces, velocity-Verlet sub-steps, slip)
 // or "no-slip" (seed 001 §4.2.1: bounce-back at the surface with the rigid-body velocity, ghost
 // particles inside in the collision; colloids rotate). Contacts between colloids and with the
-// walls: "none" or "hard" (event-driven rough hard spheres, seed 001 §4.2.2).
+// walls: "none", "hard" (event-driven rough hard spheres, seed 001 §4.2.2) or "spring" (linear
+// springs with Coulomb friction and contact history, seed 001 §4.2.3; [colloids.spring]).
 enum class ColloidCoupling { md, no_slip };
-enum class ColloidContacts { none, hard };
+enum class ColloidContacts { none, hard, spring };
+
+// [colloids.spring]: the constants of the spring contacts (seed 001 Table 6.1: kn = kt = 2500;
+// §6.2.1: mu = 1). mu = infinity ("inf"): never slides. No damping: the seed has none.
+struct ColloidSprings {
+  double kn = 2500.0, kt = 2500.0;
+  double mu_cc = 1.0, mu_cw = 1.0;
+  int substeps = 10; // velocity-Verlet sub-steps per MPCD step
+};
 
 // One kind of colloid of a [[colloids.kind]] table: `count` colloids of one radius and mass
 // (mass 0: fluid mass density times the volume).
@@ -82,6 +91,7 @@ struct Colloids {
   ColloidPlacement placement = ColloidPlacement::lattice; // lattice: a row along x, centred
   ColloidCoupling coupling = ColloidCoupling::md;
   ColloidContacts contacts = ColloidContacts::none;
+  ColloidSprings spring;                        // contacts = "spring"
   std::vector<std::array<double, 3>> positions; // placement "list"
   // Where each position was given, for messages: "colloids.positions[3]" or
   // "colloids.positions_file (path:line)"; empty: "colloids.positions[i]".
