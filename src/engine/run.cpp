@@ -247,9 +247,10 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
         all_colloids = sim.gather_colloids();
         species.push_back(colloid_fields(all_colloids, none, comm));
       }
-      if (springs) {
+      if (springs) { // (none in contact: no species, as a checkpoint without a history)
         all_contacts = sim.gather_contacts();
-        species.push_back(contact_fields(all_contacts, no_contacts, comm));
+        if (all_contacts.size() > 0)
+          species.push_back(contact_fields(all_contacts, no_contacts, comm));
       }
       const double bytes =
           io::write_checkpoint(path, info, species, comm, observer.checkpoint_arrays());

@@ -1,0 +1,98 @@
+#!/usr/bin/env bash
+# No-slip colloids with spring contacts (issue 21 items 1-2) through the command line: settling
+# colloids in a driven channel run on 1 and 2 ranks to bitwise the same final checkpoint
+# (fluid, colloids, contact history); a restart 2 -> 1 ranks continues bitwise; the log and
+# `narrows info` name the contact model; scenes with bad spring keys are refused in one line.
+set -u
+source "$(dirname "$0")/common.bash"
+py=/usr/bin/python3
+
+cat > "$tmp/s.toml" <<'TOML'
+[run]
+dimensions = 2
+seed = 23
+steps = 200
+[domain]
+size = [30.0, 12.0]
+[fluid]
+collision = "at+a"
+density = 8
+dt = 0.05
+[body_force]
+kind = "constant"
+value = [0.01, 0.0]
+[walls]
+virtual_particles = true
+[colloids]
+coupling = "no-slip"
+contacts = "spring"
+radius = 1.6
+count = 14
+placement = "random"
+gravity = [0.0, -1.0]
+[colloids.spring]
+kn = 2500
+kt = 2500
+mu_cc = 0.5
+mu_cw = "inf"
+substeps = 10
+[output]
+every = 50
+checkpoint_every = 100
+progress = false
+observables = ["momentum", "energy"]
+TOML
+cat > "$tmp/compare.py" <<'PY'
+import sys, h5py, numpy as np
+def state(path, species, key, fields):
+    with h5py.File(path, "r") as f:
+        p = f["/particles/" + species]
+        order = np.lexsort([p[k + "/value"][:] for k in reversed(key)])
+        return [p[name + "/value"][:][order] for name in fields]
+pairs = [("fluid", ["id"], ["id", "position", "velocity"]),
+         ("colloids", ["id"], ["id", "position", "velocity", "angular_velocity_z", "orientation_z"]),
+         ("contacts", ["owner_id", "partner_id"],
+          ["owner_id", "partner_id", "tangential_displacement"])]
+for species, key, fields in pairs:
+    a, b = state(sys.argv[1], species, key, fields), state(sys.argv[2], species, key, fields)
+    for name, x, y in zip(fields, a, b):
+        if x.shape != y.shape or not np.array_equal(x.view(np.uint64), y.view(np.uint64)):
+            sys.exit(species + " " + name + " differ")
+with h5py.File(sys.argv[1], "r") as f: # (a checkpoint without contacts has no such species)
+    if not any(p < 2**62 for p in f["/particles/contacts/partner_id/value"][:]):
+        sys.exit("no contact between colloids at the end: little compared")
+PY
+check "narrows info names the springs" '"$narrows" info "$tmp/s.toml" | grep -q "linear springs and Coulomb friction.*mu_cw inf"'
+runs --err "$tmp/err1" "1 rank" "$narrows" run "$tmp/s.toml" --out "$tmp/one" > "$tmp/log1"
+check "the log counts the spring contacts" 'grep -q "spring contacts: [1-9].* contact updates" "$tmp/log1"'
+runs "2 ranks" "${mpi[@]}" -n 2 "$narrows" run "$tmp/s.toml" --out "$tmp/two" > /dev/null 2>&1
+check "2 ranks bitwise equal to 1 rank (fluid, colloids, contacts)" \
+  '$py "$tmp/compare.py" "$tmp/one/checkpoint-0000000200.h5" "$tmp/two/checkpoint-0000000200.h5"'
+runs "first half on 2 ranks" "${mpi[@]}" -n 2 "$narrows" run "$tmp/s.toml" --set run.steps=100 --out "$tmp/p21" > /dev/null 2>&1
+check "the restart is mid-contact" '$py -c "import h5py,sys; assert len(h5py.File(sys.argv[1])[\"/particles/contacts/owner_id/value\"]) > 0" "$tmp/p21/checkpoint-0000000100.h5"'
+runs "restart on 1 rank" "$narrows" run "$tmp/s.toml" --restart "$tmp/p21" --out "$tmp/p21" > /dev/null 2>&1
+check "restart 2 -> 1 ranks bitwise equal to the uninterrupted run" \
+  '$py "$tmp/compare.py" "$tmp/one/checkpoint-0000000200.h5" "$tmp/p21/checkpoint-0000000200.h5"'
+
+# Scenes the spring contacts cannot run.
+bad() { sed "$1" "$tmp/s.toml" > "$tmp/bad.toml"; }
+bad 's/contacts = "spring"/contacts = "hard"/'
+refused "[colloids.spring] without spring contacts" 'colloids.spring.*only with colloids.contacts = "spring"' \
+  "$narrows" check "$tmp/bad.toml"
+bad 's/coupling = "no-slip"/coupling = "md"/'
+refused "spring contacts with MD colloids" 'colloids.contacts = "spring".*allowed with coupling = "md": "none"' \
+  "$narrows" check "$tmp/bad.toml"
+bad 's/mu_cc = 0.5/mu_cc = -0.5/'
+refused "a negative friction coefficient" 'colloids.spring.mu_cc.*a number >= 0, or "inf"' \
+  "$narrows" check "$tmp/bad.toml"
+bad 's/mu_cw = "inf"/mu_cw = "infinite"/'
+refused "a friction coefficient that is not a number" 'colloids.spring.mu_cw.*"inf"' \
+  "$narrows" check "$tmp/bad.toml"
+bad 's/substeps = 10/substeps = 1/'
+refused "too few sub-steps for the springs" 'colloids.spring.substeps = 1: .*radians per sub-step; allowed: at most 0.25, i.e. substeps >= ' \
+  "$narrows" check "$tmp/bad.toml"
+bad 's/^kt = 2500/kt = 2500\ndamping = 1.25/'
+refused "an unknown spring key" "unknown key 'colloids.spring.damping'" "$narrows" check "$tmp/bad.toml"
+bad 's/^kn = 2500/kn = 0/'
+refused "kn = 0" 'colloids.spring.kn' "$narrows" check "$tmp/bad.toml"
+finish "spring scenes"
