@@ -170,8 +170,12 @@ BounceStats NoSlipCoupling::bounce_back(mpcd::Fluid &fluid, Colloids &c,
       u[0] = c.v[0][a] + w[1] * s[2] - w[2] * s[1];
       u[1] = c.v[1][a] + w[2] * s[0] - w[0] * s[2];
       u[2] = (dim_ == 3 ? c.v[2][a] : 0.0) + w[0] * s[1] - w[1] * s[0];
+      // With soft contacts a particle that stays on a surface for the rest of the step (on a
+      // rim, or trapped after the last halving) takes the surface's velocity: bounced to and fro
+      // between surfaces of vibrating contacts it would gain energy step after step.
+      const bool stays = params_.spring_contacts && (settled || last);
       for (int k = 0; k < dim_; ++k) {
-        const double v_new = 2.0 * u[k] - vb[k];
+        const double v_new = stays ? u[k] : 2.0 * u[k] - vb[k];
         dp[k] = -(v_new - vb[k]); // what the colloid receives
         double x = c.x[k][a] + s[k];
         if (!(k == 1 && box_.walls_y))

@@ -44,9 +44,9 @@ scene::Scene plug_scene() {
   s.fluid.density = 6.0;
   s.fluid.dt = 0.1;
   s.fluid.sort_every = 7;
-  // A cool fluid: at kT = 1 the kicks of fluid trapped in the narrow gaps at the contacts open
-  // the contacts of these light colloids (M = 83) every ~100 steps; at kT = 0.03, once the plug
-  // has settled (about 1000 steps), they last.
+  // A cool fluid: at kT = 1 the thermal motion of a contact (rms sqrt(kT / kn) = 0.02) is
+  // comparable to its static overlap (0.033 under M g = 83), so contacts open every ~100 steps;
+  // at kT = 0.03, once the plug has settled (about 1000 steps), they last.
   s.fluid.kT = 0.03;
   s.body_force = scene::BodyForce{scene::ForceKind::constant, {0.01, 0.0, 0.0}, 0};
   s.walls = scene::Walls{};

@@ -1,0 +1,95 @@
+// Issue 21 acceptance 5 (the spring part): no-slip colloids with linear springs and Coulomb
+// friction in a hard case, 10^5 steps (10^6 sub-steps): three disks in a pyramid on the lower
+// wall, pressed down by gravity (M g = 50: overlaps of 1 % of the radius), with friction that
+// never slides (mu = inf between them and with the wall), so that each lower disk is wedged
+// between the other two and the wall and the pyramid is jammed; the fluid pushes along the
+// channel. Every 100 steps: the run's invariants (count, ids, no NaN or runaway speed), no fluid
+// particle inside a colloid, the colloid count, the contacts. At the end the deepest overlap is
+// reported: the kicks of fluid trapped in the gaps at the contacts make it deeper than the
+// static 1 % (measured 5 %; the seed's fig 6.2a has a tail beyond 4 %), and below 10 % is asked.
+// The pyramid does not stay jammed at kT = 1: those kicks open a contact now and then, which
+// drops its tangential spring (the history lasts as long as the contact), and the disks creep
+// apart over the run.
+#include "narrows/colloids/no_slip.hpp"
+#include "narrows/engine/invariants.hpp"
+#include "narrows/engine/mpcd_simulation.hpp"
+
+#include "colloid_scene.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+using namespace narrows;
+
+TEST(SpringHardCase, DiskWedgedBetweenTwoOthersAndAWall) {
+  scene::Colloids c;
+  c.coupling = scene::ColloidCoupling::no_slip;
+  c.contacts = scene::ColloidContacts::spring;
+  c.spring = {2500.0, 2500.0, std::numeric_limits<double>::infinity(),
+              std::numeric_limits<double>::infinity(), 10};
+  c.radius = 2.0;
+  c.count = 3;
+  c.placement = scene::ColloidPlacement::list;
+  // Two on the wall touching, the third on top of both (a hair apart, which the placement check
+  // would otherwise round to an overlap).
+  const double up = 2.0 + 2.0 * std::sqrt(3.0) + 1e-8;
+  c.positions = {{6.0, 2.0 + 1e-9, 0.0}, {10.0 + 1e-9, 2.0 + 1e-9, 0.0}, {8.0, up, 0.0}};
+  c.gravity = {0.0, -1.0, 0.0};
+  scene::Scene s = narrows::testing::srd_colloid_scene(16.0, 10.0, true, 4, c);
+  s.fluid.collision = scene::Collision::at_a;
+  s.fluid.density = 4.0;
+  s.fluid.dt = 0.05;
+  s.walls->virtual_particles = true;
+  s.body_force = scene::BodyForce{scene::ForceKind::constant, {0.005, 0.0, 0.0}, 0.0};
+  const int steps = 100000;
+
+  engine::MpcdSimulation sim(s, MPI_COMM_WORLD);
+  const engine::InvariantCheck invariants(sim);
+  double deepest = 0.0, inside = 1e9;
+  std::size_t most_contacts = 0, fewest_contacts = 100;
+  for (int step = 1; step <= steps; ++step) {
+    sim.advance();
+    if (step % 100 != 0)
+      continue;
+    EXPECT_NO_THROW(invariants.check(sim)) << "step " << step;
+    const auto &col = sim.colloids();
+    ASSERT_EQ(col.size(), 3u) << "step " << step;
+    const double L = sim.box().length[0];
+    for (std::size_t a = 0; a < col.size(); ++a) {
+      deepest = std::max({deepest, col.radius[a] - col.x[1][a],
+                          col.x[1][a] + col.radius[a] - sim.box().length[1]});
+      for (std::size_t b = a + 1; b < col.size(); ++b) {
+        double dx = col.x[0][a] - col.x[0][b];
+        dx -= L * std::round(dx / L);
+        deepest = std::max(deepest, col.radius[a] + col.radius[b] -
+                                        std::hypot(dx, col.x[1][a] - col.x[1][b]));
+      }
+    }
+    const auto &f = sim.fluid();
+    for (std::size_t i = 0; i < f.size(); ++i)
+      for (std::size_t a = 0; a < col.size(); ++a) {
+        double dx = f.x[0][i] - col.x[0][a];
+        dx -= L * std::round(dx / L);
+        inside = std::min(inside, std::hypot(dx, f.x[1][i] - col.x[1][a]) / col.radius[a]);
+      }
+    most_contacts = std::max(most_contacts, sim.no_slip()->contact_history().size());
+    fewest_contacts = std::min(fewest_contacts, sim.no_slip()->contact_history().size());
+    if (::testing::Test::HasFailure())
+      break;
+  }
+  const auto *springs = sim.no_slip()->springs();
+  std::printf("[ measured ] wedged disk: %d steps; deepest overlap %.3g radii; closest fluid "
+              "%.12f radii; %zu to %zu contacts at once; %llu contact updates, %llu sliding; "
+              "colloid x: %.3g %.3g %.3g\n",
+              steps, deepest / 2.0, inside, fewest_contacts, most_contacts,
+              static_cast<unsigned long long>(springs->contact_updates()),
+              static_cast<unsigned long long>(springs->sliding_updates()), sim.colloids().x[0][0],
+              sim.colloids().x[0][1], sim.colloids().x[0][2]);
+  EXPECT_GE(inside, 1.0);
+  EXPECT_LT(deepest, 0.1 * 2.0);
+  EXPECT_GE(most_contacts, 4u);
+}
