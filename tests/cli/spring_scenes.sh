@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # No-slip colloids with spring contacts (issue 21 items 1-2) through the command line: settling
 # colloids in a driven channel run on 1 and 2 ranks to bitwise the same final checkpoint
-# (fluid, colloids, contact history); a restart 2 -> 1 ranks continues bitwise; the log and
+# (fluid, colloids, contact history), in 2D and 3D; a restart 2 -> 1 ranks continues bitwise; the log and
 # `narrows info` name the contact model; scenes with bad spring keys are refused in one line.
 set -u
 source "$(dirname "$0")/common.bash"
@@ -73,6 +73,18 @@ check "the restart is mid-contact" '$py -c "import h5py,sys; assert len(h5py.Fil
 runs "restart on 1 rank" "$narrows" run "$tmp/s.toml" --restart "$tmp/p21" --out "$tmp/p21" > /dev/null 2>&1
 check "restart 2 -> 1 ranks bitwise equal to the uninterrupted run" \
   '$py "$tmp/compare.py" "$tmp/one/checkpoint-0000000200.h5" "$tmp/p21/checkpoint-0000000200.h5"'
+
+# 3D: spheres settling in a driven channel, 1 and 2 ranks bitwise.
+sed -e 's/^dimensions = 2/dimensions = 3/' -e 's/^size = \[30.0, 12.0\]/size = [16.0, 8.0, 8.0]/' \
+    -e 's/^value = \[0.01, 0.0\]/value = [0.01, 0.0, 0.0]/' -e 's/^radius = 1.6/radius = 1.5/' \
+    -e 's/^count = 14/count = 8/' -e 's/^gravity = \[0.0, -1.0\]/gravity = [0.0, -1.0, 0.0]/' \
+    -e 's/^density = 8/density = 5/' -e 's/^mu_cw = "inf"/mu_cw = 0.3/' "$tmp/s.toml" > "$tmp/s3.toml"
+sed -e 's/"angular_velocity_z", "orientation_z"/"angular_velocity_x", "angular_velocity_y", "angular_velocity_z", "orientation_z"/' \
+  "$tmp/compare.py" > "$tmp/compare3.py"
+runs "3D on 1 rank" "$narrows" run "$tmp/s3.toml" --out "$tmp/one3" > /dev/null 2>&1
+runs "3D on 2 ranks" "${mpi[@]}" -n 2 "$narrows" run "$tmp/s3.toml" --out "$tmp/two3" > /dev/null 2>&1
+check "3D: 2 ranks bitwise equal to 1 rank (fluid, colloids, contacts)" \
+  '$py "$tmp/compare3.py" "$tmp/one3/checkpoint-0000000200.h5" "$tmp/two3/checkpoint-0000000200.h5"'
 
 # Scenes the spring contacts cannot run.
 bad() { sed "$1" "$tmp/s.toml" > "$tmp/bad.toml"; }
