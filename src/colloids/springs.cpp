@@ -1,6 +1,7 @@
 // Linear springs with Coulomb friction between colloids and with the walls (seed 001 §4.2.3).
 #include "narrows/colloids/springs.hpp"
 
+#include "narrows/colloids/colloid_pairs.hpp"
 #include "narrows/colloids/force_terms.hpp"
 #include "narrows/colloids/hard_spheres.hpp"
 #include "narrows/colloids/pair_geometry.hpp"
@@ -153,73 +154,33 @@ void SpringContacts::compute(const Colloids &c, std::size_t owned, ContactHistor
     cells_.size_for(box_, cell_cut_);
   }
   const auto &L = box_.length;
-  if (nc > 1) {
-    const auto &cells = cells_.cells;
-    cells_.clear();
-    cells_.next.resize(nc);
-    cell_of_.resize(nc * D);
-    for (std::size_t a = 0; a < nc; ++a) {
-      std::size_t cell = 0;
-      for (int k = D - 1; k >= 0; --k) {
-        const int n = cells[k];
-        const int ck = mpcd::clamped_cell(c.x[k][a], cells_.inv_cell[k], n, "colloid", c.id[a], k);
-        cell_of_[a * D + k] = ck;
-        cell = cell * static_cast<std::size_t>(n) + static_cast<std::size_t>(ck);
-      }
-      cells_.push(cell, static_cast<std::int32_t>(a));
-    }
-    for (std::size_t a = 0; a < nc; ++a) {
-      int lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0}, home[3] = {0, 0, 0};
-      for (int k = 0; k < D; ++k) {
-        const int n = cells[k];
-        home[k] = cell_of_[a * D + k];
-        if (n < 3) {
-          lo[k] = -home[k], hi[k] = n - 1 - home[k];
-        } else if (WallsY && k == 1) {
-          lo[k] = home[k] > 0 ? -1 : 0, hi[k] = home[k] < n - 1 ? 1 : 0;
-        } else {
-          lo[k] = -1, hi[k] = 1;
-        }
-      }
-      int off[3] = {0, 0, 0};
-      for (off[2] = lo[2]; off[2] <= hi[2]; ++off[2])
-        for (off[1] = lo[1]; off[1] <= hi[1]; ++off[1])
-          for (off[0] = lo[0]; off[0] <= hi[0]; ++off[0]) {
-            std::size_t cell = 0;
-            for (int k = D - 1; k >= 0; --k) {
-              const int n = cells[k];
-              int ck = home[k] + off[k];
-              ck = ck < 0 ? ck + n : (ck >= n ? ck - n : ck);
-              cell = cell * static_cast<std::size_t>(n) + static_cast<std::size_t>(ck);
-            }
-            for (std::int32_t bb = cells_.head[cell]; bb >= 0; bb = cells_.next[bb]) {
-              const auto b = static_cast<std::size_t>(bb);
-              if (b <= a)
-                continue;
-              const std::size_t i = c.id[a] < c.id[b] ? a : b, j = i == a ? b : a;
-              if (i >= owned)
-                continue;
-              const double xj[3] = {c.x[0][j], c.x[1][j], D == 3 ? c.x[2][j] : 0.0};
-              const double xi[3] = {c.x[0][i], c.x[1][i], D == 3 ? c.x[2][i] : 0.0};
-              double d[3] = {0.0, 0.0, 0.0};
-              const double r2 = separation<D, WallsY>(xj, xi, L, d); // from i towards j
-              const double R = c.radius[i] + c.radius[j];
-              if (r2 >= R * R)
-                continue;
-              const double r = std::sqrt(r2);
-              Contact k{i,           static_cast<long>(j), {0.0, 0.0, 0.0}, R - r,
-                        c.radius[i], c.radius[j],          p.mu_cc,         c.id[i],
-                        c.id[j]};
-              if (r > 0.0)
-                for (int q = 0; q < D; ++q)
-                  k.n[q] = d[q] / r;
-              else
-                k.n[0] = 1.0; // centres on top of each other: push apart along x
-              add(k);
-            }
+  if (nc > 1)
+    for_each_colloid_pair<D, WallsY>(
+        cells_, cell_of_, partners_, c, [&](std::size_t a, std::vector<std::uint32_t> &near) {
+          for (const std::uint32_t bb : near) {
+            const std::size_t b = bb;
+            const std::size_t i = c.id[a] < c.id[b] ? a : b, j = i == a ? b : a;
+            if (i >= owned)
+              continue;
+            const double xj[3] = {c.x[0][j], c.x[1][j], D == 3 ? c.x[2][j] : 0.0};
+            const double xi[3] = {c.x[0][i], c.x[1][i], D == 3 ? c.x[2][i] : 0.0};
+            double d[3] = {0.0, 0.0, 0.0};
+            const double r2 = separation<D, WallsY>(xj, xi, L, d); // from i towards j
+            const double R = c.radius[i] + c.radius[j];
+            if (r2 >= R * R)
+              continue;
+            const double r = std::sqrt(r2);
+            Contact k{i,           static_cast<long>(j), {0.0, 0.0, 0.0}, R - r,
+                      c.radius[i], c.radius[j],          p.mu_cc,         c.id[i],
+                      c.id[j]};
+            if (r > 0.0)
+              for (int q = 0; q < D; ++q)
+                k.n[q] = d[q] / r;
+            else
+              k.n[0] = 1.0; // centres on top of each other: push apart along x
+            add(k);
           }
-    }
-  }
+        });
   if constexpr (WallsY) {
     for (std::size_t a = 0; a < owned; ++a) {
       const double r = c.radius[a], y = c.x[1][a];

@@ -93,6 +93,7 @@ private:
   CellList cells_;
   double cell_cut_ = -1.0;
   std::vector<int> cell_of_;
+  std::vector<std::uint32_t> partners_;
   std::vector<std::int64_t> sums_;
   ContactHistory next_; // the contacts being found
   std::uint64_t updates_ = 0, sliding_ = 0;
