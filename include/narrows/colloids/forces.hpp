@@ -4,10 +4,10 @@
 //   colloid-fluid WCA (force_colloid_fluid.cpp), colloid-colloid 48-24
 //   (force_colloid_colloid.cpp), integrated LJ wall (force_wall.cpp), gravity
 //   (force_gravity.cpp).
-// Contact forces with per-contact history (springs and friction, seed 001) are a further term
-// of ForceField::compute, with their history as data of its own that travels with the colloid
-// owning the contact; event-driven hard-sphere collisions are not a force term but replace the
-// velocity-Verlet sub-steps of md_integrator.hpp (a branch of the MPCD step on its plan).
+// Contact forces with per-contact history (springs and friction, seed 001 §4.2.3) are not a
+// term here: they move no-slip colloids in their own sub-steps (springs.hpp), with their history
+// as data of its own that travels with the colloid owning the contact (contact_history.hpp);
+// event-driven hard-sphere collisions (hard_spheres.hpp) likewise move no-slip colloids.
 //
 // Parallel model: colloids are owned by slabs (ownership.hpp); the rows of the colloid arrays
 // after the owned ones are ghost copies of other ranks' colloids (ghosts.hpp). Each rank adds
