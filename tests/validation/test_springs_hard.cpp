@@ -1,4 +1,4 @@
-// Issue 21 acceptance 5 (the spring part): no-slip colloids with linear springs and Coulomb
+// Spring contacts in the fluid. Issue 21 acceptance 5 (the spring part): no-slip colloids with linear springs and Coulomb
 // friction in a hard case, 10^5 steps (10^6 sub-steps): three disks in a pyramid on the lower
 // wall, pressed down by gravity (M g = 50: overlaps of 1 % of the radius), with friction that
 // never slides (mu = inf between them and with the wall), so that each lower disk is wedged
@@ -13,6 +13,7 @@
 #include "narrows/colloids/no_slip.hpp"
 #include "narrows/engine/invariants.hpp"
 #include "narrows/engine/mpcd_simulation.hpp"
+#include "narrows/engine/totals.hpp"
 
 #include "colloid_scene.hpp"
 
@@ -92,4 +93,42 @@ TEST(SpringHardCase, DiskWedgedBetweenTwoOthersAndAWall) {
   EXPECT_GE(inside, 1.0);
   EXPECT_LT(deepest, 0.1 * 2.0);
   EXPECT_GE(most_contacts, 4u);
+}
+
+// Momentum: in a periodic box (MPC-AT+a, no drive) eight disks with spring contacts and friction
+// collide with each other; every pair force is added to one colloid and subtracted from the other
+// in fixed point, and the bounce-back onto a rim hands the colloid what the particle loses, so
+// the total momentum of fluid and colloids stays put to round-off over 3000 steps (the bound of
+// tests/validation/test_no_slip_conservation.cpp: 2 N 2^-40 per step).
+TEST(SpringConservation, TotalMomentumWithContacts) {
+  scene::Colloids c;
+  c.coupling = scene::ColloidCoupling::no_slip;
+  c.contacts = scene::ColloidContacts::spring;
+  c.spring = {2500.0, 2500.0, 0.5, 0.5, 10};
+  c.radius = 2.5;
+  c.count = 8;
+  c.placement = scene::ColloidPlacement::random;
+  scene::Scene s = narrows::testing::srd_colloid_scene(24.0, 24.0, false, 12, c);
+  s.fluid.collision = scene::Collision::at_a;
+  engine::MpcdSimulation sim(s, MPI_COMM_WORLD);
+  const auto p0 = engine::total_momentum(sim);
+  const int steps = 3000;
+  double max_dp = 0.0;
+  for (int i = 1; i <= steps; ++i) {
+    sim.advance();
+    if (i % 50 == 0) {
+      const auto p = engine::total_momentum(sim);
+      for (int k = 0; k < 2; ++k)
+        max_dp = std::max(max_dp, std::abs(p[k] - p0[k]));
+    }
+  }
+  const double n = static_cast<double>(engine::particle_count(s));
+  const double bound = 2.0 * n * 0x1p-40 * (steps + 1.0);
+  const auto *springs = sim.no_slip()->springs();
+  std::printf("max |P - P0| = %.3g over %d steps (round-off bound %.3g); %llu contact updates, "
+              "%llu sliding\n",
+              max_dp, steps, bound, static_cast<unsigned long long>(springs->contact_updates()),
+              static_cast<unsigned long long>(springs->sliding_updates()));
+  EXPECT_LT(max_dp, bound);
+  EXPECT_GT(springs->contact_updates(), 100u); // they did collide
 }
