@@ -1,13 +1,13 @@
-// Spring contacts in the fluid. Issue 21 acceptance 5 (the spring part): no-slip colloids with linear springs and Coulomb
-// friction in a hard case, 10^5 steps (10^6 sub-steps): three disks in a pyramid on the lower
-// wall, pressed down by gravity (M g = 50: overlaps of 1 % of the radius), with friction that
-// never slides (mu = inf between them and with the wall), so that each lower disk is wedged
-// between the other two and the wall and the pyramid is jammed; the fluid pushes along the
-// channel. Every 100 steps: the run's invariants (count, ids, no NaN or runaway speed), no fluid
-// particle inside a colloid, the colloid count, the contacts. At the end the deepest overlap is
-// reported: the kicks of fluid trapped in the gaps at the contacts make it deeper than the
-// static 1 % (measured 5 %; the seed's fig 6.2a has a tail beyond 4 %), and below 10 % is asked.
-// The pyramid does not stay jammed at kT = 1: those kicks open a contact now and then, which
+// Spring contacts in the fluid. Issue 21 acceptance 5 (the spring part): no-slip colloids with
+// linear springs and Coulomb friction in a hard case, 10^5 steps (10^6 sub-steps): three disks in a
+// pyramid on the lower wall, pressed down by gravity (M g = 50: overlaps of 1 % of the radius),
+// with friction that never slides (mu = inf between them and with the wall), so that each lower
+// disk is wedged between the other two and the wall and the pyramid is jammed; the fluid pushes
+// along the channel. Every 100 steps: the run's invariants (count, ids, no NaN or runaway speed),
+// no fluid particle inside a colloid, the colloid count, the contacts. At the end the deepest
+// overlap is reported: the kicks of fluid trapped in the gaps at the contacts make it deeper than
+// the static 1 % (measured 5 %; the seed's fig 6.2a has a tail beyond 4 %), and below 10 % is
+// asked. The pyramid does not stay jammed at kT = 1: those kicks open a contact now and then, which
 // drops its tangential spring (the history lasts as long as the contact), and the disks creep
 // apart over the run.
 #include "narrows/colloids/no_slip.hpp"
