@@ -80,6 +80,8 @@ int main_inner(int argc, char **argv) {
       ->check(CLI::PositiveNumber);
   bench->add_option("--steps", bench_opt.steps, "timed steps per case (default 100)")
       ->check(CLI::PositiveNumber);
+  bench->add_option("--case", bench_opt.cases,
+                    "only this MPCD case (repeatable): srd-2d, srd-3d, at-2d, at+a-2d, at+a-3d");
 
   try {
     app.parse(argc, argv);

@@ -3,13 +3,16 @@
 #pragma once
 
 #include <ostream>
+#include <string>
+#include <vector>
 
 namespace narrows::engine {
 
 struct BenchOptions {
   bool json = false;
-  double particles = 1.0e6; // per case
-  int steps = 100;          // timed steps per case (after a warm-up)
+  double particles = 1.0e6;       // per case
+  int steps = 100;                // timed steps per case (after a warm-up)
+  std::vector<std::string> cases; // MPCD cases to run by name (empty: all)
 };
 
 void run_bench(const BenchOptions &options, std::ostream &out);
