@@ -1,10 +1,12 @@
 // MPC-AT and MPC-AT+a (seed 001 eq 4.5-4.11; Noguchi & Gompper).
 #include "narrows/core/fixed_point.hpp"
 #include "narrows/core/rng.hpp"
+#include "narrows/core/rng_batch.hpp"
 #include "narrows/mpcd/collision.hpp"
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -29,30 +31,36 @@ inline void prefetch_record(const std::vector<T> &records, const std::uint32_t *
   }
 }
 
-// Gaussian velocities xi_i at kT for every particle (keyed by particle id), and their
-// fixed-point sum per cell into sums[c * stride + 0 .. D-1].
-template <int D>
-void draw_noise(Fluid &f, CollisionScratch &s, std::size_t stride, double kT, std::uint64_t seed,
-                std::uint64_t step) {
+// Gaussian velocities xi_i at kT for every particle (keyed by particle id), drawn a batch of
+// ids at a time (core/rng_batch.hpp); after each batch, add(i) runs for its particles in
+// order, to sum what the rule needs per cell while they are in cache. The last batch is padded
+// with id 0 so that every id takes the same vector path (its deviates do not depend on where
+// it sits in the array, hence not on the number of ranks).
+template <int D, class Add>
+void draw_noise(Fluid &f, CollisionScratch &s, double kT, std::uint64_t seed, std::uint64_t step,
+                Add &&add) {
+  constexpr std::size_t B = rng::batch;
   const double sigma = std::sqrt(kT);
   const std::size_t n = f.size();
   for (int k = 0; k < D; ++k)
     s.noise[k].resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    prefetch_record(s.cell_fixed, f.cell.data(), i, n, stride);
-    const auto block = rng::draw(seed, rng::Purpose::at_gaussian, step, f.id[i]);
-    std::array<double, 4> g;
-    if constexpr (D == 2) { // two deviates: half the logarithms and sines
-      const auto g2 = rng::gaussian2(block);
-      g = {g2[0], g2[1], 0.0, 0.0};
-    } else {
-      g = rng::gaussian4(block);
+  alignas(64) std::uint64_t tail[B];
+  alignas(64) double g[4][B];
+  for (std::size_t i0 = 0; i0 < n; i0 += B) {
+    const std::size_t m = std::min(B, n - i0);
+    const std::uint64_t *ids = f.id.data() + i0;
+    if (m < B) {
+      std::fill(std::copy(ids, ids + m, tail), tail + B, 0);
+      ids = tail;
     }
-    std::int64_t *sum = &s.cell_fixed[static_cast<std::size_t>(f.cell[i]) * stride];
+    rng::gaussian_batch(seed, rng::Purpose::at_gaussian, step, ids, D == 2 ? 2 : 4, g);
     for (int k = 0; k < D; ++k) {
-      s.noise[k][i] = sigma * g[k];
-      sum[k] += from_double(s.noise[k][i]);
+      double *xi = s.noise[k].data() + i0;
+      for (std::size_t j = 0; j < m; ++j)
+        xi[j] = sigma * g[k][j];
     }
+    for (std::size_t i = i0; i < i0 + m; ++i)
+      add(i);
   }
 }
 
@@ -80,7 +88,13 @@ void at_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, std:
                std::uint64_t step) {
   const std::size_t nc = g.size();
   s.cell_fixed.assign(nc * D, 0);
-  draw_noise<D>(f, s, D, kT, seed, step);
+  const std::size_t n = f.size();
+  draw_noise<D>(f, s, kT, seed, step, [&](std::size_t i) {
+    prefetch_record(s.cell_fixed, f.cell.data(), i, n, D);
+    std::int64_t *sum = &s.cell_fixed[static_cast<std::size_t>(f.cell[i]) * D];
+    for (int k = 0; k < D; ++k)
+      sum[k] += from_double(s.noise[k][i]);
+  });
   // Per cell: delta = u - <xi>, so that v' = xi + delta keeps the cell momentum.
   s.cell.resize(nc * D);
   for (std::size_t c = 0; c < nc; ++c) {
@@ -89,7 +103,6 @@ void at_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, std:
       s.cell[c * D + k] = (to_double(g.sums[c].p[k]) - to_double(s.cell_fixed[c * D + k])) * inv_n;
   }
   virtual_delta<D>(g, s, D, D);
-  const std::size_t n = f.size();
   for (std::size_t i = 0; i < n; ++i) {
     prefetch_record(s.cell, f.cell.data(), i, n, D);
     const double *delta = &s.cell[static_cast<std::size_t>(f.cell[i]) * D];
@@ -105,9 +118,10 @@ inline double in_cell(double x, double shift) {
 }
 
 // Fixed-point sums per cell for AT+a, laid out as
-//   2D: xi(2) rho(2) rho rho^T(xx, xy, yy) rho x v (1) rho x xi (1)          -> 9
-//   3D: xi(3) rho(3) rho rho^T(xx, xy, xz, yy, yz, zz) rho x v(3) rho x xi(3) -> 18
-template <int D> constexpr int sum_stride = D == 2 ? 9 : 18;
+//   2D: xi(2) r(2) |r|^2 (1) r x (v - xi) (1)                              -> 6
+//   3D: xi(3) r(3) r r^T(xx, xy, xz, yy, yz, zz) r x (v - xi)(3)           -> 15
+// (2D needs only the trace of r r^T, and the angular momenta of v and xi only as a difference.)
+template <int D> constexpr int sum_stride = D == 2 ? 6 : 15;
 template <int D> constexpr int par_stride = D == 2 ? 5 : 9; // delta(D) r_c(D) omega(1|3)
 
 template <int D> inline void cross(const double *a, const double *b, double *out) {
@@ -124,25 +138,24 @@ template <int D>
 void at_a_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, std::uint64_t seed,
                  std::uint64_t step) {
   constexpr int SS = sum_stride<D>, PS = par_stride<D>, NL = D == 2 ? 1 : 3;
-  constexpr int NM = D == 2 ? 3 : 6; // entries of rho rho^T
+  constexpr int NM = D == 2 ? 1 : 6; // entries of r r^T summed
   const std::size_t nc = g.size(), n = f.size();
   s.cell_fixed.assign(nc * SS, 0);
-  draw_noise<D>(f, s, SS, kT, seed, step);
-  for (std::size_t i = 0; i < n; ++i) {
+  // One pass: the noise of a batch, then its particles' sums.
+  draw_noise<D>(f, s, kT, seed, step, [&](std::size_t i) {
     prefetch_record(s.cell_fixed, f.cell.data(), i, n, SS);
     std::int64_t *sum = &s.cell_fixed[static_cast<std::size_t>(f.cell[i]) * SS];
-    double r[3], v[3], xi[3], l[3];
+    double r[3], w[3], l[3];
     for (int k = 0; k < D; ++k) {
+      const double xi = s.noise[k][i];
       r[k] = in_cell(f.x[k][i], g.shift[k]);
-      v[k] = f.v[k][i];
-      xi[k] = s.noise[k][i];
+      w[k] = f.v[k][i] - xi;
+      sum[k] += from_double(xi);
       sum[D + k] += from_double(r[k]);
     }
     std::int64_t *m = sum + 2 * D;
     if constexpr (D == 2) {
-      m[0] += from_double(r[0] * r[0]);
-      m[1] += from_double(r[0] * r[1]);
-      m[2] += from_double(r[1] * r[1]);
+      m[0] += from_double(r[0] * r[0] + r[1] * r[1]);
     } else {
       m[0] += from_double(r[0] * r[0]);
       m[1] += from_double(r[0] * r[1]);
@@ -151,13 +164,10 @@ void at_a_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, st
       m[4] += from_double(r[1] * r[2]);
       m[5] += from_double(r[2] * r[2]);
     }
-    cross<D>(r, v, l);
+    cross<D>(r, w, l);
     for (int k = 0; k < NL; ++k)
-      sum[2 * D + NM + k] += from_double(l[k]);
-    cross<D>(r, xi, l);
-    for (int k = 0; k < NL; ++k)
-      sum[2 * D + NM + NL + k] += from_double(l[k]);
-  }
+      m[NM + k] += from_double(l[k]);
+  });
 
   s.cell.assign(nc * PS, 0.0);
   for (std::size_t c = 0; c < nc; ++c) {
@@ -176,18 +186,17 @@ void at_a_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, st
       par[D + k] = rc[k];
     }
     // Angular momentum about the cell's centre of mass that the AT step would destroy:
-    // dL = sum (r - rc) x (v - xi) = [sum r x v - rc x P] - [sum r x xi - rc x X].
-    double rcP[3], rcX[3];
-    cross<D>(rc, P, rcP);
-    cross<D>(rc, X, rcX);
+    // dL = sum (r - rc) x (v - xi) = sum r x (v - xi) - rc x (P - X).
+    double PX[3], rcPX[3];
+    for (int k = 0; k < D; ++k)
+      PX[k] = P[k] - X[k];
+    cross<D>(rc, PX, rcPX);
     double dL[3];
     for (int k = 0; k < NL; ++k)
-      dL[k] = (to_double(sum[2 * D + NM + k]) - rcP[k]) -
-              (to_double(sum[2 * D + NM + NL + k]) - rcX[k]);
+      dL[k] = to_double(sum[2 * D + NM + k]) - rcPX[k];
     if constexpr (D == 2) {
-      // I = sum |r - rc|^2 = sum(xx + yy) - n |rc|^2
-      const double I =
-          to_double(sum[4]) + to_double(sum[6]) - cnt * (rc[0] * rc[0] + rc[1] * rc[1]);
+      // I = sum |r - rc|^2 = sum |r|^2 - n |rc|^2
+      const double I = to_double(sum[4]) - cnt * (rc[0] * rc[0] + rc[1] * rc[1]);
       par[4] = I > 1e-12 ? dL[0] / I : 0.0; // one particle, or all at one point: dL = 0
     } else {
       const std::int64_t *m = sum + 6;
