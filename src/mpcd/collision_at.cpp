@@ -200,28 +200,55 @@ void at_a_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, st
       par[4] = I > 1e-12 ? dL[0] / I : 0.0; // one particle, or all at one point: dL = 0
     } else {
       const std::int64_t *m = sum + 6;
-      Eigen::Matrix3d S; // second moment about rc
-      S(0, 0) = to_double(m[0]) - cnt * rc[0] * rc[0];
-      S(0, 1) = S(1, 0) = to_double(m[1]) - cnt * rc[0] * rc[1];
-      S(0, 2) = S(2, 0) = to_double(m[2]) - cnt * rc[0] * rc[2];
-      S(1, 1) = to_double(m[3]) - cnt * rc[1] * rc[1];
-      S(1, 2) = S(2, 1) = to_double(m[4]) - cnt * rc[1] * rc[2];
-      S(2, 2) = to_double(m[5]) - cnt * rc[2] * rc[2];
-      const Eigen::Matrix3d I = S.trace() * Eigen::Matrix3d::Identity() - S;
-      // Pseudo-inverse: with two particles (or collinear ones) I has a zero eigenvalue along
-      // their line, and dL has no component there, so dropping it is exact.
-      // compute(), not computeDirect(): the closed form loses ~8 digits on the double
-      // eigenvalue of two-particle cells. The absolute floor keeps round-off (~1e-12) in a
-      // null direction from being inverted into a spurious rotation.
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(I);
-      const Eigen::Vector3d lam = eig.eigenvalues();
-      const double cut = std::max(1e-10 * lam.cwiseAbs().maxCoeff(), 1e-11);
-      Eigen::Vector3d inv;
-      for (int k = 0; k < 3; ++k)
-        inv[k] = std::abs(lam[k]) > cut ? 1.0 / lam[k] : 0.0;
-      const Eigen::Vector3d w = eig.eigenvectors() * inv.asDiagonal() *
-                                eig.eigenvectors().transpose() *
-                                Eigen::Vector3d(dL[0], dL[1], dL[2]);
+      // Second moment about rc, S = sum (r - rc)(r - rc)^T, and I = tr(S) 1 - S.
+      const double S00 = to_double(m[0]) - cnt * rc[0] * rc[0],
+                   S01 = to_double(m[1]) - cnt * rc[0] * rc[1],
+                   S02 = to_double(m[2]) - cnt * rc[0] * rc[2],
+                   S11 = to_double(m[3]) - cnt * rc[1] * rc[1],
+                   S12 = to_double(m[4]) - cnt * rc[1] * rc[2],
+                   S22 = to_double(m[5]) - cnt * rc[2] * rc[2];
+      const double t = S00 + S11 + S22;
+      const double I00 = t - S00, I11 = t - S11, I22 = t - S22, I01 = -S01, I02 = -S02, I12 = -S12;
+      // Adjugate and determinant. A cell of three or more particles off one line has a
+      // well-conditioned I: det >= 1e-4 (tr/3)^3 bounds its condition number by 27e4, and
+      // the inverse from the adjugate, refined once against the residual, solves I w = dL to
+      // round-off (the eigen-decomposition below costs ~1 us a cell, most of a 3D step).
+      const double A00 = I11 * I22 - I12 * I12, A01 = I02 * I12 - I01 * I22,
+                   A02 = I01 * I12 - I02 * I11, A11 = I00 * I22 - I02 * I02,
+                   A12 = I01 * I02 - I00 * I12, A22 = I00 * I11 - I01 * I01;
+      const double det = I00 * A00 + I01 * A01 + I02 * A02, tr3 = 2.0 * t / 3.0;
+      Eigen::Vector3d w;
+      if (tr3 > 1e-6 && det > 1e-4 * tr3 * tr3 * tr3) {
+        const double inv = 1.0 / det;
+        const auto solve = [&](const double *b, double *x) {
+          x[0] = (A00 * b[0] + A01 * b[1] + A02 * b[2]) * inv;
+          x[1] = (A01 * b[0] + A11 * b[1] + A12 * b[2]) * inv;
+          x[2] = (A02 * b[0] + A12 * b[1] + A22 * b[2]) * inv;
+        };
+        double x[3], res[3], dx[3];
+        solve(dL, x);
+        res[0] = dL[0] - (I00 * x[0] + I01 * x[1] + I02 * x[2]);
+        res[1] = dL[1] - (I01 * x[0] + I11 * x[1] + I12 * x[2]);
+        res[2] = dL[2] - (I02 * x[0] + I12 * x[1] + I22 * x[2]);
+        solve(res, dx);
+        w = Eigen::Vector3d(x[0] + dx[0], x[1] + dx[1], x[2] + dx[2]);
+      } else {
+        Eigen::Matrix3d I;
+        I << I00, I01, I02, I01, I11, I12, I02, I12, I22;
+        // Pseudo-inverse: with two particles (or collinear ones) I has a zero eigenvalue along
+        // their line, and dL has no component there, so dropping it is exact.
+        // compute(), not computeDirect(): the closed form loses ~8 digits on the double
+        // eigenvalue of two-particle cells. The absolute floor keeps round-off (~1e-12) in a
+        // null direction from being inverted into a spurious rotation.
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(I);
+        const Eigen::Vector3d lam = eig.eigenvalues();
+        const double cut = std::max(1e-10 * lam.cwiseAbs().maxCoeff(), 1e-11);
+        Eigen::Vector3d inv;
+        for (int k = 0; k < 3; ++k)
+          inv[k] = std::abs(lam[k]) > cut ? 1.0 / lam[k] : 0.0;
+        w = eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose() *
+            Eigen::Vector3d(dL[0], dL[1], dL[2]);
+      }
       par[6] = w[0];
       par[7] = w[1];
       par[8] = w[2];
