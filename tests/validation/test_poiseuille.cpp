@@ -226,7 +226,11 @@ INSTANTIATE_TEST_SUITE_P(
              Reference::theory,
              0,
              0.05},
-        // MPC-AT+a, seed 001 tables 5.1 and 6.1.
+        // MPC-AT+a, seed 001 tables 5.1 and 6.1. At dt = 0.01 the viscosity is large and the
+        // profile small against the thermal noise: 10 blocks at g = 0.029 scattered by 4.5 %
+        // from seed to seed (6 seeds), so half the 5 % tolerance was not reached; g is 1.5 times
+        // that (v0 ~ 0.17, Re = v0 L / nu ~ 0.5; the Poiseuille profile is exact at any Re) and
+        // 20 blocks give ~2 %.
         Case{"at_a3d_dt0.01_n10_seed",
              3,
              Collision::at_a,
@@ -234,9 +238,9 @@ INSTANTIATE_TEST_SUITE_P(
              0.01,
              0,
              {10, 10, 10},
-             0.029,
+             0.044,
              3000,
-             10,
+             20,
              1000,
              Reference::fixed,
              3.15,
@@ -257,6 +261,7 @@ INSTANTIATE_TEST_SUITE_P(
              0.05},
         // Seed 001 table 5.1 gives 3.22 here, which its own 2D value at dt = 0.02, n = 25 does
         // not support (nu_coll ~ 1/dt predicts ~3.9); reported, see the issue note.
+        // (g and blocks raised as for the 3D case: 10 blocks at g = 0.026 gave errors of 3-6 %.)
         Case{"at_a2d_dt0.01_n50_seed_report",
              2,
              Collision::at_a,
@@ -264,9 +269,9 @@ INSTANTIATE_TEST_SUITE_P(
              0.01,
              0,
              {20, 10, 0},
-             0.026,
+             0.039,
              3000,
-             10,
+             20,
              1000,
              Reference::report,
              3.22,
