@@ -5,6 +5,7 @@
 #include "narrows/core/error.hpp"
 #include "narrows/core/fixed_point.hpp"
 #include "narrows/core/rng.hpp"
+#include "narrows/core/rng_batch.hpp"
 #include "narrows/core/timer.hpp"
 #include "narrows/mpcd/streaming.hpp"
 
@@ -34,6 +35,26 @@ void NoSlipCoupling::add_ghost_particles(mpcd::Fluid &fluid, mpcd::CellGrid &gri
   const int NX = grid.global_columns, nx = grid.cells[0], ny = grid.cells[1], nz = grid.cells[2];
   const bool walls = grid.walls_y;
   const double *sh = grid.shift.data();
+  const int per_block = dim_ == 2 ? 2 : 1;
+  // Fills position_words_ with the blocks of a cell's tries and its fractional try.
+  const auto position_keys = [&](std::uint64_t colloid, std::uint64_t gcell, int blocks, int per) {
+    const std::size_t count = static_cast<std::size_t>(blocks) + 1;
+    position_words_.resize(count);
+    std::uint64_t ids[rng::batch];
+    std::uint32_t w[4][rng::batch];
+    for (std::size_t b0 = 0; b0 < count; b0 += rng::batch) {
+      const std::size_t m = std::min(rng::batch, count - b0);
+      for (std::size_t j = 0; j < rng::batch; ++j) {
+        const std::size_t b = b0 + j;
+        ids[j] = j >= m           ? 0
+                 : b + 1 == count ? ghost_key(colloid, gcell, 255)
+                                  : ghost_key(colloid, gcell, b * static_cast<std::size_t>(per));
+      }
+      rng::draw_batch(params_.seed, rng::Purpose::ghost_position, step, ids, w);
+      for (std::size_t j = 0; j < m; ++j)
+        position_words_[b0 + j] = {w[0][j], w[1][j], w[2][j], w[3][j]};
+    }
+  };
   for (std::size_t a = 0; a < c.size(); ++a) {
     const double R = c.radius[a], R2 = R * R;
     const double X[3] = {c.x[0][a], c.x[1][a], dim_ == 3 ? c.x[2][a] : 0.0};
@@ -74,18 +95,18 @@ void NoSlipCoupling::add_ghost_particles(mpcd::Fluid &fluid, mpcd::CellGrid &gri
           const std::size_t cell =
               ix + static_cast<std::size_t>(nx) * (row + static_cast<std::size_t>(ny) * layer);
           const std::uint64_t gcell = grid.global_id(cell);
+          // The blocks of the cell's tries (one block places two tries in 2D, words 0-1 and
+          // 2-3, one in 3D; keyed by the first try of the block) and, last, that of the
+          // fractional try (255), all in batches: bitwise rng::draw's.
+          const int blocks = (whole + 1 + per_block - 1) / per_block;
+          position_keys(c.id[a], gcell, blocks, per_block);
           int tries = whole;
-          if (fraction > 0.0 &&
-              rng::open01(rng::draw(params_.seed, rng::Purpose::ghost_position, step,
-                                    ghost_key(c.id[a], gcell, 255))[0]) < fraction)
+          if (fraction > 0.0 && rng::open01(position_words_[blocks][0]) < fraction)
             ++tries;
-          rng::Block u{};
           for (int t = 0; t < tries; ++t) {
             const std::uint64_t key = ghost_key(c.id[a], gcell, static_cast<std::uint64_t>(t));
-            // A block of four words places two tries in 2D (words 0-1, 2-3), one in 3D.
             const int word = dim_ == 2 ? 2 * (t & 1) : 0;
-            if (word == 0)
-              u = rng::draw(params_.seed, rng::Purpose::ghost_position, step, key);
+            const auto &u = position_words_[t / per_block];
             double r[3] = {0.0, 0.0, 0.0}, r2 = 0.0;
             for (int k = 0; k < dim_; ++k) {
               r[k] = corner[k] + rng::open01(u[word + k]);
@@ -96,14 +117,6 @@ void NoSlipCoupling::add_ghost_particles(mpcd::Fluid &fluid, mpcd::CellGrid &gri
             const double y = X[1] + r[1];
             if (walls && !(y >= 0.0 && y <= box_.length[1]))
               continue;
-            const auto block = rng::draw(params_.seed, rng::Purpose::ghost_velocity, step, key);
-            std::array<double, 4> g{0.0, 0.0, 0.0, 0.0};
-            if (dim_ == 2) { // two deviates: half the logarithms and sines
-              const auto g2 = rng::gaussian2(block);
-              g = {g2[0], g2[1], 0.0, 0.0};
-            } else {
-              g = rng::gaussian4(block);
-            }
             const double w[3] = {c.omega[0][a], c.omega[1][a], c.omega[2][a]};
             const double rigid[3] = {c.v[0][a] + w[1] * r[2] - w[2] * r[1],
                                      c.v[1][a] + w[2] * r[0] - w[0] * r[2],
@@ -116,7 +129,7 @@ void NoSlipCoupling::add_ghost_particles(mpcd::Fluid &fluid, mpcd::CellGrid &gri
               if (!(k == 1 && walls))
                 x = mpcd::wrap_periodic(x, box_.length[k]);
               fluid.x[k].push_back(x);
-              fluid.v[k].push_back(rigid[k] + sigma * g[k]);
+              fluid.v[k].push_back(rigid[k]); // + the thermal part, drawn below in batches
             }
             fluid.id.push_back(ghost_particle_id | key);
             fluid.cell.push_back(0); // binned below
@@ -124,6 +137,23 @@ void NoSlipCoupling::add_ghost_particles(mpcd::Fluid &fluid, mpcd::CellGrid &gri
           }
         }
       }
+    }
+  }
+  // The ghosts' Maxwell velocities at kT, keyed by (colloid id, global cell, try): a batch of
+  // keys at a time (the vectorised Philox and Box-Muller of rng_batch; the last batch padded).
+  const std::size_t made = fluid.size() - first_ghost_;
+  std::uint64_t keys[rng::batch];
+  double g[4][rng::batch];
+  for (std::size_t b0 = 0; b0 < made; b0 += rng::batch) {
+    const std::size_t m = std::min(rng::batch, made - b0);
+    for (std::size_t j = 0; j < rng::batch; ++j)
+      keys[j] = j < m ? fluid.id[first_ghost_ + b0 + j] & ~ghost_particle_id : 0;
+    rng::gaussian_batch(params_.seed, rng::Purpose::ghost_velocity, step, keys, dim_ == 2 ? 2 : 4,
+                        g);
+    for (int k = 0; k < dim_; ++k) {
+      double *v = fluid.v[k].data() + first_ghost_ + b0;
+      for (std::size_t j = 0; j < m; ++j)
+        v[j] += sigma * g[k][j];
     }
   }
   for (int k = 0; k < dim_; ++k)

@@ -37,6 +37,7 @@
 #include "narrows/colloids/hard_spheres.hpp"
 #include "narrows/colloids/md_integrator.hpp"
 #include "narrows/colloids/springs.hpp"
+#include "narrows/core/rng.hpp"
 #include "narrows/mpcd/cell_grid.hpp"
 #include "narrows/mpcd/fluid.hpp"
 #include "narrows/parallel/exchange.hpp"
@@ -130,6 +131,7 @@ private:
   std::size_t first_ghost_ = 0;
   std::vector<std::uint32_t> ghost_row_;
   std::array<std::vector<double>, 3> ghost_v0_;
+  std::vector<rng::Block> position_words_; // a cut cell's ghost position draws
   HardSphereStats contacts_;
   std::optional<SpringContacts> springs_;
   ContactHistory history_;
