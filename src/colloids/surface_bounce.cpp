@@ -172,8 +172,12 @@ BounceStats NoSlipCoupling::bounce_back(mpcd::Fluid &fluid, Colloids &c,
       u[2] = (dim_ == 3 ? c.v[2][a] : 0.0) + w[0] * s[1] - w[1] * s[0];
       // With soft contacts a particle that stays on a surface for the rest of the step (on a
       // rim, or trapped after the last halving) takes the surface's velocity: bounced to and fro
-      // between surfaces of vibrating contacts it would gain energy step after step.
-      const bool stays = params_.spring_contacts && (settled || last);
+      // between surfaces of vibrating contacts it would gain energy step after step. So does one
+      // that is inside a colloid again after its first bounce of the step: trapped in a gap
+      // between a colloid and a wall (or another colloid) that closes in, each further bounce
+      // off the moving surface added 2|U| to its speed (to ~50 over 20 halvings, and the kicks
+      // threw a pressed pyramid of disks apart).
+      const bool stays = params_.spring_contacts && (settled || last || depth > 1);
       for (int k = 0; k < dim_; ++k) {
         const double v_new = stays ? u[k] : 2.0 * u[k] - vb[k];
         dp[k] = -(v_new - vb[k]); // what the colloid receives
@@ -186,8 +190,8 @@ BounceStats NoSlipCoupling::bounce_back(mpcd::Fluid &fluid, Colloids &c,
         batch_.v[k][j] = v_new;
       }
       add_impulse(a, s, dp);
-      if (settled)
-        batch_hit_[j] = -1; // stays on the rim
+      if (settled || stays)
+        batch_hit_[j] = -1; // stays on the surface (or rim) for the rest of the step
     }
     if (last)
       break;
