@@ -1,6 +1,7 @@
 // Placing colloids at the start of a run, and the fluid's exclusion test.
 #include "narrows/colloids/placement.hpp"
 
+#include "narrows/colloids/packing.hpp"
 #include "narrows/colloids/potentials.hpp"
 #include "narrows/core/error.hpp"
 #include "narrows/core/rng.hpp"
@@ -258,7 +259,7 @@ private:
 } // namespace
 
 Colloids place_colloids(const scene::Colloids &spec, const mpcd::Box &box, double density,
-                        std::uint64_t seed) {
+                        std::uint64_t seed, PackingReport *report) {
   Colloids c;
   c.dim = box.dim;
   const auto n = static_cast<std::size_t>(spec.count);
@@ -267,6 +268,13 @@ Colloids place_colloids(const scene::Colloids &spec, const mpcd::Box &box, doubl
     c.id[i] = i;
   set_radii_and_masses(c, spec, density, seed);
   switch (spec.placement) {
+  case scene::ColloidPlacement::packing: {
+    const PackingReport r =
+        pack_colloids(c, box, seed, "colloids.packing_fraction = " + number(spec.packing_fraction));
+    if (report)
+      *report = r;
+    break;
+  }
   case scene::ColloidPlacement::list:
     for (std::size_t i = 0; i < n; ++i)
       for (int k = 0; k < box.dim; ++k)

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "narrows/colloids/colloids.hpp"
+#include "narrows/colloids/packing.hpp"
 #include "narrows/mpcd/fluid.hpp"
 #include "narrows/scene/scene.hpp"
 
@@ -29,9 +30,11 @@ void set_radii_and_masses(Colloids &c, const scene::Colloids &spec, double densi
 // no closer to a wall than the largest wall cut-off (draws keyed by (seed, attempt, index));
 // input_error if 10^5 attempts cannot place a colloid;
 // list (and file): the given positions, input_error naming both entries if two cores overlap
-// (centres closer than r_a + r_b).
+// (centres closer than r_a + r_b);
+// packing: grown from random points with frictionless springs (packing.hpp, the same on every
+// rank), what it reached into `report` if given; input_error if the overlaps cannot be removed.
 Colloids place_colloids(const scene::Colloids &spec, const mpcd::Box &box, double density,
-                        std::uint64_t seed);
+                        std::uint64_t seed, PackingReport *report = nullptr);
 
 // Fluid particles the scene has with colloids: round(n (V_box - sum_a V_a)) (seed 000 §3.4.1:
 // N_f = n (L_x L_y - N_c pi r_c^2) for equal radii); `seed` draws the radii.
