@@ -110,8 +110,23 @@ MpcdSimulation::MpcdSimulation(const scene::Scene &scene, MPI_Comm comm, bool al
     // the start and the state is the same on any number of ranks.
     const std::uint64_t total = particle_count(scene);
     if (scene.colloids) {
-      colloids_ =
-          colloids::place_colloids(*scene.colloids, box_, scene.fluid.density, scene.run.seed);
+      if (scene.colloids->placement == scene::ColloidPlacement::packing) {
+        // Packed here only (run_scene leaves it out of check_colloid_placement): every rank
+        // packs the same colloids; a target that cannot be packed is the scene's error.
+        colloids::PackingReport report;
+        try {
+          colloids_ = colloids::place_colloids(*scene.colloids, box_, scene.fluid.density,
+                                               scene.run.seed, &report);
+        } catch (const Error &e) {
+          if (e.code() != ExitCode::bad_input)
+            throw;
+          throw input_error(scene.file + ": " + e.what());
+        }
+        packing_ = report;
+      } else {
+        colloids_ =
+            colloids::place_colloids(*scene.colloids, box_, scene.fluid.density, scene.run.seed);
+      }
       const colloids::ColloidCover cover(colloids_, box_);
       const mpcd::Exclusion exclusion{
           [&](const std::array<double, 3> &p) { return cover.inside(p); }};

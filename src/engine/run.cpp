@@ -167,7 +167,9 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
   check_ranks(scene, comm);
   run::Shell shell(scene, options, comm, {scene.run.steps, "run.steps", {}});
   const bool restarting = shell.restarting();
-  if (!restarting)
+  // A packing is made once, by the simulation below (it takes seconds to minutes).
+  if (!restarting &&
+      !(scene.colloids && scene.colloids->placement == scene::ColloidPlacement::packing))
     check_colloid_placement(scene);
 
   // The state, from the scene or the checkpoint (every rank agrees on a refusal) before
@@ -204,6 +206,16 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
     log.warn(w);
   if (restarting)
     log.line("restarted from " + shell.restart_file() + " at step " + std::to_string(sim.step()));
+  if (const auto &p = sim.packing()) {
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "packing: %lld colloids at fraction %.4f, deepest overlap %.2e of the smallest "
+                  "radius, %lld growth stages, %lld relaxation steps, %.2f s",
+                  static_cast<long long>(scene.colloids->count), p->fraction, p->max_overlap,
+                  static_cast<long long>(p->stages), static_cast<long long>(p->iterations),
+                  p->seconds);
+    log.line(line);
+  }
   std::unique_ptr<io::ObservablesWriter> writer;
   if (shell.rank() == 0)
     writer = std::make_unique<io::ObservablesWriter>(shell.output_file("observables"), scene.text);

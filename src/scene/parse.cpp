@@ -57,11 +57,12 @@ const std::vector<Section> &schema() {
       {"body_force", {"kind", "value", "amplitude"}},
       {"walls", {"slip", "virtual_particles", "virtual_flow"}},
       {"thermostat", {"kind", "gamma"}},
-      {"colloids", {"radius",      "radius_sd",         "mass",           "count",
-                    "placement",   "positions",         "positions_file", "gravity",
-                    "md_substeps", "epsilon",           "wall_sigma",     "wall_q",
-                    "coupling",    "contacts",          "kind",           "spring",
-                    "max_lag",     "correlation_every", "kde_width",      "statistics_from"}},
+      {"colloids", {"radius",          "radius_sd",         "mass",           "count",
+                    "placement",       "positions",         "positions_file", "gravity",
+                    "md_substeps",     "epsilon",           "wall_sigma",     "wall_q",
+                    "coupling",        "contacts",          "kind",           "spring",
+                    "max_lag",         "correlation_every", "kde_width",      "statistics_from",
+                    "packing_fraction"}},
       {"kmc",
        {"length", "boundary", "rates", "left", "right", "initial", "time", "warmup", "replicas",
         "charge", "samples", "preset", "parameters", "fugacity", "boundary_rates",
@@ -948,6 +949,73 @@ void parse_colloid_statistics(const Ctx &c, const value *sec, Colloids &out) {
                                      [](std::int64_t n) { return n >= 0; });
 }
 
+// The densest fraction placement = "packing" takes: random close packing of bidisperse disks
+// (about 0.84, PHYSICS.md) and of spheres (about 0.64); beyond it the overlaps cannot go.
+double packing_limit(int dims) { return dims == 2 ? 0.84 : 0.64; }
+
+std::string packing_allowed(int dims) {
+  return "a number > 0 and at most " + float_text(packing_limit(dims)) +
+         " (random close packing of " + (dims == 2 ? "disks" : "spheres") + ")";
+}
+
+const value *fraction_or_missing(const Ctx &c, const value *fraction, int dims) {
+  if (fraction == nullptr)
+    c.missing("colloids.packing_fraction", packing_allowed(dims));
+  return fraction;
+}
+
+// placement = "packing": the target fraction, and the counts that realise it: one kind
+// round(phi V / v); several kinds their counts (the number ratio) times one factor, each rounded.
+void parse_packing(const Ctx &c, const value *sec, const value &fraction, const Domain &domain,
+                   int dims, bool walls, bool no_slip, Colloids &out) {
+  if (!no_slip)
+    c.fail("colloids.placement", "colloids.placement = \"packing\" grows the colloids with the "
+                                 "spring contacts of no-slip colloids; allowed with coupling = "
+                                 "\"no-slip\"");
+  out.packing_fraction = as_number(c, fraction, "colloids.packing_fraction", packing_allowed(dims),
+                                   [&](double x) { return x > 0.0 && x <= packing_limit(dims); });
+  for (const char *key : {"count", "radius_sd"})
+    if (const value *v = find(sec, key))
+      c.fail(std::string("colloids.") + key,
+             std::string("colloids.") + key + " = " + repr(*v) +
+                 " cannot be mixed with placement = \"packing\"; allowed: one radius, the "
+                 "number follows from colloids.packing_fraction (several kinds: "
+                 "[[colloids.kind]] with counts in the number ratio)");
+  const auto volume_of = [dims](double r) {
+    return dims == 2 ? 3.14159265358979 * r * r : 4.18879020478639 * r * r * r;
+  };
+  double box_volume = 1.0;
+  for (int d = 0; d < dims; ++d)
+    box_volume *= domain.size[d];
+  const double phi = out.packing_fraction;
+  if (walls && 2.0 * out.radius > domain.size[1])
+    c.fail("colloids.placement",
+           "colloids.placement = \"packing\": the largest colloid (radius " +
+               float_text(out.radius) + ") does not fit across the channel (" +
+               float_text(domain.size[1]) + "); allowed: a diameter up to domain.size[1]");
+  if (out.kinds.empty()) {
+    out.count = std::llround(phi * box_volume / volume_of(out.radius));
+  } else {
+    double ratio_volume = 0.0;
+    for (const auto &k : out.kinds)
+      ratio_volume += static_cast<double>(k.count) * volume_of(k.radius);
+    const double factor = phi * box_volume / ratio_volume;
+    out.count = 0;
+    for (auto &k : out.kinds) {
+      k.count = std::llround(static_cast<double>(k.count) * factor);
+      out.count += k.count;
+    }
+  }
+  bool none = out.count < 1;
+  for (const auto &k : out.kinds)
+    none = none || k.count < 1;
+  if (none || out.count > 1000000)
+    c.fail("colloids.packing_fraction",
+           "colloids.packing_fraction = " + repr(fraction) + " makes " + std::to_string(out.count) +
+               " colloids" + (none ? " (a kind with none)" : "") +
+               " in this box; allowed: 1 to 1000000 colloids, at least one of each kind");
+}
+
 std::optional<Colloids> parse_colloids(const Ctx &c, const value *sec, const Domain &domain,
                                        int dims, bool walls) {
   if (sec == nullptr)
@@ -1050,10 +1118,21 @@ std::optional<Colloids> parse_colloids(const Ctx &c, const value *sec, const Dom
   bool from_file = false;
   if (placement != nullptr) {
     const std::size_t i = as_choice(c, *placement, "colloids.placement", "a known placement",
-                                    {"lattice", "list", "random", "file"});
+                                    {"lattice", "list", "random", "file", "packing"});
     from_file = i == 3;
-    out.placement = from_file ? ColloidPlacement::list : static_cast<ColloidPlacement>(i);
+    out.placement = from_file ? ColloidPlacement::list
+                    : i == 4  ? ColloidPlacement::packing
+                              : static_cast<ColloidPlacement>(i);
   }
+  const bool packing = out.placement == ColloidPlacement::packing;
+  const value *fraction = find(sec, "packing_fraction");
+  if (fraction != nullptr && !packing)
+    c.fail("colloids.packing_fraction",
+           "colloids.packing_fraction = " + repr(*fraction) +
+               " is the target of placement = \"packing\"; allowed only with it");
+  if (packing)
+    parse_packing(c, sec, *fraction_or_missing(c, fraction, dims), domain, dims, walls, no_slip,
+                  out);
   // A position inside the box (and off the walls), or one line naming `key` and what was found.
   auto check_position = [&](const std::string &key, const std::array<double, 3> &p,
                             const std::string &found) {
@@ -1161,7 +1240,9 @@ std::optional<Colloids> parse_colloids(const Ctx &c, const value *sec, const Dom
       c.fail("colloids.positions_file",
              "colloids.positions_file needs placement = \"file\"; "
              "allowed with placement = \"lattice\" or \"random\": count");
-    if (out.kinds.empty()) {
+    if (packing) {
+      // the counts came from colloids.packing_fraction (parse_packing)
+    } else if (out.kinds.empty()) {
       if (count == nullptr)
         c.missing("colloids.count", "an integer >= 1");
       out.count = as_integer(c, *count, "colloids.count", "an integer from 1 to 1000000",

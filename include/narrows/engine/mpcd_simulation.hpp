@@ -5,6 +5,7 @@
 #include "narrows/colloids/colloids.hpp"
 #include "narrows/colloids/md_integrator.hpp"
 #include "narrows/colloids/no_slip.hpp"
+#include "narrows/colloids/packing.hpp"
 #include "narrows/engine/mpcd_plan.hpp"
 #include "narrows/mpcd/cell_grid.hpp"
 #include "narrows/mpcd/cell_sort.hpp"
@@ -61,6 +62,8 @@ public:
   const mpcd::Fluid &fluid() const { return fluid_; }
   // The colloids this rank owns (those whose centres lie in its slab), in id order; empty
   // without [colloids].
+  // What placement = "packing" reached (set when it packed the colloids at the start).
+  const std::optional<colloids::PackingReport> &packing() const { return packing_; }
   colloids::Colloids &colloids() { return colloids_; }
   const colloids::Colloids &colloids() const { return colloids_; }
   // All colloids in id order, on every rank (collective): for observables and output.
@@ -103,6 +106,7 @@ private:
   std::vector<int> stray_dest_;
   mpcd::Fluid fluid_;
   colloids::Colloids colloids_;
+  std::optional<colloids::PackingReport> packing_;
   std::optional<colloids::MdIntegrator> md_;
   std::optional<colloids::NoSlipCoupling> no_slip_;
   mpcd::CellGrid grid_;

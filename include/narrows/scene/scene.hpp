@@ -58,7 +58,9 @@ struct Walls {
 // equal radii), integrated LJ wall (with [walls]); gravity is the gravitational field g_c of seed
 // 000 (an acceleration: the force on a colloid is its mass times g, eq 4.4 without buoyancy, as the
 // fluid feels no gravity).
-enum class ColloidPlacement { lattice, list, random };
+// packing: grown from points with frictionless springs and no fluid to colloids.packing_fraction
+// (seed 001 §6.1, colloids/packing.hpp); the counts follow from that fraction.
+enum class ColloidPlacement { lattice, list, random, packing };
 // How colloids meet the fluid: "md" (seed 000 §3.4: WCA forces, velocity-Verlet sub-steps, slip)
 // or "no-slip" (seed 001 §4.2.1: bounce-back at the surface with the rigid-body velocity, ghost
 // particles inside in the collision; colloids rotate). Contacts between colloids and with the
@@ -93,6 +95,7 @@ struct Colloids {
   ColloidContacts contacts = ColloidContacts::none;
   ColloidSprings spring;                        // contacts = "spring"
   std::vector<std::array<double, 3>> positions; // placement "list"
+  double packing_fraction = 0.0;                // placement "packing": the target fraction
   // Where each position was given, for messages: "colloids.positions[3]" or
   // "colloids.positions_file (path:line)"; empty: "colloids.positions[i]".
   std::vector<std::string> position_keys;

@@ -1,0 +1,102 @@
+#!/usr/bin/env bash
+# placement = "packing" (issue 21 item 3) through the command line: a bidisperse channel packed
+# to phi = 0.78 runs on 1 and 2 ranks to bitwise the same checkpoint (every rank packs alike);
+# the packing in the checkpoint has the scene's counts, its fraction, overlaps below 1 % of the
+# small radius and no fluid particle inside a colloid; the log reports the packing; scenes the
+# packing cannot make are refused in one line.
+set -u
+source "$(dirname "$0")/common.bash"
+py=/usr/bin/python3
+
+cat > "$tmp/s.toml" <<'TOML'
+[run]
+dimensions = 2
+seed = 5
+steps = 20
+[domain]
+size = [40.0, 20.0]
+[fluid]
+collision = "at+a"
+density = 5
+dt = 0.05
+[body_force]
+value = [0.01, 0.0]
+[walls]
+virtual_particles = true
+[colloids]
+coupling = "no-slip"
+contacts = "spring"
+placement = "packing"
+packing_fraction = 0.78
+[[colloids.kind]]
+radius = 1.5
+count = 1
+[[colloids.kind]]
+radius = 2.1
+count = 1
+[output]
+every = 10
+trajectory_every = 20
+progress = false
+observables = ["momentum"]
+TOML
+runs --err "$tmp/err1" "1 rank" "$narrows" run "$tmp/s.toml" --out "$tmp/one" > "$tmp/log1"
+check "the log reports the packing" 'grep -q "packing: 60 colloids at fraction 0.78[0-9]*, deepest overlap" "$tmp/log1"'
+runs "2 ranks" "${mpi[@]}" -n 2 "$narrows" run "$tmp/s.toml" --out "$tmp/two" > /dev/null 2>&1
+check "2 ranks bitwise equal to 1 rank" 'cmp -s <($py -c "
+import h5py, numpy as np, sys
+f = h5py.File(sys.argv[1])
+for s in [\"fluid\", \"colloids\"]:
+    p = f[\"/particles/\" + s]
+    o = np.argsort(p[\"id/value\"][:])
+    for k in [\"position\", \"velocity\"]:
+        sys.stdout.buffer.write(p[k + \"/value\"][:][o].tobytes())
+" "$tmp/one/checkpoint-0000000020.h5") <($py -c "
+import h5py, numpy as np, sys
+f = h5py.File(sys.argv[1])
+for s in [\"fluid\", \"colloids\"]:
+    p = f[\"/particles/\" + s]
+    o = np.argsort(p[\"id/value\"][:])
+    for k in [\"position\", \"velocity\"]:
+        sys.stdout.buffer.write(p[k + \"/value\"][:][o].tobytes())
+" "$tmp/two/checkpoint-0000000020.h5")'
+cat > "$tmp/packed.py" <<'PY'
+import sys, h5py, numpy as np
+f = h5py.File(sys.argv[1], "r")
+c = f["/particles/colloids"] # frame 0 of the trajectory: the packing as made
+x, r = c["position/value"][0], c["radius"][:]
+L, W = 40.0, 20.0
+small, large = np.sum(r == 1.5), np.sum(r == 2.1)
+assert small == 30 and large == 30, (small, large) # 0.78 L W / (pi (1.5^2 + 2.1^2)) = 29.8 each
+phi = np.pi * np.sum(r * r) / (L * W)
+assert abs(phi - 0.78) < 0.011, phi # within half a pair's area of the target
+d = x[:, None, :] - x[None, :, :]
+d[..., 0] -= L * np.round(d[..., 0] / L)
+gap = np.hypot(d[..., 0], d[..., 1]) - (r[:, None] + r[None, :])
+np.fill_diagonal(gap, np.inf)
+walls = np.minimum(x[:, 1] - r, W - x[:, 1] - r)
+deepest = max(-gap.min(), -walls.min(), 0.0)
+assert deepest < 0.01 * 1.5, deepest
+p = f["/particles/fluid/position/value"][0]
+inside = 0
+for a in range(len(r)):
+    e = p - x[a]
+    e[:, 0] -= L * np.round(e[:, 0] / L)
+    inside += np.sum(np.hypot(e[:, 0], e[:, 1]) < r[a])
+assert inside == 0, inside
+print("phi %.4f deepest overlap %.2e of the small radius, %d fluid particles" % (phi, deepest / 1.5, len(p)))
+PY
+check "the packing: counts, fraction, overlaps < 1 %, no fluid inside" '$py "$tmp/packed.py" "$tmp/one/trajectory.h5" > /dev/null'
+
+bad() { sed "$1" "$tmp/s.toml" > "$tmp/bad.toml"; }
+bad 's/packing_fraction = 0.78/packing_fraction = 0.9/'
+refused "a fraction beyond random close packing" 'colloids.packing_fraction.*at most 0.84' "$narrows" check "$tmp/bad.toml"
+bad 's/coupling = "no-slip"/coupling = "md"/; s/contacts = "spring"/contacts = "none"/'
+refused "packing with MD colloids" 'colloids.placement = "packing".*allowed with coupling = "no-slip"' "$narrows" check "$tmp/bad.toml"
+bad 's/placement = "packing"/placement = "random"/'
+refused "packing_fraction without packing" 'colloids.packing_fraction = 0.78 is the target of placement = "packing"' "$narrows" check "$tmp/bad.toml"
+bad '/packing_fraction = 0.78/d'
+refused "packing without its fraction" 'colloids.packing_fraction' "$narrows" check "$tmp/bad.toml"
+bad 's/radius = 2.1/radius = 10.5/'
+refused "a colloid wider than the channel" 'does not fit across the channel' "$narrows" check "$tmp/bad.toml"
+finish "packing scenes"
