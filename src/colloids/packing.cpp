@@ -134,12 +134,13 @@ PackingReport pack_colloids(Colloids &c, const mpcd::Box &box, std::uint64_t see
         return true;
       if (it >= params.patience)
         return false;
-      if (report.iterations >= params.max_iterations)
+      if (report.iterations >= params.max_iterations || report.shakes > params.max_shakes)
         throw input_error(key + ": the colloids of area (volume) fraction " +
                           number(report.fraction) + " cannot be packed: after " +
-                          std::to_string(report.iterations) +
-                          " relaxation steps at radii scaled by " + number(scale) +
-                          " the deepest overlap is " + number(max_overlap(c, box) / r_min) +
+                          std::to_string(report.iterations) + " relaxation steps and " +
+                          std::to_string(report.shakes) + " shakes at radii scaled by " +
+                          number(scale) + " the deepest overlap is " +
+                          number(max_overlap(c, box) / r_min) +
                           " of the smallest radius; allowed: a deepest overlap below " +
                           number(params.tolerance) + " (a smaller packing fraction)");
       ++report.iterations;

@@ -34,8 +34,10 @@ struct PackingParams {
   std::int64_t patience = 20000;
   double back = 20.0;
   double jolt = 0.3;
-  // FIRE iterations allowed in all (input_error beyond: the target cannot be packed).
+  // FIRE iterations and shakes allowed in all (input_error beyond: the target cannot be
+  // packed).
   std::int64_t max_iterations = 2000000;
+  std::int64_t max_shakes = 20;
 };
 
 struct PackingReport {
