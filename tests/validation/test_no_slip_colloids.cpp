@@ -241,12 +241,14 @@ TEST(NoSlipColloid, FixedDiscInPoiseuilleFlowHasZeroFluidVelocityAtItsSurface) {
 //
 // Measured with this estimator (issue 20, acceptance 3b): dt = 0.01, a = 2: 1.003 +- 0.023
 // (20 blocks), 0.993 +- 0.019 (40 blocks), 0.982 +- 0.017 (50 blocks); with the batched
-// Gaussians of the MPC-AT+a noise (another realisation) 0.996 +- 0.021 (50 blocks). At half the
-// seed's time step the disc does spin too fast: dt = 0.005 (A doubled, U ~ 0.8): a = 2: 1.216 +-
-// 0.050, a = 4 (L_y = 80, L_x = 32): 1.059
-// +- 0.049; with no ghost particles (bounce-back alone) the far-field estimate at dt = 0.005 is as
-// high (1.25 +- 0.09), so it is not the ghosts' doing; the cause is not found (an effect of a mean
-// free path dt sqrt(kT) << a that grows as dt falls).
+// Gaussians of the MPC-AT+a noise (another realisation) 0.996 +- 0.021 (50 blocks), and of the
+// ghosts too 1.042 +- 0.019 (64 blocks, the test below). At half the seed's time step the disc
+// does spin too fast: dt = 0.005 (A doubled, U ~ 0.8): a = 2: 1.216 +- 0.050, a = 4 (L_y = 80,
+// L_x = 32): 1.059 +- 0.049; with no ghost particles (bounce-back alone) the far-field estimate
+// at dt = 0.005 is as high (1.25 +- 0.09), and bouncing back along the particle's own path
+// instead of onto the nearest surface point as well (1.20 +- 0.03), so it is neither the ghosts'
+// nor the radial move's doing; the cause is not found (an effect of a mean free path
+// dt sqrt(kT) << a that grows as dt falls).
 namespace {
 
 struct SpinResult {
