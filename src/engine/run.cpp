@@ -296,6 +296,17 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
   }
   const double seconds = shell.loop_seconds();
   const auto steps = static_cast<std::uint64_t>(sim.step() - first);
+  if (sim.slabs().ranks() > 1 && steps > 0) { // the fluid's halo traffic (scaling models)
+    const double mine = static_cast<double>(sim.fluid_bytes_sent());
+    double largest = 0.0;
+    MPI_Reduce(&mine, &largest, 1, MPI_DOUBLE, MPI_MAX, 0, comm);
+    char text[128];
+    std::snprintf(text, sizeof text,
+                  "fluid messages: %.4g bytes per step from the busiest rank (particles "
+                  "migrating to the slab of their cell)",
+                  largest / static_cast<double>(steps));
+    log.line(text);
+  }
   if (scene.colloids && steps > 0) { // the cost of colloids owned by slabs, for cluster users
     const double mine = static_cast<double>(sim.colloid_bytes_sent());
     double largest = 0.0;

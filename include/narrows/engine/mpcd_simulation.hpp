@@ -76,6 +76,8 @@ public:
   void restore_contacts(colloids::ContactHistory &&all);
   // Bytes this rank sent for colloids (ghosts, their forces, migration) since the start.
   std::uint64_t colloid_bytes_sent() const;
+  // Bytes this rank sent in fluid messages (particles migrating to the slab of their cell).
+  std::uint64_t fluid_bytes_sent() const { return exchange_.bytes_sent(); }
   // The MD integrator with [colloids] (nullptr without).
   colloids::MdIntegrator *md() { return md_ ? &*md_ : nullptr; }
   // The no-slip coupling with coupling = "no-slip" (nullptr without).
