@@ -37,7 +37,7 @@ void NoSlipCoupling::add_ghost_particles(mpcd::Fluid &fluid, mpcd::CellGrid &gri
   const double *sh = grid.shift.data();
   const int per_block = dim_ == 2 ? 2 : 1;
   // Fills position_words_ with the blocks of a cell's tries and its fractional try.
-  const auto position_keys = [&](std::uint64_t colloid, std::uint64_t gcell, int blocks, int per) {
+  const auto position_keys = [&](std::uint64_t colloid, std::uint64_t gcell, int blocks) {
     const std::size_t count = static_cast<std::size_t>(blocks) + 1;
     position_words_.resize(count);
     std::uint64_t ids[rng::batch];
@@ -46,9 +46,10 @@ void NoSlipCoupling::add_ghost_particles(mpcd::Fluid &fluid, mpcd::CellGrid &gri
       const std::size_t m = std::min(rng::batch, count - b0);
       for (std::size_t j = 0; j < rng::batch; ++j) {
         const std::size_t b = b0 + j;
-        ids[j] = j >= m           ? 0
-                 : b + 1 == count ? ghost_key(colloid, gcell, 255)
-                                  : ghost_key(colloid, gcell, b * static_cast<std::size_t>(per));
+        ids[j] = j >= m ? 0
+                 : b + 1 == count
+                     ? ghost_key(colloid, gcell, 255)
+                     : ghost_key(colloid, gcell, b * static_cast<std::size_t>(per_block));
       }
       rng::draw_batch(params_.seed, rng::Purpose::ghost_position, step, ids, w);
       for (std::size_t j = 0; j < m; ++j)
@@ -99,7 +100,7 @@ void NoSlipCoupling::add_ghost_particles(mpcd::Fluid &fluid, mpcd::CellGrid &gri
           // 2-3, one in 3D; keyed by the first try of the block) and, last, that of the
           // fractional try (255), all in batches: bitwise rng::draw's.
           const int blocks = (whole + 1 + per_block - 1) / per_block;
-          position_keys(c.id[a], gcell, blocks, per_block);
+          position_keys(c.id[a], gcell, blocks);
           int tries = whole;
           if (fraction > 0.0 && rng::open01(position_words_[blocks][0]) < fraction)
             ++tries;

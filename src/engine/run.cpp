@@ -296,31 +296,25 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
   }
   const double seconds = shell.loop_seconds();
   const auto steps = static_cast<std::uint64_t>(sim.step() - first);
-  if (sim.slabs().ranks() > 1 && steps > 0) { // the fluid's halo traffic (scaling models)
-    const double mine = static_cast<double>(sim.fluid_bytes_sent());
-    double largest = 0.0;
-    MPI_Reduce(&mine, &largest, 1, MPI_DOUBLE, MPI_MAX, 0, comm);
-    char text[128];
-    std::snprintf(text, sizeof text,
-                  "fluid messages: %.4g bytes per step from the busiest rank (particles "
-                  "migrating to the slab of their cell)",
-                  largest / static_cast<double>(steps));
+  // The largest of every rank's figure (on rank 0, which writes the log).
+  const auto busiest = [&](double mine) {
+    double most = 0.0;
+    MPI_Reduce(&mine, &most, 1, MPI_DOUBLE, MPI_MAX, 0, comm);
+    return most;
+  };
+  char text[200];
+  // Bytes per step of a kind of message from the busiest rank, for scaling models of cluster runs.
+  const auto messages = [&](const char *what, std::uint64_t bytes, const char *which) {
+    std::snprintf(text, sizeof text, "%s messages: %.4g bytes per step from the busiest rank (%s)",
+                  what, busiest(static_cast<double>(bytes)) / static_cast<double>(steps), which);
     log.line(text);
-  }
-  if (scene.colloids && steps > 0) { // the cost of colloids owned by slabs, for cluster users
-    const double mine = static_cast<double>(sim.colloid_bytes_sent());
-    double largest = 0.0;
-    MPI_Reduce(&mine, &largest, 1, MPI_DOUBLE, MPI_MAX, 0, comm);
-    char text[160];
-    std::snprintf(text, sizeof text,
-                  "colloid messages: %.4g bytes per step from the busiest rank (ghosts, their "
-                  "forces, migration)",
-                  largest / static_cast<double>(steps));
-    log.line(text);
+  };
+  if (sim.slabs().ranks() > 1 && steps > 0)
+    messages("fluid", sim.fluid_bytes_sent(), "particles migrating to the slab of their cell");
+  if (scene.colloids && steps > 0) { // the cost of colloids owned by slabs
+    messages("colloid", sim.colloid_bytes_sent(), "ghosts, their forces, migration");
     if (const auto *ns = sim.no_slip(); ns && seconds > 0.0) { // the coupling's share
-      const double mine = ns->seconds();
-      double most = 0.0;
-      MPI_Reduce(&mine, &most, 1, MPI_DOUBLE, MPI_MAX, 0, comm);
+      const double most = busiest(ns->seconds());
       std::snprintf(text, sizeof text,
                     "no-slip coupling: %.4g s of the loop (%.1f %%) on the busiest rank (colloid "
                     "motion, bounce-back, ghost particles made and taken back)",
