@@ -1,4 +1,5 @@
 // The narrows command line: run, check, info, bench (DESIGN.md, "The user-facing contract").
+#include "narrows/colloids/dem_bench.hpp"
 #include "narrows/continuum/bench.hpp"
 #include "narrows/continuum/driver.hpp"
 #include "narrows/core/error.hpp"
@@ -76,6 +77,14 @@ int main_inner(int argc, char **argv) {
       ->add_option("--lgca", lgca_sites,
                    "only the lgca engine: FHP-III on an N x N lattice (e.g. 4096), 1 and all ranks")
       ->check(CLI::PositiveNumber);
+  narrows::colloids::DemBenchOptions dem_opt;
+  double dem_disks = 0.0;
+  bench
+      ->add_option("--dem", dem_disks,
+                   "only the spring contacts (DEM) without fluid, on this many disks (e.g. 1.8e5)")
+      ->check(CLI::PositiveNumber);
+  bench->add_option("--dem-data", dem_opt.lammps_data,
+                    "with --dem: also write the packing as a LAMMPS data file here");
   bench->add_option("--particles", bench_opt.particles, "particles per case (default 1e6)")
       ->check(CLI::PositiveNumber);
   bench->add_option("--steps", bench_opt.steps, "timed steps per case (default 100)")
@@ -110,6 +119,16 @@ int main_inner(int argc, char **argv) {
   if (*bench && continuum_cells > 0.0) {
     if (root)
       narrows::continuum::run_bench(std::cout, continuum_cells, bench_opt.json);
+    return 0;
+  }
+  if (*bench && dem_disks > 0.0) {
+    if (root) {
+      dem_opt.disks = dem_disks;
+      dem_opt.json = bench_opt.json;
+      if (bench->get_option("--steps")->count() > 0)
+        dem_opt.steps = bench_opt.steps;
+      narrows::colloids::run_dem_bench(dem_opt, std::cout);
+    }
     return 0;
   }
   if (*bench && lgca_sites > 0) {

@@ -4,12 +4,23 @@
 #include "narrows/mpcd/cell_grid.hpp"
 
 #include "narrows/colloids/force_terms.hpp"
+#include "narrows/colloids/pair_geometry.hpp"
 #include "narrows/colloids/potentials.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace narrows::colloids {
+
+void fixed_range_error(double f) {
+  std::ostringstream os;
+  os << "colloid force component " << f << " is not finite or beyond the fixed-point range "
+     << fixed::max_magnitude
+     << " (a particle ran deep into a colloid within one MD step; allowed: a smaller MD "
+        "step, i.e. more colloids.md_substeps, or weaker forces)";
+  throw invariant_error(os.str());
+}
 
 void CellList::size_for(const mpcd::Box &box, double cut) {
   std::size_t n = 1;

@@ -8,7 +8,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <sstream>
 
 namespace narrows::colloids {
 
@@ -37,15 +36,11 @@ inline double separation(const double *a, const double *b, const std::array<doub
 }
 
 // A force component in fixed point; refuses values the 64-bit sums cannot hold.
+[[noreturn]] void fixed_range_error(double f); // invariant_error naming f (forces.cpp)
+
 inline std::int64_t to_fixed(double f) {
-  if (!(std::abs(f) < fixed::max_magnitude)) {
-    std::ostringstream os;
-    os << "colloid force component " << f << " is not finite or beyond the fixed-point range "
-       << fixed::max_magnitude
-       << " (a particle ran deep into a colloid within one MD step; allowed: a smaller MD "
-          "step, i.e. more colloids.md_substeps, or weaker forces)";
-    throw invariant_error(os.str());
-  }
+  if (!(std::abs(f) < fixed::max_magnitude)) [[unlikely]]
+    fixed_range_error(f);
   return fixed::from_double(f);
 }
 

@@ -28,6 +28,7 @@
 #include "narrows/colloids/forces.hpp"
 #include "narrows/mpcd/cell_grid.hpp"
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -82,9 +83,22 @@ public:
   std::uint64_t sliding_updates() const { return sliding_; }
   const SpringParams &params() const { return params_; }
 
+  // Times the pair list below was built (for tests and benchmarks).
+  std::uint64_t pair_list_builds() const { return builds_; }
+
 private:
   template <int D, bool WallsY>
   void compute(const Colloids &c, std::size_t owned, ContactHistory &h, double step);
+  template <int D, bool WallsY>
+  void advance(Colloids &c, std::size_t owned, ContactHistory &h, double dt,
+               const SpringHooks *hooks, const std::vector<double> *external);
+  // The contact forces of the slots that touch into sums_; with step > 0 their springs are
+  // advanced first (and those of slots that no longer touch dropped).
+  template <int D, bool WallsY> void forces(const Colloids &c, double step);
+  void load_springs(const ContactHistory &h);  // h's springs into the slots (the rest zero)
+  void store_springs(ContactHistory &h) const; // the touching slots into h, in key order
+  template <int D, bool WallsY> bool pairs_fresh(const Colloids &c, std::size_t owned) const;
+  template <int D, bool WallsY> void build_pairs(const Colloids &c, std::size_t owned);
   void kick(Colloids &c, std::size_t owned, double h, const std::vector<double> *external) const;
 
   SpringParams params_;
@@ -94,8 +108,32 @@ private:
   double cell_cut_ = -1.0;
   std::vector<int> cell_of_;
   std::vector<std::uint32_t> partners_;
+  // Verlet list: the pairs (i, j) this rank computes (i the row of the smaller id, owned) whose
+  // centres were within r_i + r_j + skin when it was built from the cell list. It holds every
+  // touching pair while no row has moved more than skin / 2 since and the rows (ids, radii,
+  // owned count) are the same; otherwise it is built again. The contacts found are the same
+  // as a cell-list search every call, so are the results, bit for bit.
+  // Slot q: rows pair_i_[q] and pair_j_[q] (or a wall), key (slot_owner_, slot_partner_) in
+  // ascending order, its spring, and whether it touched at the last update.
+  std::vector<std::uint32_t> pair_i_, pair_j_;
+  std::vector<std::uint64_t> slot_owner_, slot_partner_;
+  std::array<std::vector<double>, 3> slot_xi_;
+  std::vector<std::uint8_t> slot_touch_;
+  // The slots touching at the current call, with their forces, torques per unit lever arm and
+  // whether they slid (scratch of forces()).
+  // (slot, rows i and j, kind 0 pair, 1 lower wall, 2 upper wall, spring).
+  std::vector<std::uint32_t> hits_;
+  std::vector<std::uint64_t> hit_i_, hit_j_;
+  std::vector<std::int64_t> hit_kind_, hit_slides_; // (one width: vectorised)
+  std::array<std::vector<double>, 3> hit_xi_, hit_force_, hit_torque_;
+  std::array<std::vector<double>, 3> built_x_;
+  std::vector<std::uint64_t> built_id_;
+  std::vector<double> built_radius_;
+  std::size_t built_owned_ = 0;
+  double skin_ = 0.0;
+  bool built_ = false;
+  std::uint64_t builds_ = 0;
   std::vector<std::int64_t> sums_;
-  ContactHistory next_; // the contacts being found
   std::uint64_t updates_ = 0, sliding_ = 0;
 };
 
