@@ -350,24 +350,27 @@ template <int D, bool WallsY> void SpringContacts::forces(const Colloids &c, dou
 }
 
 template <int D, bool WallsY>
-bool SpringContacts::pairs_fresh(const Colloids &c, std::size_t owned) const {
+bool SpringContacts::pairs_fresh(const Colloids &c, std::size_t owned, bool same_rows) const {
   const std::size_t nc = c.size();
-  if (!built_ || owned != built_owned_ || nc != built_id_.size() || c.id != built_id_ ||
-      c.radius != built_radius_)
+  if (!built_ || owned != built_owned_ || nc != built_id_.size() ||
+      (!same_rows && (c.id != built_id_ || c.radius != built_radius_)))
     return false;
-  const double limit = 0.25 * skin_ * skin_; // (skin / 2)^2
+  // The largest displacement since the list was built (a plain loop, vectorised; its rounding
+  // only decides when the list is built again, which changes no result).
+  double worst = 0.0;
   for (std::size_t a = 0; a < nc; ++a) {
     double r2 = 0.0;
     for (int k = 0; k < D; ++k) {
       double d = c.x[k][a] - built_x_[k][a];
-      if (!(WallsY && k == 1))
-        d = minimum_image(d, box_.length[k]);
+      if (!(WallsY && k == 1)) {
+        const double L = box_.length[k];
+        d = d > 0.5 * L ? d - L : (d < -0.5 * L ? d + L : d);
+      }
       r2 += d * d;
     }
-    if (!(r2 < limit))
-      return false;
+    worst = r2 > worst ? r2 : worst;
   }
-  return true;
+  return worst < 0.25 * skin_ * skin_; // (skin / 2)^2
 }
 
 template <int D, bool WallsY>
@@ -447,7 +450,7 @@ void SpringContacts::kick(Colloids &c, std::size_t owned, double h,
   const int S = stride();
   for (std::size_t a = 0; a < owned; ++a) {
     const std::int64_t *s = &sums_[a * static_cast<std::size_t>(S)];
-    const double m = c.mass[a], inertia = moment_of_inertia(c, a);
+    const double m = c.mass[a], inertia = inertia_[a];
     for (int k = 0; k < dim_; ++k) {
       double f = fixed::to_double(s[k]);
       if (external)
@@ -482,6 +485,9 @@ void SpringContacts::advance(Colloids &c, std::size_t owned, ContactHistory &h, 
   if (!pairs_fresh<D, WallsY>(c, owned))
     build_pairs<D, WallsY>(c, owned);
   load_springs(h);
+  inertia_.resize(owned);
+  for (std::size_t a = 0; a < owned; ++a)
+    inertia_[a] = moment_of_inertia(c, a);
   forces<D, WallsY>(c, 0.0); // the forces the last step ended with
   if (hooks)
     hooks->reverse(sums_, stride());
@@ -496,7 +502,7 @@ void SpringContacts::advance(Colloids &c, std::size_t owned, ContactHistory &h, 
       }
     if (hooks)
       hooks->refresh(c);
-    if (!pairs_fresh<D, WallsY>(c, owned)) {
+    if (!pairs_fresh<D, WallsY>(c, owned, true)) { // (only the positions changed)
       if (s > 0)
         store_springs(h); // the contacts of the last sub-step
       build_pairs<D, WallsY>(c, owned);

@@ -97,7 +97,9 @@ private:
   template <int D, bool WallsY> void forces(const Colloids &c, double step);
   void load_springs(const ContactHistory &h);  // h's springs into the slots (the rest zero)
   void store_springs(ContactHistory &h) const; // the touching slots into h, in key order
-  template <int D, bool WallsY> bool pairs_fresh(const Colloids &c, std::size_t owned) const;
+  // same_rows: the rows are known to be those of the last call (only positions changed).
+  template <int D, bool WallsY>
+  bool pairs_fresh(const Colloids &c, std::size_t owned, bool same_rows = false) const;
   template <int D, bool WallsY> void build_pairs(const Colloids &c, std::size_t owned);
   void kick(Colloids &c, std::size_t owned, double h, const std::vector<double> *external) const;
 
@@ -134,6 +136,7 @@ private:
   bool built_ = false;
   std::uint64_t builds_ = 0;
   std::vector<std::int64_t> sums_;
+  std::vector<double> inertia_; // moments of inertia of the owned rows (advance)
   std::uint64_t updates_ = 0, sliding_ = 0;
 };
 
