@@ -23,4 +23,25 @@ for script in "$src"/jobscripts/*.slurm; do
     '[ -n "$out" ] && { [ "$dir" = "." ] || [ -d "$src/$dir" ]; }'
 done
 check "checkpoint_bench.sh calls no bc" '! grep -qw "bc" "$src/tools/checkpoint_bench.sh"'
+
+# The MPI call counter of the scaling model (tools/mpi_calls.c, scaling_model.py): a 2-rank
+# fluid run of 5 and 15 steps; every step migrates particles (one halo exchange at least), and
+# the model's table has a row for each rank count asked for.
+mpicc -shared -fPIC -O2 -o "$tmp/mpi_calls.so" "$src/tools/mpi_calls.c"
+code=$?
+check "mpi_calls.c builds (got $code)" '[ "$code" -eq 0 ]'
+for steps in 5 15; do
+  MPI_CALLS_OUT=$tmp/calls_$steps.txt "${mpi[@]}" -n 2 -x LD_PRELOAD="$tmp/mpi_calls.so" \
+    -x MPI_CALLS_OUT "$narrows" run "$src/run/quickstart.toml" --set run.steps=$steps \
+    --out "$tmp/calls_run_$steps" > /dev/null 2>&1
+done
+check "each rank wrote its counts" '[ "$(wc -l < "$tmp/calls_15.txt")" -eq 2 ]'
+/usr/bin/python3 "$src/tools/scaling_model.py" "$tmp/calls_5.txt" "$tmp/calls_15.txt" --steps 10 \
+  --rate 1e7 --ranks 64 512 > "$tmp/model.txt" 2>&1
+code=$?
+check "scaling_model.py exits 0 (got $code)" '[ "$code" -eq 0 ] || { cat "$tmp/model.txt"; false; }'
+exchanges=$(sed -n 's/^measured per step .*: \([0-9.]*\) halo exchanges.*/\1/p' "$tmp/model.txt")
+check "at least one halo exchange per step (got '$exchanges')" \
+  '/usr/bin/python3 -c "import sys; sys.exit(not float(sys.argv[1]) >= 1)" "${exchanges:-0}"'
+check "one table row per rank count" '[ "$(grep -c "^| [0-9]" "$tmp/model.txt")" -eq 2 ]'
 finish tool_outputs

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Measures what tools/scaling_model.py needs and prints its prediction for the full Table 6.1
+# channel (l = 12000 b) on 64, 512 and 3072 ranks (issue 21, acceptance 7).
+#
+# Usage: bash tools/scaling_model.sh [NARROWS] [DIR]
+#   defaults: build/narrows, out/scaling_model
+#
+# Runs run/seed001_table6_1.toml (l = 600 b) on 1 rank for 50 steps (the one-rank cost per fluid
+# particle-step) and on 3 ranks for 20 and 70 steps with tools/mpi_calls.c preloaded, which
+# counts every MPI call and the bytes it sends; the difference of the two counts is per step.
+# Nothing is asserted: the network parameters are the model's (see scaling_model.py).
+set -eu
+here=$(cd "$(dirname "$0")/.." && pwd)
+narrows=${1:-$here/build/narrows}
+dir=${2:-out/scaling_model}
+mkdir -p "$dir"
+mpicc -shared -fPIC -O2 -o "$dir/mpi_calls.so" "$here/tools/mpi_calls.c"
+mpi=(mpirun --oversubscribe)
+[ "$(id -u)" -eq 0 ] && mpi+=(--allow-run-as-root)
+scene=$here/run/seed001_table6_1.toml
+"$narrows" run "$scene" --set run.steps=50 --set output.checkpoint_every=100000 \
+  --out "$dir/one" >"$dir/one.log" 2>&1
+rate=$(sed -n 's/^Loop time .*(\([0-9.e+]*\) particle-steps\/s)$/\1/p' "$dir/one.log")
+for steps in 20 70; do
+  rm -f "$dir/calls_$steps.txt"
+  MPI_CALLS_OUT=$dir/calls_$steps.txt "${mpi[@]}" -n 3 -x LD_PRELOAD="$dir/mpi_calls.so" \
+    -x MPI_CALLS_OUT "$narrows" run "$scene" --set run.steps=$steps \
+    --set output.checkpoint_every=100000 --out "$dir/three_$steps" >"$dir/three_$steps.log" 2>&1
+done
+/usr/bin/python3 "$here/tools/scaling_model.py" "$dir/calls_20.txt" "$dir/calls_70.txt" \
+  --steps 50 --rate "$rate"
