@@ -79,12 +79,16 @@ int main_inner(int argc, char **argv) {
       ->check(CLI::PositiveNumber);
   narrows::colloids::DemBenchOptions dem_opt;
   double dem_disks = 0.0;
+  auto *dem =
+      bench
+          ->add_option(
+              "--dem", dem_disks,
+              "only the spring contacts (DEM) without fluid, on this many disks (e.g. 1.8e5)")
+          ->check(CLI::PositiveNumber);
   bench
-      ->add_option("--dem", dem_disks,
-                   "only the spring contacts (DEM) without fluid, on this many disks (e.g. 1.8e5)")
-      ->check(CLI::PositiveNumber);
-  bench->add_option("--dem-data", dem_opt.lammps_data,
-                    "with --dem: also write the packing as a LAMMPS data file here");
+      ->add_option("--dem-data", dem_opt.lammps_data,
+                   "with --dem: also write the packing as a LAMMPS data file here")
+      ->needs(dem);
   bench->add_option("--particles", bench_opt.particles, "particles per case (default 1e6)")
       ->check(CLI::PositiveNumber);
   bench->add_option("--steps", bench_opt.steps, "timed steps per case (default 100)")

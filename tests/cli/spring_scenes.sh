@@ -109,4 +109,14 @@ bad 's/^kt = 2500/kt = 2500\ndamping = 1.25/'
 refused "an unknown spring key" "unknown key 'colloids.spring.damping'" "$narrows" check "$tmp/bad.toml"
 bad 's/^kn = 2500/kn = 0/'
 refused "kn = 0" 'colloids.spring.kn' "$narrows" check "$tmp/bad.toml"
+# The contact kernel's benchmark (issue 21 acceptance 6): figures printed, and the packing with
+# its velocities written for LAMMPS; a path that cannot be written is refused in one line.
+runs "bench --dem" "$narrows" bench --dem 2000 --steps 2 --dem-data "$tmp/dem.data" \
+  > "$tmp/dem.txt" 2>&1
+check "bench --dem prints contact updates/s" \
+  'grep -q "^dem: 20 sub-steps in .* contact updates/s" "$tmp/dem.txt"'
+check "the LAMMPS data file holds 2000 atoms and their velocities" \
+  'grep -q "^2000 atoms$" "$tmp/dem.data" && [ "$(awk "/^Atoms/{f=1;next} /^Velocities/{f=0} f && NF==7" "$tmp/dem.data" | wc -l)" -eq 2000 ] && [ "$(awk "/^Velocities/{f=1;next} f && NF==7" "$tmp/dem.data" | wc -l)" -eq 2000 ]'
+refused "bench --dem-data into a missing folder" "command line: --dem-data" \
+  "$narrows" bench --dem 2000 --steps 1 --dem-data "$tmp/no/such/dir/p.data"
 finish "spring scenes"
