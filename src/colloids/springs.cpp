@@ -5,6 +5,7 @@
 #include "narrows/colloids/force_terms.hpp"
 #include "narrows/colloids/hard_spheres.hpp"
 #include "narrows/colloids/pair_geometry.hpp"
+#include "narrows/core/timer.hpp"
 #include "narrows/mpcd/streaming.hpp"
 
 #include <algorithm>
@@ -156,6 +157,7 @@ void SpringContacts::store_springs(ContactHistory &h) const {
 }
 
 template <int D, bool WallsY> void SpringContacts::forces(const Colloids &c, double step) {
+  const ScopedSeconds timed(force_seconds_);
   constexpr int S = D == 2 ? 3 : 6, T = D == 2 ? 1 : 3;
   const std::size_t nc = c.size();
   sums_.assign(nc * S, 0);

@@ -83,8 +83,10 @@ public:
   std::uint64_t sliding_updates() const { return sliding_; }
   const SpringParams &params() const { return params_; }
 
-  // Times the pair list below was built (for tests and benchmarks).
+  // Times the pair list below was built, and the seconds spent on the contact forces (the
+  // kernel: which slots touch, their springs and forces, the sums), for benchmarks.
   std::uint64_t pair_list_builds() const { return builds_; }
+  double force_seconds() const { return force_seconds_; }
 
 private:
   template <int D, bool WallsY>
@@ -135,6 +137,7 @@ private:
   double skin_ = 0.0;
   bool built_ = false;
   std::uint64_t builds_ = 0;
+  double force_seconds_ = 0.0;
   std::vector<std::int64_t> sums_;
   std::vector<double> inertia_; // moments of inertia of the owned rows (advance)
   std::uint64_t updates_ = 0, sliding_ = 0;
