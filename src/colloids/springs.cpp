@@ -165,189 +165,197 @@ template <int D, bool WallsY> void SpringContacts::forces(const Colloids &c, dou
   const SpringParams &p = params_;
   const auto &L = box_.length;
   const std::size_t m = pair_i_.size();
-
-  // 1. The slots that touch now (a colloid pair closer than r_i + r_j, or a colloid over a
-  // wall), in key order.
-  // Without branches (whether a slot touches is a coin toss in a dense packing): every slot is
-  // written at the end of the hits, which grow only by those that touch.
-  hits_.resize(m);
-  hit_j_.resize(m);
-  hit_kind_.resize(m);
-  std::size_t nh = 0;
-  for (std::size_t q = 0; q < m; ++q) {
-    const std::size_t i = pair_i_[q];
-    const std::uint32_t pj = pair_j_[q];
-    const bool wall = WallsY && pj >= wall_high_row, low = pj == wall_low_row;
-    const std::size_t j = wall ? i : pj;
-    const double ri = c.radius[i], y = c.x[1][i];
-    const double xj[3] = {c.x[0][j], c.x[1][j], D == 3 ? c.x[2][j] : 0.0};
-    const double xi[3] = {c.x[0][i], y, D == 3 ? c.x[2][i] : 0.0};
-    double d[3];
-    const double R = ri + c.radius[j], r2 = separation<D, WallsY>(xj, xi, L, d);
-    const double wall_delta = low ? ri - y : y + ri - L[1];
-    const bool touch = wall ? wall_delta > 0.0 : r2 < R * R;
-    hits_[nh] = static_cast<std::uint32_t>(q);
-    hit_j_[nh] = j; // i for a wall (read, then not used)
-    hit_kind_[nh] = wall ? (low ? 1 : 2) : 0;
-    nh += touch;
-  }
-  hits_.resize(nh);
-  hit_i_.resize(nh);
-  for (int k = 0; k < D; ++k)
-    hit_xi_[k].resize(nh);
-  for (std::size_t h = 0; h < nh; ++h) {
-    hit_i_[h] = pair_i_[hits_[h]];
-    for (int k = 0; k < D; ++k)
-      hit_xi_[k][h] = slot_xi_[k][hits_[h]];
-  }
-  for (int k = 0; k < D; ++k)
-    hit_force_[k].resize(nh);
-  for (int k = 0; k < T; ++k)
-    hit_torque_[k].resize(nh);
-  hit_slides_.resize(nh);
-
-  // 2. Each touching slot's force on i (the opposite on j, unless a wall at rest) and n x F_t
-  // (the torque per unit lever arm); the spring is advanced first when updating. A plain loop
-  // of the same operations for every contact (walls by selects), vectorised.
-  const double *x[3] = {c.x[0].data(), c.x[1].data(), D == 3 ? c.x[2].data() : nullptr};
-  const double *v[3] = {c.v[0].data(), c.v[1].data(), D == 3 ? c.v[2].data() : nullptr};
-  const double *om[3] = {c.omega[0].data(), c.omega[1].data(), c.omega[2].data()};
-  const double *rad = c.radius.data();
-  double *sxi[3] = {hit_xi_[0].data(), hit_xi_[1].data(), D == 3 ? hit_xi_[2].data() : nullptr};
-  const std::uint64_t *hi = hit_i_.data(), *hj = hit_j_.data();
-  const std::int64_t *kind = hit_kind_.data();
-  double *hf[3] = {hit_force_[0].data(), hit_force_[1].data(),
-                   D == 3 ? hit_force_[2].data() : nullptr};
-  double *ht[3] = {hit_torque_[0].data(), T == 3 ? hit_torque_[1].data() : nullptr,
-                   T == 3 ? hit_torque_[2].data() : nullptr};
-  std::int64_t *slides = hit_slides_.data();
-  const double kn = p.kn, kt = p.kt, mu_cc = p.mu_cc, mu_cw = p.mu_cw;
-  if constexpr (D == 2) {
-    const Hits2 hits{hi, hj, kind, {sxi[0], sxi[1]}, {hf[0], hf[1]}, ht[0], slides};
-    if (update)
-      contacts_2d<true, WallsY>(c, hits, nh, p, L, step);
-    else
-      contacts_2d<false, WallsY>(c, hits, nh, p, L, step);
-  } else
-    for (std::size_t h = 0; h < nh; ++h) {
-      const std::uint64_t i = hi[h], j = hj[h]; // j = i for a wall
-      const bool wall = kind[h] != 0, low = kind[h] == 1;
-      const double ri = rad[i], rj_row = rad[j], rj = wall ? 0.0 : rj_row;
-      double n[3] = {0.0, 0.0, 0.0}, d[3] = {0.0, 0.0, 0.0}, r2 = 0.0;
-      for (int k = 0; k < D; ++k) {
-        d[k] = x[k][j] - x[k][i]; // from i towards j
-        if (!(WallsY && k == 1))
-          d[k] = d[k] > 0.5 * L[k] ? d[k] - L[k] : (d[k] < -0.5 * L[k] ? d[k] + L[k] : d[k]);
-        r2 += d[k] * d[k];
-      }
-      const double dist = std::sqrt(r2);
-      const double wall_delta = low ? ri - x[1][i] : x[1][i] + ri - L[1];
-      const double delta = wall ? wall_delta : ri + rj - dist;
-      for (int k = 0; k < D; ++k)
-        n[k] = wall ? (k == 1 ? (low ? -1.0 : 1.0) : 0.0)
-                    : (dist > 0.0 ? d[k] / dist : (k == 0 ? 1.0 : 0.0)); // on top: along x
-      const double mu = wall ? mu_cw : mu_cc;
-      // U = v_i - v_j + (r_i w_i + r_j w_j) x n: the relative velocity of the contact points.
-      double U[3] = {0.0, 0.0, 0.0}, w[3] = {0.0, 0.0, 0.0};
-      for (int k = 0; k < D; ++k) {
-        const double vj = v[k][j];
-        U[k] = v[k][i] - (wall ? 0.0 : vj);
-      }
-      for (int k = 0; k < 3; ++k) {
-        const double oj = om[k][j];
-        w[k] = ri * om[k][i] + (wall ? 0.0 : rj * oj);
-      }
-      if constexpr (D == 2) {
-        U[0] -= w[2] * n[1];
-        U[1] += w[2] * n[0];
-      } else {
-        U[0] += w[1] * n[2] - w[2] * n[1];
-        U[1] += w[2] * n[0] - w[0] * n[2];
-        U[2] += w[0] * n[1] - w[1] * n[0];
-      }
-      double xi[3] = {0.0, 0.0, 0.0};
-      for (int k = 0; k < D; ++k)
-        xi[k] = sxi[k][h];
-      bool slid = false;
-      if (update) {
-        // Into the current tangent plane, the same length (eq 4.40).
-        double len2 = 0.0, xn = 0.0, un = 0.0;
-        for (int k = 0; k < D; ++k) {
-          len2 += xi[k] * xi[k];
-          xn += xi[k] * n[k];
-          un += U[k] * n[k];
-        }
-        double t2 = 0.0, turned[3] = {0.0, 0.0, 0.0};
-        for (int k = 0; k < D; ++k) {
-          turned[k] = xi[k] - xn * n[k];
-          t2 += turned[k] * turned[k];
-        }
-        const double f = t2 > 0.0 ? std::sqrt(len2 / t2) : 0.0;
-        for (int k = 0; k < D; ++k)
-          xi[k] = len2 > 0.0 ? turned[k] * f : xi[k];
-        // Stretched by the tangential relative velocity (eq 4.39), capped by Coulomb (4.41-4.42).
-        double x2 = 0.0;
-        for (int k = 0; k < D; ++k) {
-          xi[k] += (U[k] - un * n[k]) * step;
-          x2 += xi[k] * xi[k];
-        }
-        const double ft = kt * std::sqrt(x2), cap = mu * kn * delta;
-        slid = kt != 0.0 && ft > cap;
-        const double cut = slid ? cap / ft : 1.0;
-        for (int k = 0; k < D; ++k) {
-          xi[k] = kt == 0.0 ? 0.0 : (slid ? xi[k] * cut : xi[k]);
-          sxi[k][h] = xi[k];
-        }
-      }
-      slides[h] = slid;
-      double Ft[3] = {0.0, 0.0, 0.0};
-      for (int k = 0; k < D; ++k) {
-        Ft[k] = -kt * xi[k];
-        hf[k][h] = -kn * delta * n[k] + Ft[k];
-      }
-      // n x F_t (times r_i on i and r_j on j below).
-      if constexpr (D == 2) {
-        ht[0][h] = n[0] * Ft[1] - n[1] * Ft[0];
-      } else {
-        ht[0][h] = n[1] * Ft[2] - n[2] * Ft[1];
-        ht[1][h] = n[2] * Ft[0] - n[0] * Ft[2];
-        ht[2][h] = n[0] * Ft[1] - n[1] * Ft[0];
-      }
-    }
-
-  // 3. Into the fixed-point sums (exact in any order).
-  std::uint64_t sliding = 0;
-  for (std::size_t h = 0; h < nh; ++h) {
-    const auto i = static_cast<std::size_t>(hi[h]), j = static_cast<std::size_t>(hj[h]);
-    const bool wall = kind[h] != 0;
-    std::int64_t *si = &sums_[i * S];
-    std::int64_t *sj = wall ? nullptr : &sums_[j * S];
-    for (int k = 0; k < D; ++k) {
-      const std::int64_t f = to_fixed(hf[k][h]);
-      si[k] += f;
-      if (sj)
-        sj[k] -= f;
-    }
-    const double ri = rad[i], rj = wall ? 0.0 : rad[j];
-    for (int k = 0; k < T; ++k) {
-      si[D + k] += to_fixed(ri * ht[k][h]);
-      if (sj)
-        sj[D + k] += to_fixed(rj * ht[k][h]);
-    }
-    sliding += slides[h];
-  }
-  if (update) {
-    // The springs of slots that no longer touch are dropped.
+  if (update)
     slot_touch_.assign(m, 0);
-    for (int k = 0; k < D; ++k)
-      std::fill(slot_xi_[k].begin(), slot_xi_[k].end(), 0.0);
-    for (std::size_t h = 0; h < nh; ++h) {
-      slot_touch_[hits_[h]] = 1;
-      for (int k = 0; k < D; ++k)
-        slot_xi_[k][hits_[h]] = hit_xi_[k][h];
+  // The slots a block at a time, so that the touching ones and their forces stay in the cache
+  // between the passes.
+  constexpr std::size_t block = 2048;
+  for (std::size_t q0 = 0; q0 < m; q0 += block) {
+    const std::size_t q1 = std::min(m, q0 + block);
+
+    // 1. The slots that touch now (a colloid pair closer than r_i + r_j, or a colloid over a
+    // wall), in key order.
+    // Without branches (whether a slot touches is a coin toss in a dense packing): every slot is
+    // written at the end of the hits, which grow only by those that touch.
+    hits_.resize(q1 - q0);
+    hit_j_.resize(q1 - q0);
+    hit_kind_.resize(q1 - q0);
+    std::size_t nh = 0;
+    for (std::size_t q = q0; q < q1; ++q) {
+      const std::size_t i = pair_i_[q];
+      const std::uint32_t pj = pair_j_[q];
+      const bool wall = WallsY && pj >= wall_high_row, low = pj == wall_low_row;
+      const std::size_t j = wall ? i : pj;
+      const double ri = c.radius[i], y = c.x[1][i];
+      const double xj[3] = {c.x[0][j], c.x[1][j], D == 3 ? c.x[2][j] : 0.0};
+      const double xi[3] = {c.x[0][i], y, D == 3 ? c.x[2][i] : 0.0};
+      double d[3];
+      const double R = ri + c.radius[j], r2 = separation<D, WallsY>(xj, xi, L, d);
+      const double wall_delta = low ? ri - y : y + ri - L[1];
+      const bool touch = wall ? wall_delta > 0.0 : r2 < R * R;
+      hits_[nh] = static_cast<std::uint32_t>(q);
+      hit_j_[nh] = j; // i for a wall (read, then not used)
+      hit_kind_[nh] = wall ? (low ? 1 : 2) : 0;
+      nh += touch;
     }
-    updates_ += nh;
-    sliding_ += sliding;
+    hits_.resize(nh);
+    hit_i_.resize(nh);
+    for (int k = 0; k < D; ++k)
+      hit_xi_[k].resize(nh);
+    for (std::size_t h = 0; h < nh; ++h) {
+      hit_i_[h] = pair_i_[hits_[h]];
+      for (int k = 0; k < D; ++k)
+        hit_xi_[k][h] = slot_xi_[k][hits_[h]];
+    }
+    for (int k = 0; k < D; ++k)
+      hit_force_[k].resize(nh);
+    for (int k = 0; k < T; ++k)
+      hit_torque_[k].resize(nh);
+    hit_slides_.resize(nh);
+
+    // 2. Each touching slot's force on i (the opposite on j, unless a wall at rest) and n x F_t
+    // (the torque per unit lever arm); the spring is advanced first when updating. A plain loop
+    // of the same operations for every contact (walls by selects), vectorised.
+    const double *x[3] = {c.x[0].data(), c.x[1].data(), D == 3 ? c.x[2].data() : nullptr};
+    const double *v[3] = {c.v[0].data(), c.v[1].data(), D == 3 ? c.v[2].data() : nullptr};
+    const double *om[3] = {c.omega[0].data(), c.omega[1].data(), c.omega[2].data()};
+    const double *rad = c.radius.data();
+    double *sxi[3] = {hit_xi_[0].data(), hit_xi_[1].data(), D == 3 ? hit_xi_[2].data() : nullptr};
+    const std::uint64_t *hi = hit_i_.data(), *hj = hit_j_.data();
+    const std::int64_t *kind = hit_kind_.data();
+    double *hf[3] = {hit_force_[0].data(), hit_force_[1].data(),
+                     D == 3 ? hit_force_[2].data() : nullptr};
+    double *ht[3] = {hit_torque_[0].data(), T == 3 ? hit_torque_[1].data() : nullptr,
+                     T == 3 ? hit_torque_[2].data() : nullptr};
+    std::int64_t *slides = hit_slides_.data();
+    const double kn = p.kn, kt = p.kt, mu_cc = p.mu_cc, mu_cw = p.mu_cw;
+    if constexpr (D == 2) {
+      const Hits2 hits{hi, hj, kind, {sxi[0], sxi[1]}, {hf[0], hf[1]}, ht[0], slides};
+      if (update)
+        contacts_2d<true, WallsY>(c, hits, nh, p, L, step);
+      else
+        contacts_2d<false, WallsY>(c, hits, nh, p, L, step);
+    } else
+      for (std::size_t h = 0; h < nh; ++h) {
+        const std::uint64_t i = hi[h], j = hj[h]; // j = i for a wall
+        const bool wall = kind[h] != 0, low = kind[h] == 1;
+        const double ri = rad[i], rj_row = rad[j], rj = wall ? 0.0 : rj_row;
+        double n[3] = {0.0, 0.0, 0.0}, d[3] = {0.0, 0.0, 0.0}, r2 = 0.0;
+        for (int k = 0; k < D; ++k) {
+          d[k] = x[k][j] - x[k][i]; // from i towards j
+          if (!(WallsY && k == 1))
+            d[k] = d[k] > 0.5 * L[k] ? d[k] - L[k] : (d[k] < -0.5 * L[k] ? d[k] + L[k] : d[k]);
+          r2 += d[k] * d[k];
+        }
+        const double dist = std::sqrt(r2);
+        const double wall_delta = low ? ri - x[1][i] : x[1][i] + ri - L[1];
+        const double delta = wall ? wall_delta : ri + rj - dist;
+        for (int k = 0; k < D; ++k)
+          n[k] = wall ? (k == 1 ? (low ? -1.0 : 1.0) : 0.0)
+                      : (dist > 0.0 ? d[k] / dist : (k == 0 ? 1.0 : 0.0)); // on top: along x
+        const double mu = wall ? mu_cw : mu_cc;
+        // U = v_i - v_j + (r_i w_i + r_j w_j) x n: the relative velocity of the contact points.
+        double U[3] = {0.0, 0.0, 0.0}, w[3] = {0.0, 0.0, 0.0};
+        for (int k = 0; k < D; ++k) {
+          const double vj = v[k][j];
+          U[k] = v[k][i] - (wall ? 0.0 : vj);
+        }
+        for (int k = 0; k < 3; ++k) {
+          const double oj = om[k][j];
+          w[k] = ri * om[k][i] + (wall ? 0.0 : rj * oj);
+        }
+        if constexpr (D == 2) {
+          U[0] -= w[2] * n[1];
+          U[1] += w[2] * n[0];
+        } else {
+          U[0] += w[1] * n[2] - w[2] * n[1];
+          U[1] += w[2] * n[0] - w[0] * n[2];
+          U[2] += w[0] * n[1] - w[1] * n[0];
+        }
+        double xi[3] = {0.0, 0.0, 0.0};
+        for (int k = 0; k < D; ++k)
+          xi[k] = sxi[k][h];
+        bool slid = false;
+        if (update) {
+          // Into the current tangent plane, the same length (eq 4.40).
+          double len2 = 0.0, xn = 0.0, un = 0.0;
+          for (int k = 0; k < D; ++k) {
+            len2 += xi[k] * xi[k];
+            xn += xi[k] * n[k];
+            un += U[k] * n[k];
+          }
+          double t2 = 0.0, turned[3] = {0.0, 0.0, 0.0};
+          for (int k = 0; k < D; ++k) {
+            turned[k] = xi[k] - xn * n[k];
+            t2 += turned[k] * turned[k];
+          }
+          const double f = t2 > 0.0 ? std::sqrt(len2 / t2) : 0.0;
+          for (int k = 0; k < D; ++k)
+            xi[k] = len2 > 0.0 ? turned[k] * f : xi[k];
+          // Stretched by the tangential relative velocity (eq 4.39), capped by Coulomb (4.41-4.42).
+          double x2 = 0.0;
+          for (int k = 0; k < D; ++k) {
+            xi[k] += (U[k] - un * n[k]) * step;
+            x2 += xi[k] * xi[k];
+          }
+          const double ft = kt * std::sqrt(x2), cap = mu * kn * delta;
+          slid = kt != 0.0 && ft > cap;
+          const double cut = slid ? cap / ft : 1.0;
+          for (int k = 0; k < D; ++k) {
+            xi[k] = kt == 0.0 ? 0.0 : (slid ? xi[k] * cut : xi[k]);
+            sxi[k][h] = xi[k];
+          }
+        }
+        slides[h] = slid;
+        double Ft[3] = {0.0, 0.0, 0.0};
+        for (int k = 0; k < D; ++k) {
+          Ft[k] = -kt * xi[k];
+          hf[k][h] = -kn * delta * n[k] + Ft[k];
+        }
+        // n x F_t (times r_i on i and r_j on j below).
+        if constexpr (D == 2) {
+          ht[0][h] = n[0] * Ft[1] - n[1] * Ft[0];
+        } else {
+          ht[0][h] = n[1] * Ft[2] - n[2] * Ft[1];
+          ht[1][h] = n[2] * Ft[0] - n[0] * Ft[2];
+          ht[2][h] = n[0] * Ft[1] - n[1] * Ft[0];
+        }
+      }
+
+    // 3. Into the fixed-point sums (exact in any order).
+    std::uint64_t sliding = 0;
+    for (std::size_t h = 0; h < nh; ++h) {
+      const auto i = static_cast<std::size_t>(hi[h]), j = static_cast<std::size_t>(hj[h]);
+      const bool wall = kind[h] != 0;
+      std::int64_t *si = &sums_[i * S];
+      std::int64_t *sj = wall ? nullptr : &sums_[j * S];
+      for (int k = 0; k < D; ++k) {
+        const std::int64_t f = to_fixed(hf[k][h]);
+        si[k] += f;
+        if (sj)
+          sj[k] -= f;
+      }
+      const double ri = rad[i], rj = wall ? 0.0 : rad[j];
+      for (int k = 0; k < T; ++k) {
+        si[D + k] += to_fixed(ri * ht[k][h]);
+        if (sj)
+          sj[D + k] += to_fixed(rj * ht[k][h]);
+      }
+      sliding += slides[h];
+    }
+    if (update) {
+      // The springs of the block's slots that no longer touch are dropped.
+      for (int k = 0; k < D; ++k)
+        std::fill(slot_xi_[k].begin() + static_cast<std::ptrdiff_t>(q0),
+                  slot_xi_[k].begin() + static_cast<std::ptrdiff_t>(q1), 0.0);
+      for (std::size_t h = 0; h < nh; ++h) {
+        slot_touch_[hits_[h]] = 1;
+        for (int k = 0; k < D; ++k)
+          slot_xi_[k][hits_[h]] = hit_xi_[k][h];
+      }
+      updates_ += nh;
+      sliding_ += sliding;
+    }
   }
 }
 
