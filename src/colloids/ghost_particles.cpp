@@ -22,14 +22,80 @@ std::uint64_t ghost_key(std::uint64_t colloid, std::uint64_t cell, std::uint64_t
   return (colloid << 40) | (cell << 8) | t;
 }
 
+// Cholesky factor L (lower, row-major m x m) of the positive semi-definite moment matrix M of
+// a group, M = sum (1, r)(1, r)^T. A pivot that vanishes to round-off against its diagonal
+// (one ghost, or ghosts on a line) leaves its column zero: for a semi-definite M the column
+// below it vanishes too, so L L^T = M still and L z has covariance M.
+template <int m> void cholesky(const double (&M)[m][m], double (&L)[m][m]) {
+  for (int j = 0; j < m; ++j) {
+    double d = M[j][j];
+    for (int k = 0; k < j; ++k)
+      d -= L[j][k] * L[j][k];
+    for (int i = 0; i < m; ++i)
+      if (i >= j)
+        L[i][j] = 0.0;
+    if (!(d > 1e-10 * M[j][j]))
+      continue;
+    const double root = std::sqrt(d);
+    L[j][j] = root;
+    for (int i = j + 1; i < m; ++i) {
+      double t = M[i][j];
+      for (int k = 0; k < j; ++k)
+        t -= L[i][k] * L[j][k];
+      L[i][j] = t / root;
+    }
+  }
+}
+
+// The Gaussian sums of a group's eta and xi at kT = sigma^2: for each component b, sigma L z
+// with z m standard normals from `normals` (eta's m D first, then xi's from the next block).
+template <int m>
+void noise_sums(const mpcd::ParticleGroup &g, double sigma, const double *normals,
+                double (&eta)[3][4], double (&xi)[3][4]) {
+  constexpr int D = m - 1, set = (m * D + 3) / 4 * 4; // normals of one set, block-rounded
+  double M[m][m], L[m][m];
+  M[0][0] = g.n;
+  for (int i = 0; i < D; ++i) {
+    M[0][1 + i] = M[1 + i][0] = g.r[i];
+    for (int j = 0; j < D; ++j)
+      M[1 + i][1 + j] = g.rr[3 * i + j];
+  }
+  cholesky<m>(M, L);
+  for (int b = 0; b < D; ++b)
+    for (int i = 0; i < m; ++i) {
+      double e = 0.0, x = 0.0;
+      for (int k = 0; k <= i; ++k) {
+        e += L[i][k] * normals[b * m + k];
+        x += L[i][k] * normals[set + b * m + k];
+      }
+      eta[b][i] = sigma * e;
+      xi[b][i] = sigma * x;
+    }
+}
+
 } // namespace
 
-void NoSlipCoupling::add_ghost_particles(mpcd::Fluid &fluid, mpcd::CellGrid &grid,
-                                         const Colloids &c, std::uint64_t step) {
+// Why sums suffice, and why they are exact in distribution. A ghost g of colloid (X, U, Omega)
+// in a cut cell sits at r_g (offset from the cell's corner c, so r' = c - X + r_g from the
+// centre) with v_g = U + Omega x r' + eta_g, eta_g Gaussian at kT; the MPC-AT rules also give it
+// a Gaussian xi_g at kT. Every rule's v' is affine in (v, xi, r) within a cell, so the
+// collision needs of a colloid's ghosts in a cell only N, sum r, sum r r^T, sum v, sum r v^T,
+// sum xi, sum r xi^T, and gives back sum (v' - v), sum r (v' - v)^T: the impulse and, about X,
+// the angular impulse. Given the positions, each component b of (sum eta, sum r eta^T) is
+// Gaussian with covariance kT M, M = sum (1, r)(1, r)^T, independent across b; so is that of
+// xi. One Cholesky factor of M per pair, and (1 + D) D standard normals each for eta and xi,
+// give exactly the distribution of the per-ghost draws. The positions keep their tries (n a
+// cell, uniform, kept inside the colloid and the channel), so N and the moments are those of
+// particles placed one by one.
+void NoSlipCoupling::add_ghost_particles(mpcd::CellGrid &grid, const Colloids &c,
+                                         std::uint64_t step) {
   const ScopedSeconds timed(seconds_);
-  first_ghost_ = fluid.size();
-  ghost_row_.clear();
-  const double n = params_.density, sigma = std::sqrt(params_.kT);
+  grid.groups.clear();
+  group_row_.clear();
+  group_corner_.clear();
+  group_key_.clear();
+  ghost_count_ = 0;
+  const double n = params_.density;
   const int whole = static_cast<int>(std::floor(n));
   const double fraction = n - whole;
   const int NX = grid.global_columns, nx = grid.cells[0], ny = grid.cells[1], nz = grid.cells[2];
@@ -104,13 +170,16 @@ void NoSlipCoupling::add_ghost_particles(mpcd::Fluid &fluid, mpcd::CellGrid &gri
           int tries = whole;
           if (fraction > 0.0 && rng::open01(position_words_[blocks][0]) < fraction)
             ++tries;
+          // The kept tries' moments: count, sum r, sum r r^T (r from the cell's corner).
+          std::uint32_t kept = 0;
+          double s1[3] = {0.0, 0.0, 0.0}, s2[3][3] = {};
           for (int t = 0; t < tries; ++t) {
-            const std::uint64_t key = ghost_key(c.id[a], gcell, static_cast<std::uint64_t>(t));
             const int word = dim_ == 2 ? 2 * (t & 1) : 0;
             const auto &u = position_words_[t / per_block];
-            double r[3] = {0.0, 0.0, 0.0}, r2 = 0.0;
+            double r[3] = {0.0, 0.0, 0.0}, q[3] = {0.0, 0.0, 0.0}, r2 = 0.0;
             for (int k = 0; k < dim_; ++k) {
-              r[k] = corner[k] + rng::open01(u[word + k]);
+              q[k] = rng::open01(u[word + k]);
+              r[k] = corner[k] + q[k];
               r2 += r[k] * r[k];
             }
             if (r2 >= R2)
@@ -118,70 +187,118 @@ void NoSlipCoupling::add_ghost_particles(mpcd::Fluid &fluid, mpcd::CellGrid &gri
             const double y = X[1] + r[1];
             if (walls && !(y >= 0.0 && y <= box_.length[1]))
               continue;
-            const double w[3] = {c.omega[0][a], c.omega[1][a], c.omega[2][a]};
-            const double rigid[3] = {c.v[0][a] + w[1] * r[2] - w[2] * r[1],
-                                     c.v[1][a] + w[2] * r[0] - w[0] * r[2],
-                                     (dim_ == 3 ? c.v[2][a] : 0.0) + w[0] * r[1] - w[1] * r[0]};
-            // The position from the cell's own corner, so that binning finds this cell.
-            const double origin[3] = {column + sh[0], (walls ? j - 1 : row) + sh[1],
-                                      dim_ == 3 ? layer + sh[2] : 0.0};
+            ++kept;
             for (int k = 0; k < dim_; ++k) {
-              double x = origin[k] + rng::open01(u[word + k]);
-              if (!(k == 1 && walls))
-                x = mpcd::wrap_periodic(x, box_.length[k]);
-              fluid.x[k].push_back(x);
-              fluid.v[k].push_back(rigid[k]); // + the thermal part, drawn below in batches
+              s1[k] += q[k];
+              for (int m = 0; m <= k; ++m)
+                s2[k][m] += q[k] * q[m];
             }
-            fluid.id.push_back(ghost_particle_id | key);
-            fluid.cell.push_back(0); // binned below
-            ghost_row_.push_back(static_cast<std::uint32_t>(a));
           }
+          if (kept == 0)
+            continue;
+          mpcd::ParticleGroup g;
+          g.cell = static_cast<std::uint32_t>(cell);
+          g.n = kept;
+          for (int k = 0; k < dim_; ++k) {
+            g.r[k] = s1[k];
+            for (int m = 0; m <= k; ++m)
+              g.rr[3 * k + m] = g.rr[3 * m + k] = s2[k][m];
+          }
+          grid.groups.push_back(g);
+          group_row_.push_back(static_cast<std::uint32_t>(a));
+          group_corner_.push_back({corner[0], corner[1], corner[2]});
+          group_key_.push_back(ghost_key(c.id[a], gcell, 0));
+          ghost_count_ += kept;
         }
       }
     }
   }
-  // The ghosts' Maxwell velocities at kT, keyed by (colloid id, global cell, try): a batch of
-  // keys at a time (the vectorised Philox and Box-Muller of rng_batch; the last batch padded).
-  const std::size_t made = fluid.size() - first_ghost_;
-  std::uint64_t keys[rng::batch];
-  double g[4][rng::batch];
-  for (std::size_t b0 = 0; b0 < made; b0 += rng::batch) {
-    const std::size_t m = std::min(rng::batch, made - b0);
-    for (std::size_t j = 0; j < rng::batch; ++j)
-      keys[j] = j < m ? fluid.id[first_ghost_ + b0 + j] & ~ghost_particle_id : 0;
-    rng::gaussian_batch(params_.seed, rng::Purpose::ghost_velocity, step, keys, dim_ == 2 ? 2 : 4,
-                        g);
-    for (int k = 0; k < dim_; ++k) {
-      double *v = fluid.v[k].data() + first_ghost_ + b0;
-      for (std::size_t j = 0; j < m; ++j)
-        v[j] += sigma * g[k][j];
+  // The groups' Gaussians: (1 + D) D for the thermal velocities eta and as many for the MPC-AT
+  // draws xi, four a Philox block, keyed by (colloid id, global cell, block): tries 0-2 for
+  // eta, 128-130 for xi; a batch of keys at a time (the last batch padded).
+  const int rows = dim_ + 1, per_set = (rows * dim_ + 3) / 4, per_group = 2 * per_set;
+  const std::size_t groups = grid.groups.size(), keys = groups * per_group;
+  group_normals_.resize(keys * 4);
+  std::uint64_t ids[rng::batch];
+  double z[4][rng::batch];
+  for (std::size_t b0 = 0; b0 < keys; b0 += rng::batch) {
+    const std::size_t m = std::min(rng::batch, keys - b0);
+    for (std::size_t j = 0; j < rng::batch; ++j) {
+      const std::size_t key = b0 + j, block = key % per_group;
+      ids[j] =
+          j >= m ? 0
+                 : group_key_[key / per_group] +
+                       (block < static_cast<std::size_t>(per_set) ? block : 128 + block - per_set);
     }
+    rng::gaussian_batch(params_.seed, rng::Purpose::ghost_velocity, step, ids, 4, z);
+    for (std::size_t j = 0; j < m; ++j)
+      for (int k = 0; k < 4; ++k)
+        group_normals_[(b0 + j) * 4 + k] = z[k][j];
   }
-  for (int k = 0; k < dim_; ++k)
-    ghost_v0_[k].assign(fluid.v[k].begin() + static_cast<std::ptrdiff_t>(first_ghost_),
-                        fluid.v[k].end());
-  mpcd::bin_more_particles(fluid, grid, first_ghost_);
+  const double sigma = std::sqrt(params_.kT);
+  for (std::size_t q = 0; q < groups; ++q) {
+    mpcd::ParticleGroup &g = grid.groups[q];
+    const std::size_t a = group_row_[q];
+    const double *corner = group_corner_[q].data();
+    const double *normals = &group_normals_[q * per_group * 4];
+    double eta[3][4] = {}, xi[3][4] = {}; // [b][0]: sum, [b][1 + a]: sum r_a, of component b
+    if (dim_ == 2)
+      noise_sums<3>(g, sigma, normals, eta, xi);
+    else
+      noise_sums<4>(g, sigma, normals, eta, xi);
+    const double U[3] = {c.v[0][a], c.v[1][a], dim_ == 3 ? c.v[2][a] : 0.0};
+    const double W[3] = {c.omega[0][a], c.omega[1][a], c.omega[2][a]};
+    // sum r' = N c' + sum r with c' the corner from the centre; v = U + W x r' + eta.
+    double first[3];
+    for (int k = 0; k < 3; ++k)
+      first[k] = g.n * corner[k] + g.r[k];
+    for (int b = 0; b < dim_; ++b) {
+      const int b1 = (b + 1) % 3, b2 = (b + 2) % 3; // (W x y)_b = W_b1 y_b2 - W_b2 y_b1
+      g.v[b] = g.n * U[b] + W[b1] * first[b2] - W[b2] * first[b1] + eta[b][0];
+      g.xi[b] = xi[b][0];
+      const double spin_corner = W[b1] * corner[b2] - W[b2] * corner[b1];
+      for (int k = 0; k < dim_; ++k) {
+        g.rv[3 * k + b] = g.r[k] * (U[b] + spin_corner) + W[b1] * g.rr[3 * k + b2] -
+                          W[b2] * g.rr[3 * k + b1] + eta[b][1 + k];
+        g.rxi[3 * k + b] = xi[b][1 + k];
+      }
+    }
+    // Into the cell's sums as binning would put the ghosts (taken out again after the
+    // collision by the same fixed-point values).
+    mpcd::CellSums &sum = grid.sums[g.cell];
+    sum.n += g.n;
+    for (int k = 0; k < dim_; ++k)
+      sum.p[k] += fixed::from_double(g.v[k]);
+  }
 }
 
-void NoSlipCoupling::take_back_ghost_particles(mpcd::Fluid &fluid, mpcd::CellGrid &grid,
+void NoSlipCoupling::take_back_ghost_particles(mpcd::CellGrid &grid,
+                                               const mpcd::CollisionScratch &collision,
                                                Colloids &c) {
   const ScopedSeconds timed(seconds_);
-  const std::size_t m = ghost_row_.size();
-  for (std::size_t g = 0; g < m; ++g) {
-    const std::size_t i = first_ghost_ + g, a = ghost_row_[g];
-    double dp[3] = {0.0, 0.0, 0.0}, r[3] = {0.0, 0.0, 0.0};
-    mpcd::CellSums &sum = grid.sums[fluid.cell[i]];
-    sum.n -= 1; // out of the cell sums again, exactly as binning put it in
-    for (int k = 0; k < dim_; ++k) {
-      dp[k] = fluid.v[k][i] - ghost_v0_[k][g];
-      sum.p[k] -= fixed::from_double(ghost_v0_[k][g]);
-      r[k] = fluid.x[k][i] - c.x[k][a];
-      if (!(k == 1 && box_.walls_y))
-        r[k] = minimum_image(r[k], box_.length[k]);
+  const std::size_t groups = grid.groups.size();
+  if (collision.group_change.size() != groups)
+    throw invariant_error("the collision left the ghost particles' groups without their change");
+  for (std::size_t q = 0; q < groups; ++q) {
+    const mpcd::ParticleGroup &g = grid.groups[q];
+    const mpcd::GroupChange &d = collision.group_change[q];
+    const double *r = group_corner_[q].data();
+    mpcd::CellSums &sum = grid.sums[g.cell];
+    sum.n -= g.n; // out of the cell sums again, exactly as they went in
+    for (int k = 0; k < dim_; ++k)
+      sum.p[k] -= fixed::from_double(g.v[k]);
+    // The angular impulse about the centre: sum (c' + r) x dv = c' x dP + sum r x dv.
+    double l[3];
+    if (dim_ == 2) {
+      l[0] = d.rv[1] - d.rv[3];
+    } else {
+      l[0] = d.rv[5] - d.rv[7];
+      l[1] = d.rv[6] - d.rv[2];
+      l[2] = d.rv[1] - d.rv[3];
     }
-    add_impulse(a, r, dp);
+    add_impulse(group_row_[q], r, d.v.data(), l);
   }
-  fluid.resize(first_ghost_);
+  grid.groups.clear();
   apply_impulses(c, false);
 }
 

@@ -137,16 +137,19 @@ void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c) {
   impulse_.assign(c.size() * static_cast<std::size_t>(stride_), 0);
 }
 
-void NoSlipCoupling::add_impulse(std::size_t a, const double *r, const double *dp) {
+void NoSlipCoupling::add_impulse(std::size_t a, const double *r, const double *dp,
+                                 const double *more) {
   std::int64_t *s = &impulse_[a * static_cast<std::size_t>(stride_)];
   for (int k = 0; k < dim_; ++k)
     s[k] += fixed::from_double(dp[k]);
+  const double zero[3] = {0.0, 0.0, 0.0};
+  const double *m = more ? more : zero;
   if (dim_ == 2) {
-    s[2] += fixed::from_double(r[0] * dp[1] - r[1] * dp[0]);
+    s[2] += fixed::from_double(r[0] * dp[1] - r[1] * dp[0] + m[0]);
   } else {
-    s[3] += fixed::from_double(r[1] * dp[2] - r[2] * dp[1]);
-    s[4] += fixed::from_double(r[2] * dp[0] - r[0] * dp[2]);
-    s[5] += fixed::from_double(r[0] * dp[1] - r[1] * dp[0]);
+    s[3] += fixed::from_double(r[1] * dp[2] - r[2] * dp[1] + m[0]);
+    s[4] += fixed::from_double(r[2] * dp[0] - r[0] * dp[2] + m[1]);
+    s[5] += fixed::from_double(r[0] * dp[1] - r[1] * dp[0] + m[2]);
   }
 }
 

@@ -321,13 +321,13 @@ void MpcdSimulation::step_stages() {
   } else {
     bin_into_cells(); // with slabs: particles leaving the slab migrate, arrivals are binned
     if (p.no_slip)    // ghost particles fill the cells the colloids cut
-      no_slip_->add_ghost_particles(fluid_, grid_, colloids_, step);
+      no_slip_->add_ghost_particles(grid_, colloids_, step);
     if (p.virtual_particles) // fill the cells cut by the walls to the mean density
       walls::add_virtual_particles(grid_, p.density, p.kT, p.seed, step, p.virtual_at_noise,
                                    p.virtual_mirror);
     collide(step);
     if (p.no_slip) { // their momentum change to the colloids; ghosts leave, colloids may too
-      no_slip_->take_back_ghost_particles(fluid_, grid_, colloids_);
+      no_slip_->take_back_ghost_particles(grid_, collision_scratch_, colloids_);
       no_slip_->hand_over(colloids_);
     }
     thermostat(step);

@@ -83,6 +83,60 @@ void virtual_delta(const CellGrid &g, CollisionScratch &s, std::size_t sum_strid
   }
 }
 
+// The groups' sums (grid.groups) that the AT rules add to the per-cell fixed-point sums: their
+// xi (both rules) and, for AT+a (positions = true), their positions' first and second moments
+// and angular momentum r x (v - xi), laid out as the particles' sums.
+template <int D, int SS, bool positions>
+void add_group_sums(const CellGrid &g, CollisionScratch &s) {
+  for (const ParticleGroup &q : g.groups) {
+    std::int64_t *sum = &s.cell_fixed[static_cast<std::size_t>(q.cell) * SS];
+    for (int k = 0; k < D; ++k)
+      sum[k] += from_double(q.xi[k]);
+    if constexpr (positions) {
+      for (int k = 0; k < D; ++k)
+        sum[D + k] += from_double(q.r[k]);
+      std::int64_t *m = sum + 2 * D;
+      std::array<double, 9> w; // sum r_a (v - xi)_b
+      for (int j = 0; j < 9; ++j)
+        w[j] = q.rv[j] - q.rxi[j];
+      if constexpr (D == 2) {
+        m[0] += from_double(q.rr[0] + q.rr[4]);
+        m[1] += from_double(w[1] - w[3]);
+      } else {
+        const int upper[6] = {0, 1, 2, 4, 5, 8}; // xx, xy, xz, yy, yz, zz
+        for (int j = 0; j < 6; ++j)
+          m[j] += from_double(q.rr[upper[j]]);
+        m[6] += from_double(w[5] - w[7]);
+        m[7] += from_double(w[6] - w[2]);
+        m[8] += from_double(w[1] - w[3]);
+      }
+    }
+  }
+}
+
+// A group's change when each of its particles gets v' = xi + delta + omega x (r - rc) (AT:
+// omega = 0): the sums of v' - v and r_a (v'_b - v_b) from the group's moments.
+template <int D>
+void group_change(const ParticleGroup &q, const double *delta, const double *rc,
+                  const double *omega, GroupChange &out) {
+  // T_ad = sum r_a (r - rc)_d, and sum (r - rc).
+  double T[3][3] = {}, c[3] = {0.0, 0.0, 0.0};
+  for (int a = 0; a < D; ++a) {
+    c[a] = q.r[a] - q.n * rc[a];
+    for (int d = 0; d < D; ++d)
+      T[a][d] = q.rr[3 * a + d] - q.r[a] * rc[d];
+  }
+  const double w[3] = {D == 3 ? omega[0] : 0.0, D == 3 ? omega[1] : 0.0,
+                       D == 3 ? omega[2] : omega[0]};
+  for (int b = 0; b < D; ++b) {
+    const int b1 = (b + 1) % 3, b2 = (b + 2) % 3; // (w x q)_b = w_b1 q_b2 - w_b2 q_b1
+    out.v[b] = q.xi[b] + q.n * delta[b] + w[b1] * c[b2] - w[b2] * c[b1] - q.v[b];
+    for (int a = 0; a < D; ++a)
+      out.rv[3 * a + b] = q.rxi[3 * a + b] + q.r[a] * delta[b] + w[b1] * T[a][b2] -
+                          w[b2] * T[a][b1] - q.rv[3 * a + b];
+  }
+}
+
 template <int D>
 void at_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, std::uint64_t seed,
                std::uint64_t step) {
@@ -95,6 +149,7 @@ void at_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, std:
     for (int k = 0; k < D; ++k)
       sum[k] += from_double(s.noise[k][i]);
   });
+  add_group_sums<D, D, false>(g, s);
   // Per cell: delta = u - <xi>, so that v' = xi + delta keeps the cell momentum.
   s.cell.resize(nc * D);
   for (std::size_t c = 0; c < nc; ++c) {
@@ -103,6 +158,10 @@ void at_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, std:
       s.cell[c * D + k] = (to_double(g.sums[c].p[k]) - to_double(s.cell_fixed[c * D + k])) * inv_n;
   }
   virtual_delta<D>(g, s, D, D);
+  s.group_change.resize(g.groups.size());
+  const double none[3] = {0.0, 0.0, 0.0};
+  for (std::size_t j = 0; j < g.groups.size(); ++j)
+    group_change<D>(g.groups[j], &s.cell[g.groups[j].cell * D], none, none, s.group_change[j]);
   for (std::size_t i = 0; i < n; ++i) {
     prefetch_record(s.cell, f.cell.data(), i, n, D);
     const double *delta = &s.cell[static_cast<std::size_t>(f.cell[i]) * D];
@@ -168,6 +227,7 @@ void at_a_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, st
     for (int k = 0; k < NL; ++k)
       m[NM + k] += from_double(l[k]);
   });
+  add_group_sums<D, SS, true>(g, s);
 
   s.cell.assign(nc * PS, 0.0);
   for (std::size_t c = 0; c < nc; ++c) {
@@ -255,6 +315,11 @@ void at_a_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, st
     }
   }
   virtual_delta<D>(g, s, SS, PS);
+  s.group_change.resize(g.groups.size());
+  for (std::size_t j = 0; j < g.groups.size(); ++j) {
+    const double *par = &s.cell[g.groups[j].cell * PS];
+    group_change<D>(g.groups[j], par, par + D, par + 2 * D, s.group_change[j]);
+  }
 
   for (std::size_t i = 0; i < n; ++i) {
     prefetch_record(s.cell, f.cell.data(), i, n, PS);

@@ -93,6 +93,54 @@ void srd_cells(const CellGrid &g, std::vector<double> &par, double angle, std::u
   }
 }
 
+// Each group's change: every particle gets v' - v = A (v - u), with A = R - 1 the cell's
+// rotation less the identity (zero in a cell left unrotated).
+template <int D>
+void srd_groups(const CellGrid &g, std::vector<double> &par, std::vector<GroupChange> &change) {
+  const double *base = aligned_records(par, g.size(), stride<D>);
+  change.resize(g.groups.size());
+  for (std::size_t j = 0; j < g.groups.size(); ++j) {
+    const ParticleGroup &q = g.groups[j];
+    const double *p = base + static_cast<std::size_t>(q.cell) * stride<D>;
+    double A[3][3] = {};
+    if constexpr (D == 2) {
+      A[0][0] = A[1][1] = p[2] - 1.0;
+      A[0][1] = -p[3];
+      A[1][0] = p[3];
+    } else { // A w = (cos - 1)(w - (a.w) a) + sin (a x w)
+      const double *ax = p + 3, c1 = p[6], s1 = p[7];
+      for (int b = 0; b < 3; ++b)
+        for (int c = 0; c < 3; ++c)
+          A[b][c] = c1 * ((b == c ? 1.0 : 0.0) - ax[b] * ax[c]);
+      A[0][1] -= s1 * ax[2];
+      A[0][2] += s1 * ax[1];
+      A[1][0] += s1 * ax[2];
+      A[1][2] -= s1 * ax[0];
+      A[2][0] -= s1 * ax[1];
+      A[2][1] += s1 * ax[0];
+    }
+    // W = sum (v - u) and sum r_a (v - u)_c; the change is A applied to each.
+    double W[3], RW[3][3];
+    for (int c = 0; c < D; ++c) {
+      W[c] = q.v[c] - q.n * p[c];
+      for (int a = 0; a < D; ++a)
+        RW[a][c] = q.rv[3 * a + c] - q.r[a] * p[c];
+    }
+    GroupChange &out = change[j];
+    for (int b = 0; b < D; ++b) {
+      out.v[b] = 0.0;
+      for (int c = 0; c < D; ++c)
+        out.v[b] += A[b][c] * W[c];
+      for (int a = 0; a < D; ++a) {
+        double t = 0.0;
+        for (int c = 0; c < D; ++c)
+          t += A[b][c] * RW[a][c];
+        out.rv[3 * a + b] = t;
+      }
+    }
+  }
+}
+
 template <int D> void srd_particles(Fluid &f, std::vector<double> &par, std::size_t nc) {
   double *vx = f.v[0].data(), *vy = f.v[1].data(), *vz = f.v[2].data();
   const std::uint32_t *cell = f.cell.data();
@@ -127,9 +175,11 @@ void collide_srd(Fluid &fluid, const CellGrid &grid, CollisionScratch &scratch, 
                  std::uint64_t seed, std::uint64_t step) {
   if (grid.dim == 3) {
     srd_cells<3>(grid, scratch.cell, angle_rad, seed, step);
+    srd_groups<3>(grid, scratch.cell, scratch.group_change);
     srd_particles<3>(fluid, scratch.cell, grid.size());
   } else {
     srd_cells<2>(grid, scratch.cell, angle_rad, seed, step);
+    srd_groups<2>(grid, scratch.cell, scratch.group_change);
     srd_particles<2>(fluid, scratch.cell, grid.size());
   }
 }

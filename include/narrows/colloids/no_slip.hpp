@@ -21,10 +21,12 @@
 //   (the engine shifts the grid and bins the fluid)
 //   add_ghost_particles    in each cell cut by a colloid's surface, at the fluid density, at
 //                          random points inside the colloid, velocity U + Omega x r + a
-//                          Maxwell-Boltzmann draw at kT (eq 4.18), binned into the grid
+//                          Maxwell-Boltzmann draw at kT (eq 4.18); each (colloid, cell) pair's
+//                          ghosts enter the collision as one group of sums (grid.groups, see
+//                          ghost_particles.cpp), exact in distribution
 //   (the engine collides)
 //   take_back_ghost_particles  their momentum and angular momentum change to the colloids;
-//                          they leave the fluid arrays and the cell sums
+//                          they leave the cell sums
 //   hand_over              ghost colloids go; colloids that left the slab change owner (with
 //                          the contact history they own)
 // All calls are collective over the slabs' communicator.
@@ -39,6 +41,7 @@
 #include "narrows/colloids/springs.hpp"
 #include "narrows/core/rng.hpp"
 #include "narrows/mpcd/cell_grid.hpp"
+#include "narrows/mpcd/collision.hpp"
 #include "narrows/mpcd/fluid.hpp"
 #include "narrows/parallel/exchange.hpp"
 #include "narrows/parallel/slabs.hpp"
@@ -64,9 +67,6 @@ struct NoSlipParams {
 // Turns colloid a's orientation by its angular velocity over time dt.
 void rotate(Colloids &c, std::size_t a, double dt);
 
-// Fluid ids at or above this are ghost particles (they exist only within a step).
-inline constexpr std::uint64_t ghost_particle_id = 1ull << 63;
-
 struct BounceStats {
   std::uint64_t particles = 0; // fluid particles bounced this step
   int deepest = 0;             // most halvings any one needed
@@ -78,9 +78,9 @@ public:
 
   void move_colloids(const mpcd::Fluid &fluid, Colloids &c);
   BounceStats bounce_back(mpcd::Fluid &fluid, Colloids &c, const FluidStream &stream);
-  void add_ghost_particles(mpcd::Fluid &fluid, mpcd::CellGrid &grid, const Colloids &c,
-                           std::uint64_t step);
-  void take_back_ghost_particles(mpcd::Fluid &fluid, mpcd::CellGrid &grid, Colloids &c);
+  void add_ghost_particles(mpcd::CellGrid &grid, const Colloids &c, std::uint64_t step);
+  void take_back_ghost_particles(mpcd::CellGrid &grid, const mpcd::CollisionScratch &collision,
+                                 Colloids &c);
   void hand_over(Colloids &c);
 
   // Bytes this rank sent for colloids (ghosts, reverse sums, migration) since the start.
@@ -96,15 +96,16 @@ public:
   ContactHistory &contact_history() { return history_; }
   const ContactHistory &contact_history() const { return history_; }
   // Ghost particles added in the last step on this rank.
-  std::size_t ghost_particles() const { return ghost_row_.size(); }
+  std::size_t ghost_particles() const { return ghost_count_; }
 
 private:
   // Spring contacts: moves the surface point s of colloid a (relative to its centre) out of the
   // colloids and walls a overlaps, onto the rim where the surfaces meet: 0 if it was outside
   // them, 1 if it moved, -1 if it could not (the rim inside a third).
   int leave_overlaps(const Colloids &c, std::size_t a, double *s) const;
-  // Adds the impulse dp (on the colloid, at offset r from its centre) to row a's sums.
-  void add_impulse(std::size_t a, const double *r, const double *dp);
+  // Adds the impulse dp (on the colloid, at offset r from its centre) to row a's sums, and
+  // the angular impulse `more` (1 or 3 components) if given.
+  void add_impulse(std::size_t a, const double *r, const double *dp, const double *more = nullptr);
   // Sends the ghost rows' sums to their owners, which change U and Omega; zeroes the sums;
   // with `refresh` the ghosts get the new U and Omega.
   void apply_impulses(Colloids &c, bool refresh);
@@ -127,11 +128,14 @@ private:
   mpcd::Fluid batch_;
   std::vector<std::size_t> batch_index_;
   std::vector<long> batch_hit_;
-  // Ghost particles of this step: first fluid row, colloid row, velocity before the collision.
-  std::size_t first_ghost_ = 0;
-  std::vector<std::uint32_t> ghost_row_;
-  std::array<std::vector<double>, 3> ghost_v0_;
+  // Ghost particles of this step, one group per (colloid, cut cell) pair (grid.groups): the
+  // colloid row, the cell's corner from the colloid's centre, the pair's key of draws.
+  std::size_t ghost_count_ = 0;
+  std::vector<std::uint32_t> group_row_;
+  std::vector<std::array<double, 3>> group_corner_;
+  std::vector<std::uint64_t> group_key_;
   std::vector<rng::Block> position_words_; // a cut cell's ghost position draws
+  std::vector<double> group_normals_;      // the groups' Gaussian draws
   HardSphereStats contacts_;
   std::optional<SpringContacts> springs_;
   ContactHistory history_;

@@ -26,6 +26,28 @@ struct VirtualCell {
   std::array<double, 3> noise{0.0, 0.0, 0.0};    // sum of their MPC-AT Gaussian velocities
 };
 
+// Particles of one cell known only by their sums (the ghost particles of a no-slip colloid in
+// a cell it cuts): positions r as offsets from the cell's corner (the collision rules' in_cell),
+// velocities v, and the Gaussian velocities xi the MPC-AT rules give them. Whoever lists a
+// group also adds its count and its summed velocity to the cell's sums (as binning would).
+// Tensors are full 3x3, [3 a + b] = sum r_a r_b or sum r_a v_b (zero rows and columns in 2D).
+struct ParticleGroup {
+  std::uint32_t cell = 0; // local cell index
+  std::uint32_t n = 0;    // number of particles
+  std::array<double, 3> r{0.0, 0.0, 0.0};
+  std::array<double, 9> rr{};
+  std::array<double, 3> v{0.0, 0.0, 0.0};
+  std::array<double, 9> rv{};
+  std::array<double, 3> xi{0.0, 0.0, 0.0};
+  std::array<double, 9> rxi{};
+};
+
+// What a collision did to a group: the sums of v' - v and of r_a (v'_b - v_b).
+struct GroupChange {
+  std::array<double, 3> v{0.0, 0.0, 0.0};
+  std::array<double, 9> rv{};
+};
+
 // The cells one rank owns: its slab of x columns [first_column, first_column + cells[0]) of
 // the global grid (global_columns wide, periodic), and all of y (and z).
 // With walls at y = 0 and y = L_y the y axis is not periodic: the grid has L_y + 1 rows, the
@@ -40,6 +62,7 @@ struct CellGrid {
   std::array<double, 3> shift{0.0, 0.0, 0.0}; // grid origin offset, each in [-1/2, 1/2)
   std::vector<CellSums> sums;
   std::vector<VirtualCell> virtual_cells; // filled by walls::add_virtual_particles
+  std::vector<ParticleGroup> groups;      // filled by colloids' add_ghost_particles
 
   // The whole box (one rank), or the slab [first_column, first_column + columns).
   explicit CellGrid(const Box &box, int first_column = 0, int columns = -1);

@@ -15,7 +15,13 @@ struct CollisionScratch {
   std::vector<double> cell;                 // per-cell parameters, rule-specific stride
   std::array<std::vector<double>, 3> noise; // per-particle Gaussian velocities (AT rules)
   std::vector<std::int64_t> cell_fixed;     // per-cell fixed-point sums beyond momentum
+  std::vector<GroupChange> group_change;    // per grid.groups entry, what the collision did
 };
+
+// Every rule below (not the random solvents' own steps) also collides the particle groups of
+// grid.groups as if their particles were listed (SRD: rotated about the cell mean; AT: the
+// groups' xi; AT+a: their positions' moments enter the cell's centre, moment of inertia and
+// angular momentum) and writes each group's change to scratch.group_change.
 
 // SRD: rotate velocities relative to the cell mean by +-alpha (2D, sign random per cell) or
 // by alpha about a random unit axis (3D). Conserves momentum and kinetic energy per cell.
