@@ -11,48 +11,68 @@ namespace narrows::colloids {
 void ColloidLookup::build(const Colloids &c, const mpcd::Box &box, int first_column, int columns,
                           double extent) {
   box_ = box;
-  const int L = box.cells[0];
+  const int S = box.dim == 2 ? 2 : 1; // lookup cells per unit length
+  per_unit_ = S;
+  const int L = S * box.cells[0];
+  lx_ = L;
   const int e = static_cast<int>(std::ceil(extent)) + 1;
-  if (columns + 2 * e >= L) {
+  if (columns + 2 * e >= box.cells[0]) {
     lo_ = 0;
     nx_ = L;
   } else {
-    lo_ = ((first_column - e) % L + L) % L;
-    nx_ = columns + 2 * e;
+    lo_ = ((S * (first_column - e)) % L + L) % L;
+    nx_ = S * (columns + 2 * e);
   }
-  ny_ = box.cells[1];
-  nz_ = box.dim == 3 ? box.cells[2] : 1;
+  const int cells[3] = {L, S * box.cells[1], box.dim == 3 ? S * box.cells[2] : 1};
+  ny_ = cells[1];
+  nz_ = cells[2];
   head_.assign(static_cast<std::size_t>(nx_) * ny_ * nz_, -1);
-  next_.clear();
-  row_.clear();
+  entries_.clear();
   const int dim = box.dim;
   for (std::size_t a = 0; a < c.size(); ++a) {
-    const double r = c.radius[a];
+    const double r = c.radius[a], r2 = r * r;
+    const double X[3] = {c.x[0][a], c.x[1][a], dim == 3 ? c.x[2][a] : 0.0};
     int from[3] = {0, 0, 0}, to[3] = {0, 0, 0};
+    bool whole[3] = {false, false, false}; // every cell along this axis (distance not measured)
     for (int k = 0; k < dim; ++k) {
-      from[k] = static_cast<int>(std::floor(c.x[k][a] - r));
-      to[k] = static_cast<int>(std::floor(c.x[k][a] + r));
+      from[k] = static_cast<int>(std::floor((c.x[k][a] - r) * S));
+      to[k] = static_cast<int>(std::floor((c.x[k][a] + r) * S));
       if (k == 1 && box.walls_y) {
         from[k] = std::max(from[k], 0);
         to[k] = std::min(to[k], ny_ - 1);
-      } else if (to[k] - from[k] + 1 >= box.cells[k]) { // wider than the box: every cell
+      } else if (to[k] - from[k] + 1 >= cells[k]) { // wider than the box: every cell
         from[k] = 0;
-        to[k] = box.cells[k] - 1;
+        to[k] = cells[k] - 1;
+        whole[k] = true;
       }
     }
+    // Squared distance from the centre to the interval [i, i + 1) / S along axis k (i
+    // unwrapped, as from[k] .. to[k]): a cell at r or beyond holds no point inside (the margin
+    // covers rounding).
+    const double h = 1.0 / S;
+    const auto gap2 = [&](int k, int i) {
+      if (whole[k])
+        return 0.0;
+      const double q = std::clamp(X[k], i * h, (i + 1) * h) - X[k];
+      return q * q;
+    };
+    const double reach2 = r2 * (1.0 + 1e-9);
     for (int i = from[0]; i <= to[0]; ++i) {
       const int col = ((i % L) + L) % L;
       const int ix = ((col - lo_) % L + L) % L;
       if (ix >= nx_)
         continue;
+      const double di = gap2(0, i);
       for (int j = from[1]; j <= to[1]; ++j) {
         const int iy = ((j % ny_) + ny_) % ny_;
+        const double dj = di + gap2(1, j);
         for (int l = from[2]; l <= to[2]; ++l) {
+          if (dj + (dim == 3 ? gap2(2, l) : 0.0) >= reach2)
+            continue;
           const int iz = ((l % nz_) + nz_) % nz_;
           const std::size_t cell = ix + static_cast<std::size_t>(nx_) * (iy + ny_ * iz);
-          next_.push_back(head_[cell]);
-          row_.push_back(static_cast<int>(a));
-          head_[cell] = static_cast<int>(row_.size() - 1);
+          entries_.push_back({{X[0], X[1], X[2]}, r2, static_cast<long>(a), head_[cell]});
+          head_[cell] = static_cast<int>(entries_.size() - 1);
         }
       }
     }
@@ -61,17 +81,18 @@ void ColloidLookup::build(const Colloids &c, const mpcd::Box &box, int first_col
 
 long ColloidLookup::inside_listed(const Colloids &c, const double *p, int cell) const {
   long best = -1;
-  for (int e = head_[static_cast<std::size_t>(cell)]; e >= 0; e = next_[e]) {
-    const auto a = static_cast<std::size_t>(row_[e]);
+  for (int e = head_[static_cast<std::size_t>(cell)]; e >= 0;) {
+    const Entry &entry = entries_[static_cast<std::size_t>(e)];
     double r2 = 0.0;
     for (int k = 0; k < box_.dim; ++k) {
-      double d = p[k] - c.x[k][a];
+      double d = p[k] - entry.x[k];
       if (!(k == 1 && box_.walls_y))
         d = minimum_image(d, box_.length[k]);
       r2 += d * d;
     }
-    if (r2 < c.radius[a] * c.radius[a] && (best < 0 || c.id[a] < c.id[best]))
-      best = static_cast<long>(a);
+    if (r2 < entry.r2 && (best < 0 || c.id[entry.row] < c.id[best]))
+      best = entry.row;
+    e = entry.next;
   }
   return best;
 }

@@ -94,6 +94,7 @@ void NoSlipCoupling::add_ghost_particles(mpcd::CellGrid &grid, const Colloids &c
   group_row_.clear();
   group_corner_.clear();
   group_key_.clear();
+  cut_.clear();
   ghost_count_ = 0;
   const double n = params_.density;
   const int whole = static_cast<int>(std::floor(n));
@@ -102,26 +103,7 @@ void NoSlipCoupling::add_ghost_particles(mpcd::CellGrid &grid, const Colloids &c
   const bool walls = grid.walls_y;
   const double *sh = grid.shift.data();
   const int per_block = dim_ == 2 ? 2 : 1;
-  // Fills position_words_ with the blocks of a cell's tries and its fractional try.
-  const auto position_keys = [&](std::uint64_t colloid, std::uint64_t gcell, int blocks) {
-    const std::size_t count = static_cast<std::size_t>(blocks) + 1;
-    position_words_.resize(count);
-    std::uint64_t ids[rng::batch];
-    std::uint32_t w[4][rng::batch];
-    for (std::size_t b0 = 0; b0 < count; b0 += rng::batch) {
-      const std::size_t m = std::min(rng::batch, count - b0);
-      for (std::size_t j = 0; j < rng::batch; ++j) {
-        const std::size_t b = b0 + j;
-        ids[j] = j >= m ? 0
-                 : b + 1 == count
-                     ? ghost_key(colloid, gcell, 255)
-                     : ghost_key(colloid, gcell, b * static_cast<std::size_t>(per_block));
-      }
-      rng::draw_batch(params_.seed, rng::Purpose::ghost_position, step, ids, w);
-      for (std::size_t j = 0; j < m; ++j)
-        position_words_[b0 + j] = {w[0][j], w[1][j], w[2][j], w[3][j]};
-    }
-  };
+  // 1. The cut cells: (colloid row, local cell, global cell, corner from the centre).
   for (std::size_t a = 0; a < c.size(); ++a) {
     const double R = c.radius[a], R2 = R * R;
     const double X[3] = {c.x[0][a], c.x[1][a], dim_ == 3 ? c.x[2][a] : 0.0};
@@ -161,57 +143,113 @@ void NoSlipCoupling::add_ghost_particles(mpcd::CellGrid &grid, const Colloids &c
             continue;
           const std::size_t cell =
               ix + static_cast<std::size_t>(nx) * (row + static_cast<std::size_t>(ny) * layer);
-          const std::uint64_t gcell = grid.global_id(cell);
-          // The blocks of the cell's tries (one block places two tries in 2D, words 0-1 and
-          // 2-3, one in 3D; keyed by the first try of the block) and, last, that of the
-          // fractional try (255), all in batches: bitwise rng::draw's.
-          const int blocks = (whole + 1 + per_block - 1) / per_block;
-          position_keys(c.id[a], gcell, blocks);
-          int tries = whole;
-          if (fraction > 0.0 && rng::open01(position_words_[blocks][0]) < fraction)
-            ++tries;
-          // The kept tries' moments: count, sum r, sum r r^T (r from the cell's corner).
-          std::uint32_t kept = 0;
-          double s1[3] = {0.0, 0.0, 0.0}, s2[3][3] = {};
-          for (int t = 0; t < tries; ++t) {
-            const int word = dim_ == 2 ? 2 * (t & 1) : 0;
-            const auto &u = position_words_[t / per_block];
-            double r[3] = {0.0, 0.0, 0.0}, q[3] = {0.0, 0.0, 0.0}, r2 = 0.0;
-            for (int k = 0; k < dim_; ++k) {
-              q[k] = rng::open01(u[word + k]);
-              r[k] = corner[k] + q[k];
-              r2 += r[k] * r[k];
-            }
-            if (r2 >= R2)
-              continue;
-            const double y = X[1] + r[1];
-            if (walls && !(y >= 0.0 && y <= box_.length[1]))
-              continue;
-            ++kept;
-            for (int k = 0; k < dim_; ++k) {
-              s1[k] += q[k];
-              for (int m = 0; m <= k; ++m)
-                s2[k][m] += q[k] * q[m];
-            }
-          }
-          if (kept == 0)
-            continue;
-          mpcd::ParticleGroup g;
-          g.cell = static_cast<std::uint32_t>(cell);
-          g.n = kept;
-          for (int k = 0; k < dim_; ++k) {
-            g.r[k] = s1[k];
-            for (int m = 0; m <= k; ++m)
-              g.rr[3 * k + m] = g.rr[3 * m + k] = s2[k][m];
-          }
-          grid.groups.push_back(g);
-          group_row_.push_back(static_cast<std::uint32_t>(a));
-          group_corner_.push_back({corner[0], corner[1], corner[2]});
-          group_key_.push_back(ghost_key(c.id[a], gcell, 0));
-          ghost_count_ += kept;
+          cut_.push_back({static_cast<std::uint32_t>(a),
+                          static_cast<std::uint32_t>(cell),
+                          ghost_key(c.id[a], grid.global_id(cell), 0),
+                          {corner[0], corner[1], corner[2]}});
         }
       }
     }
+  }
+  // 2. Their position draws, all in full batches: per cell the blocks of its tries (one block
+  // places two tries in 2D, words 0-1 and 2-3, one in 3D; keyed by the first try of the block)
+  // and, last, that of the fractional try (255); bitwise rng::draw's.
+  const int blocks = (whole + 1 + per_block - 1) / per_block, per_cell = blocks + 1;
+  const std::size_t draws = cut_.size() * static_cast<std::size_t>(per_cell);
+  for (int k = 0; k < 4; ++k)
+    position_words_[k].resize(draws);
+  {
+    std::uint64_t ids[rng::batch];
+    std::uint32_t w[4][rng::batch];
+    std::size_t cell = 0, b = 0; // the pair and block of the next key (no division)
+    for (std::size_t b0 = 0; b0 < draws; b0 += rng::batch) {
+      const std::size_t m = std::min(rng::batch, draws - b0);
+      for (std::size_t j = 0; j < rng::batch; ++j) {
+        if (j >= m) {
+          ids[j] = 0;
+          continue;
+        }
+        ids[j] =
+            cut_[cell].key + (b + 1 == static_cast<std::size_t>(per_cell) ? 255 : b * per_block);
+        if (++b == static_cast<std::size_t>(per_cell)) {
+          b = 0;
+          ++cell;
+        }
+      }
+      rng::draw_batch(params_.seed, rng::Purpose::ghost_position, step, ids, w);
+      for (int k = 0; k < 4; ++k)
+        std::copy(w[k], w[k] + m, position_words_[k].begin() + static_cast<std::ptrdiff_t>(b0));
+    }
+  }
+  // 3. The kept tries' moments per cell: count, sum r, sum r r^T (r from the cell's corner), a
+  // try kept if inside the colloid (and the channel); summed without branches (half the tries
+  // are dropped, at random).
+  const double Ly = walls ? box_.length[1] : 0.0;
+  for (const CutCell &cut : cut_) {
+    const std::size_t first = static_cast<std::size_t>(&cut - cut_.data()) * per_cell;
+    const std::size_t a = cut.row;
+    const double R = c.radius[a], R2 = R * R, Y = c.x[1][a];
+    const double *corner = cut.corner.data();
+    int tries = whole;
+    if (fraction > 0.0 && rng::open01(position_words_[0][first + blocks]) < fraction)
+      ++tries;
+    double kept = 0.0, s1[3] = {0.0, 0.0, 0.0}, s2[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    if (dim_ == 2) { // block b: tries 2b (words 0, 1) and 2b + 1 (words 2, 3)
+      const std::uint32_t *w[4] = {&position_words_[0][first], &position_words_[1][first],
+                                   &position_words_[2][first], &position_words_[3][first]};
+      const auto take = [&](bool valid, double qx, double qy) {
+        const double rx = corner[0] + qx, ry = corner[1] + qy, y = Y + ry;
+        // bitwise &, not &&: no branch on the random outcome
+        const bool in = valid & (rx * rx + ry * ry < R2) & (!walls | ((y >= 0.0) & (y <= Ly)));
+        const double m = static_cast<double>(in);
+        kept += m;
+        s1[0] += m * qx;
+        s1[1] += m * qy;
+        s2[0] += m * qx * qx;
+        s2[1] += m * qx * qy;
+        s2[3] += m * qy * qy;
+      };
+      for (int b = 0; 2 * b < tries; ++b) {
+        take(true, rng::open01(w[0][b]), rng::open01(w[1][b]));
+        take(2 * b + 1 < tries, rng::open01(w[2][b]), rng::open01(w[3][b]));
+      }
+    } else {
+      for (int t = 0; t < tries; ++t) {
+        const std::size_t d = first + static_cast<std::size_t>(t);
+        const double q[3] = {rng::open01(position_words_[0][d]), rng::open01(position_words_[1][d]),
+                             rng::open01(position_words_[2][d])};
+        const double r[3] = {corner[0] + q[0], corner[1] + q[1], corner[2] + q[2]};
+        const double y = Y + r[1];
+        const bool in =
+            r[0] * r[0] + r[1] * r[1] + r[2] * r[2] < R2 && (!walls || (y >= 0.0 && y <= Ly));
+        const double m = in ? 1.0 : 0.0;
+        kept += m;
+        for (int k = 0; k < 3; ++k)
+          s1[k] += m * q[k];
+        s2[0] += m * q[0] * q[0];
+        s2[1] += m * q[0] * q[1];
+        s2[2] += m * q[0] * q[2];
+        s2[3] += m * q[1] * q[1];
+        s2[4] += m * q[1] * q[2];
+        s2[5] += m * q[2] * q[2];
+      }
+    }
+    if (kept == 0.0)
+      continue;
+    mpcd::ParticleGroup g;
+    g.cell = cut.cell;
+    g.n = static_cast<std::uint32_t>(kept);
+    const int upper[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
+    for (int k = 0; k < dim_; ++k) {
+      g.r[k] = s1[k];
+      for (int m = 0; m < dim_; ++m)
+        g.rr[3 * k + m] = s2[upper[k][m]];
+    }
+    grid.groups.push_back(g);
+    group_row_.push_back(cut.row);
+    group_corner_.push_back(cut.corner);
+    group_key_.push_back(cut.key);
+    ghost_count_ += g.n;
   }
   // The groups' Gaussians: (1 + D) D for the thermal velocities eta and as many for the MPC-AT
   // draws xi, four a Philox block, keyed by (colloid id, global cell, block): tries 0-2 for

@@ -100,7 +100,17 @@ BounceStats NoSlipCoupling::bounce_back(mpcd::Fluid &fluid, Colloids &c,
   batch_.resize(0);
   batch_index_.clear();
   batch_hit_.clear();
+  // First the particles in cells that list a colloid, without a branch on each (which of
+  // them are is random: a branch would miss often), then which of those are inside one.
+  candidates_.resize(n);
+  std::size_t listed = 0;
   for (std::size_t i = 0; i < n; ++i) {
+    const double p[3] = {fluid.x[0][i], fluid.x[1][i], dim_ == 3 ? fluid.x[2][i] : 0.0};
+    candidates_[listed] = i;
+    listed += lookup_.listed(p);
+  }
+  for (std::size_t q = 0; q < listed; ++q) {
+    const std::size_t i = candidates_[q];
     const double p[3] = {fluid.x[0][i], fluid.x[1][i], dim_ == 3 ? fluid.x[2][i] : 0.0};
     const long a = lookup_.inside(c, p);
     if (a < 0)

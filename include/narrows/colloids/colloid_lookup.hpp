@@ -1,7 +1,10 @@
-// Which colloid, if any, holds a point: a grid of unit cells over this rank's region of x
-// columns (its slab widened by the ghost extent; the whole box on one rank) and all of y and z,
-// each cell listing the colloids whose bounding box touches it. Used by the no-slip coupling
-// to find the fluid particles that streamed into a colloid.
+// Which colloid, if any, holds a point: a grid of cells (half a unit wide in 2D, where the
+// finer grid halves the fluid near a surface that needs a distance test; a unit in 3D) over this
+// rank's region of x columns (its slab widened by the ghost extent; the whole box on one rank) and
+// all of y and z, each cell listing the colloids whose disc or sphere reaches into it, with their
+// centre and squared radius at build time (one cache line an entry). Used by the no-slip coupling
+// to find the fluid particles that streamed into a colloid; the colloids must not move after
+// build() while it is asked.
 #pragma once
 
 #include "narrows/colloids/colloids.hpp"
@@ -25,24 +28,38 @@ public:
     return inside_listed(c, p, cell);
   }
 
+  // Whether the cell of p lists a colloid (a point elsewhere is inside none); branch-free, for
+  // a first pass over many points.
+  bool listed(const double *p) const {
+    const int cell = cell_of(p);
+    return (cell >= 0) & (head_[static_cast<std::size_t>(cell < 0 ? 0 : cell)] >= 0);
+  }
+
 private:
   // The cell of p, -1 outside the region. Positions lie in [0, L) along periodic axes and in
   // [0, L_y] between walls (streamed and wrapped): truncation is the floor, and one addition
   // wraps the column into the region.
   int cell_of(const double *p) const {
-    const int L = box_.cells[0];
-    int ix = std::min(static_cast<int>(p[0]), L - 1) - lo_;
-    ix += ix < 0 ? L : 0;
+    int ix = std::min(static_cast<int>(p[0] * per_unit_), lx_ - 1) - lo_;
+    ix += ix < 0 ? lx_ : 0;
     if (ix >= nx_)
       return -1;
-    const int iy = std::clamp(static_cast<int>(p[1]), 0, ny_ - 1); // y = L_y on a wall
-    const int iz = box_.dim == 3 ? std::clamp(static_cast<int>(p[2]), 0, nz_ - 1) : 0;
+    const int iy = std::clamp(static_cast<int>(p[1] * per_unit_), 0, ny_ - 1); // y = L_y: wall
+    const int iz = box_.dim == 3 ? std::clamp(static_cast<int>(p[2] * per_unit_), 0, nz_ - 1) : 0;
     return ix + nx_ * (iy + ny_ * iz);
   }
   long inside_listed(const Colloids &c, const double *p, int cell) const;
+  struct Entry {
+    double x[3], r2; // the colloid's centre and squared radius
+    long row;        // its row in c
+    int next;        // the cell's next entry, -1 at the end
+  };
   mpcd::Box box_;
+  double per_unit_ = 1.0;                 // lookup cells per unit length
+  int lx_ = 1;                            // lookup columns of the whole box
   int lo_ = 0, nx_ = 1, ny_ = 1, nz_ = 1; // region: columns lo_ .. lo_ + nx_ - 1 (wrapped)
-  std::vector<int> head_, next_, row_;
+  std::vector<int> head_;
+  std::vector<Entry> entries_;
 };
 
 } // namespace narrows::colloids

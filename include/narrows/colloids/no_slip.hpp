@@ -126,7 +126,7 @@ private:
   int stride_ = 3;
   // Bounce-back scratch: the particles being bounced, their fluid rows and colloid rows.
   mpcd::Fluid batch_;
-  std::vector<std::size_t> batch_index_;
+  std::vector<std::size_t> batch_index_, candidates_;
   std::vector<long> batch_hit_;
   // Ghost particles of this step, one group per (colloid, cut cell) pair (grid.groups): the
   // colloid row, the cell's corner from the colloid's centre, the pair's key of draws.
@@ -134,8 +134,14 @@ private:
   std::vector<std::uint32_t> group_row_;
   std::vector<std::array<double, 3>> group_corner_;
   std::vector<std::uint64_t> group_key_;
-  std::vector<rng::Block> position_words_; // a cut cell's ghost position draws
-  std::vector<double> group_normals_;      // the groups' Gaussian draws
+  struct CutCell {
+    std::uint32_t row, cell;      // colloid row, local cell
+    std::uint64_t key;            // the pair's key of draws (try 0)
+    std::array<double, 3> corner; // the cell's corner from the colloid's centre
+  };
+  std::vector<CutCell> cut_;                                 // this step's cut cells
+  std::array<std::vector<std::uint32_t>, 4> position_words_; // their ghost position draws
+  std::vector<double> group_normals_;                        // the groups' Gaussian draws
   HardSphereStats contacts_;
   std::optional<SpringContacts> springs_;
   ContactHistory history_;
