@@ -4,6 +4,7 @@
 #include "narrows/colloids/pair_geometry.hpp"
 #include "narrows/mpcd/streaming.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <queue>
@@ -149,11 +150,77 @@ public:
     return r2;
   }
 
+  // Partners of a pair event within the step lie within reach_ of each other along x at the
+  // start (their distance then less the sum of radii, covered at the relative speed, which is
+  // below twice the fastest speed of the step so far): bins of the start positions along x, at
+  // least reach_ wide, so that only the colloids of a's bin and its two neighbours need a
+  // prediction. The events found are those of all pairs (the others would come after the
+  // step, which push() drops), so the results are bitwise the same.
+  void bin_along_x() {
+    const std::size_t n = c_.size();
+    r_max_ = 0.0;
+    v_max_ = 0.0;
+    for (std::size_t a = 0; a < n; ++a) {
+      r_max_ = std::max(r_max_, c_.radius[a]);
+      v_max_ = std::max(v_max_, speed(a));
+    }
+    // Room for the fastest speed to double before the bins are too narrow.
+    const double L = box_.length[0];
+    margin_ = 1e-6 * (1.0 + L); // far above the rounding of positions and times
+    reach_ = 2.0 * r_max_ + 4.0 * v_max_ * dt_ + margin_;
+    bins_ = static_cast<int>(std::floor(L / reach_));
+    if (bins_ < 3) {
+      bins_ = 0; // every pair
+      return;
+    }
+    bin_of_.resize(n);
+    first_.assign(static_cast<std::size_t>(bins_) + 1, 0);
+    for (std::size_t a = 0; a < n; ++a) {
+      const double x = mpcd::wrap_periodic(c_.x[0][a], L);
+      bin_of_[a] = std::min(static_cast<int>(x / L * bins_), bins_ - 1);
+      ++first_[static_cast<std::size_t>(bin_of_[a]) + 1];
+    }
+    for (int b = 0; b < bins_; ++b)
+      first_[static_cast<std::size_t>(b) + 1] += first_[static_cast<std::size_t>(b)];
+    members_.resize(n);
+    std::vector<std::size_t> fill(first_.begin(), first_.end() - 1);
+    for (std::size_t a = 0; a < n; ++a)
+      members_[fill[static_cast<std::size_t>(bin_of_[a])]++] = a;
+  }
+  double speed(std::size_t a) const {
+    double v2 = 0.0;
+    for (int k = 0; k < c_.dim; ++k)
+      v2 += c_.v[k][a] * c_.v[k][a];
+    return std::sqrt(v2);
+  }
+  // After a collision: the fastest speed so far; bins too narrow for it are given up.
+  void sped(std::size_t a) {
+    v_max_ = std::max(v_max_, speed(a));
+    if (bins_ > 0 && 2.0 * r_max_ + 2.0 * v_max_ * dt_ + margin_ > reach_)
+      bins_ = 0;
+  }
+
   // Every event of colloid a from time t on (eq 4.23-4.25; walls: the time to touch).
   void predict(std::size_t a, double t) {
-    for (std::size_t b = 0; b < c_.size(); ++b) {
+    if (bins_ == 0) {
+      for (std::size_t b = 0; b < c_.size(); ++b)
+        predict_pair(a, b, t);
+    } else {
+      const int home = bin_of_[a];
+      for (int step = -1; step <= 1; ++step) {
+        const auto bin = static_cast<std::size_t>((home + step + bins_) % bins_);
+        for (std::size_t j = first_[bin]; j < first_[bin + 1]; ++j)
+          predict_pair(a, members_[j], t);
+      }
+    }
+    predict_walls(a, t);
+  }
+  // One copy of the code for both ways of predict() (inlined into each, the compiler could
+  // contract a product and a sum into one rounding in one and not the other: other bits).
+  [[gnu::noinline]] void predict_pair(std::size_t a, std::size_t b, double t) {
+    {
       if (b == a)
-        continue;
+        return;
       double d[3], du2 = 0.0, bij = 0.0;
       const double r2 = separation_at(a, b, t, d);
       for (int k = 0; k < c_.dim; ++k) {
@@ -162,14 +229,16 @@ public:
         bij += d[k] * du;
       }
       if (!(bij < 0.0))
-        continue; // not approaching
+        return; // not approaching
       const double rab = c_.radius[a] + c_.radius[b];
       const double kij = bij * bij - du2 * (r2 - rab * rab);
       if (!(kij > 0.0))
-        continue; // passing by
+        return; // passing by
       const double tau = std::max(0.0, (-bij - std::sqrt(kij)) / du2);
       push(t + tau, a, b);
     }
+  }
+  void predict_walls(std::size_t a, double t) {
     if (box_.walls_y) {
       const double y = x_at(a, 1, t), vy = c_.v[1][a], r = c_.radius[a];
       if (vy < 0.0)
@@ -181,6 +250,7 @@ public:
 
   HardSphereStats run() {
     HardSphereStats stats;
+    bin_along_x();
     for (std::size_t a = 0; a < c_.size(); ++a)
       predict(a, 0.0);
     while (!queue_.empty() && queue_.top().t <= dt_) {
@@ -192,6 +262,7 @@ public:
       ++stamp_[e.a];
       if (e.b >= wall_high) {
         collide_rough_wall(c_, e.a, e.b == wall_low ? +1 : -1);
+        sped(e.a);
         ++stats.wall_collisions;
       } else {
         move_to(e.b, e.t);
@@ -199,6 +270,8 @@ public:
         double d[3];
         separation_at(e.a, e.b, e.t, d);
         collide_rough(c_, e.a, e.b, d);
+        sped(e.a);
+        sped(e.b);
         ++stats.pair_collisions;
         if (trusted_ && (*trusted_)[e.a] != (*trusted_)[e.b]) // one may have missed a partner
           (*trusted_)[e.a] = (*trusted_)[e.b] = 0;
@@ -231,6 +304,11 @@ private:
   std::vector<std::uint64_t> stamp_; // per colloid: collisions so far (stale events differ)
   std::vector<std::uint8_t> *trusted_;
   std::priority_queue<Event, std::vector<Event>, std::greater<Event>> queue_;
+  // Bins along x of the start positions (bin_along_x); bins_ = 0: every pair is predicted.
+  int bins_ = 0;
+  double reach_ = 0.0, r_max_ = 0.0, v_max_ = 0.0, margin_ = 0.0;
+  std::vector<int> bin_of_;
+  std::vector<std::size_t> first_, members_;
 };
 
 } // namespace
