@@ -27,6 +27,7 @@ void ColloidLookup::build(const Colloids &c, const mpcd::Box &box, int first_col
   ny_ = cells[1];
   nz_ = cells[2];
   head_.assign(static_cast<std::size_t>(nx_) * ny_ * nz_, -1);
+  listed_.assign(head_.size(), 0);
   entries_.clear();
   const int dim = box.dim;
   for (std::size_t a = 0; a < c.size(); ++a) {
@@ -73,6 +74,7 @@ void ColloidLookup::build(const Colloids &c, const mpcd::Box &box, int first_col
           const std::size_t cell = ix + static_cast<std::size_t>(nx_) * (iy + ny_ * iz);
           entries_.push_back({{X[0], X[1], X[2]}, r2, static_cast<long>(a), head_[cell]});
           head_[cell] = static_cast<int>(entries_.size() - 1);
+          listed_[cell] = 1;
         }
       }
     }

@@ -11,6 +11,7 @@
 #include "narrows/mpcd/fluid.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <vector>
 
 namespace narrows::colloids {
@@ -32,7 +33,7 @@ public:
   // a first pass over many points.
   bool listed(const double *p) const {
     const int cell = cell_of(p);
-    return (cell >= 0) & (head_[static_cast<std::size_t>(cell < 0 ? 0 : cell)] >= 0);
+    return (cell >= 0) & (listed_[static_cast<std::size_t>(cell < 0 ? 0 : cell)] != 0);
   }
 
 private:
@@ -59,6 +60,7 @@ private:
   int lx_ = 1;                            // lookup columns of the whole box
   int lo_ = 0, nx_ = 1, ny_ = 1, nz_ = 1; // region: columns lo_ .. lo_ + nx_ - 1 (wrapped)
   std::vector<int> head_;
+  std::vector<std::uint8_t> listed_; // head_ >= 0, a quarter of the bytes for the first pass
   std::vector<Entry> entries_;
 };
 
