@@ -29,10 +29,12 @@ void ColloidLookup::build(const Colloids &c, const mpcd::Box &box, int first_col
   head_.assign(static_cast<std::size_t>(nx_) * ny_ * nz_, -1);
   listed_.assign(head_.size(), 0);
   entries_.clear();
+  discs_.resize(c.size());
   const int dim = box.dim;
   for (std::size_t a = 0; a < c.size(); ++a) {
     const double r = c.radius[a], r2 = r * r;
     const double X[3] = {c.x[0][a], c.x[1][a], dim == 3 ? c.x[2][a] : 0.0};
+    discs_[a] = {{X[0], X[1], X[2]}, r2};
     int from[3] = {0, 0, 0}, to[3] = {0, 0, 0};
     bool whole[3] = {false, false, false}; // every cell along this axis (distance not measured)
     for (int k = 0; k < dim; ++k) {
@@ -72,7 +74,7 @@ void ColloidLookup::build(const Colloids &c, const mpcd::Box &box, int first_col
             continue;
           const int iz = ((l % nz_) + nz_) % nz_;
           const std::size_t cell = ix + static_cast<std::size_t>(nx_) * (iy + ny_ * iz);
-          entries_.push_back({{X[0], X[1], X[2]}, r2, static_cast<long>(a), head_[cell]});
+          entries_.push_back({static_cast<int>(a), head_[cell]});
           head_[cell] = static_cast<int>(entries_.size() - 1);
           listed_[cell] = 1;
         }
@@ -81,18 +83,40 @@ void ColloidLookup::build(const Colloids &c, const mpcd::Box &box, int first_col
   }
 }
 
+std::size_t ColloidLookup::listed_block(const double *x, const double *y, const double *z,
+                                        std::size_t m, std::uint32_t *found) const {
+  int cell[block];
+  const double S = per_unit_;
+  const int lx = lx_, lo = lo_, nx = nx_, ny = ny_, nz = nz_;
+  for (std::size_t j = 0; j < m; ++j) { // as cell_of()
+    int ix = std::min(static_cast<int>(x[j] * S), lx - 1) - lo;
+    ix += ix < 0 ? lx : 0;
+    const int iy = std::clamp(static_cast<int>(y[j] * S), 0, ny - 1);
+    const int iz = z ? std::clamp(static_cast<int>(z[j] * S), 0, nz - 1) : 0;
+    const int c = ix + nx * (iy + ny * iz);
+    cell[j] = ix < nx ? c : -1;
+  }
+  std::size_t k = 0;
+  for (std::size_t j = 0; j < m; ++j) {
+    found[k] = static_cast<std::uint32_t>(j);
+    k += (cell[j] >= 0) & (listed_[static_cast<std::size_t>(cell[j] < 0 ? 0 : cell[j])] != 0);
+  }
+  return k;
+}
+
 long ColloidLookup::inside_listed(const Colloids &c, const double *p, int cell) const {
   long best = -1;
   for (int e = head_[static_cast<std::size_t>(cell)]; e >= 0;) {
     const Entry &entry = entries_[static_cast<std::size_t>(e)];
+    const Disc &disc = discs_[static_cast<std::size_t>(entry.row)];
     double r2 = 0.0;
     for (int k = 0; k < box_.dim; ++k) {
-      double d = p[k] - entry.x[k];
+      double d = p[k] - disc.x[k];
       if (!(k == 1 && box_.walls_y))
         d = minimum_image(d, box_.length[k]);
       r2 += d * d;
     }
-    if (r2 < entry.r2 && (best < 0 || c.id[entry.row] < c.id[best]))
+    if (r2 < disc.r2 && (best < 0 || c.id[entry.row] < c.id[best]))
       best = entry.row;
     e = entry.next;
   }

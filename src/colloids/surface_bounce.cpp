@@ -104,10 +104,15 @@ BounceStats NoSlipCoupling::bounce_back(mpcd::Fluid &fluid, Colloids &c,
   // them are is random: a branch would miss often), then which of those are inside one.
   candidates_.resize(n);
   std::size_t listed = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double p[3] = {fluid.x[0][i], fluid.x[1][i], dim_ == 3 ? fluid.x[2][i] : 0.0};
-    candidates_[listed] = i;
-    listed += lookup_.listed(p);
+  std::uint32_t found[ColloidLookup::block];
+  for (std::size_t i0 = 0; i0 < n; i0 += ColloidLookup::block) {
+    const std::size_t m = std::min(ColloidLookup::block, n - i0);
+    const std::size_t k =
+        lookup_.listed_block(fluid.x[0].data() + i0, fluid.x[1].data() + i0,
+                             dim_ == 3 ? fluid.x[2].data() + i0 : nullptr, m, found);
+    for (std::size_t j = 0; j < k; ++j)
+      candidates_[listed + j] = i0 + found[j];
+    listed += k;
   }
   for (std::size_t q = 0; q < listed; ++q) {
     const std::size_t i = candidates_[q];
