@@ -233,7 +233,9 @@ std::vector<std::string> describe_pipeline(const scene::Scene &s, const MpcdPlan
   }
   if (p.no_slip)
     out.push_back("ghost particles in the cells cut by colloid surfaces (density " +
-                  format_number(p.density) + ", rigid-body velocity + Maxwell-Boltzmann)");
+                  format_number(p.density) +
+                  ", rigid-body velocity + Maxwell-Boltzmann; each colloid's in a cell as one "
+                  "group of sums)");
   if (p.virtual_particles)
     out.push_back(std::string("virtual particles in cells cut by the walls (") +
                   (p.virtual_mirror ? "mirror-image flow)" : "at rest)"));
