@@ -61,18 +61,18 @@ void ColloidLookup::build(const Colloids &c, const mpcd::Box &box, int first_col
     };
     const double reach2 = r2 * (1.0 + 1e-9);
     for (int i = from[0]; i <= to[0]; ++i) {
-      const int col = ((i % L) + L) % L;
-      const int ix = ((col - lo_) % L + L) % L;
+      const int col = wrap_index(i, L);
+      const int ix = wrap_index(col - lo_, L);
       if (ix >= nx_)
         continue;
       const double di = gap2(0, i);
       for (int j = from[1]; j <= to[1]; ++j) {
-        const int iy = ((j % ny_) + ny_) % ny_;
+        const int iy = wrap_index(j, ny_);
         const double dj = di + gap2(1, j);
         for (int l = from[2]; l <= to[2]; ++l) {
           if (dj + (dim == 3 ? gap2(2, l) : 0.0) >= reach2)
             continue;
-          const int iz = ((l % nz_) + nz_) % nz_;
+          const int iz = wrap_index(l, nz_);
           const std::size_t cell = ix + static_cast<std::size_t>(nx_) * (iy + ny_ * iz);
           entries_.push_back({static_cast<int>(a), head_[cell]});
           head_[cell] = static_cast<int>(entries_.size() - 1);

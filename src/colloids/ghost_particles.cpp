@@ -121,14 +121,14 @@ void NoSlipCoupling::add_ghost_particles(mpcd::CellGrid &grid, const Colloids &c
       }
     }
     for (int i = lo[0]; i <= hi[0]; ++i) {
-      const int column = ((i % NX) + NX) % NX;
+      const int column = wrap_index(i, NX);
       const int ix = column - grid.first_column;
       if (ix < 0 || ix >= nx)
         continue;
       for (int j = lo[1]; j <= hi[1]; ++j) {
-        const int row = walls ? j : ((j % ny) + ny) % ny;
+        const int row = walls ? j : wrap_index(j, ny);
         for (int l = lo[2]; l <= hi[2]; ++l) {
-          const int layer = dim_ == 3 ? ((l % nz) + nz) % nz : 0;
+          const int layer = dim_ == 3 ? wrap_index(l, nz) : 0;
           // The cell's lower corner relative to the centre (unwrapped), and its classification:
           // outside the colloid, wholly inside (no fluid can be there), or cut by the surface.
           const double corner[3] = {i + sh[0] - X[0], (walls ? j - 1 : j) + sh[1] - X[1],

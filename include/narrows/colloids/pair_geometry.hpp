@@ -20,6 +20,18 @@ inline double minimum_image(double d, double L) {
   return d;
 }
 
+// i modulo n in [0, n) (the periodic index of an unwrapped cell): one comparison each way for
+// an index within a period of [0, n), as the cells around a colloid are; a division otherwise.
+inline int wrap_index(int i, int n) {
+  if (i < 0)
+    i += n;
+  else if (i >= n)
+    i -= n;
+  if (i < 0 || i >= n) [[unlikely]]
+    i = ((i % n) + n) % n;
+  return i;
+}
+
 // The separation a - b of two points (minimum image along the periodic axes) into d; returns
 // its square.
 template <int D, bool WallsY>
