@@ -52,8 +52,12 @@ NoSlipCoupling::NoSlipCoupling(const NoSlipParams &params, const mpcd::Box &box,
   if (params_.spring_contacts) {
     springs_.emplace(params_.spring, box_);
     // Ghosts follow their owners after each drift; their forces go back to the owners.
-    spring_hooks_.refresh = [this](Colloids &c) { ghosts_.refresh_state(c); };
+    spring_hooks_.refresh = [this](Colloids &c) {
+      const ScopedSeconds talk(message_seconds_);
+      ghosts_.refresh_state(c);
+    };
     spring_hooks_.reverse = [this](std::vector<std::int64_t> &sums, int k) {
+      const ScopedSeconds talk(message_seconds_);
       ghosts_.reverse(sums, k);
     };
   }
@@ -81,7 +85,10 @@ void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c) {
     margin_[a] = std::sqrt(v2);
     fastest = std::max(fastest, margin_[a]);
   }
-  MPI_Allreduce(&fastest, &v_max, 1, MPI_DOUBLE, MPI_MAX, slabs_.comm());
+  {
+    const ScopedSeconds talk(message_seconds_);
+    MPI_Allreduce(&fastest, &v_max, 1, MPI_DOUBLE, MPI_MAX, slabs_.comm());
+  }
   for (std::size_t a = 0; a < owned; ++a)
     margin_[a] = contacts ? (margin_[a] + 2.0 * v_max) * dt + path_allowance
                           : margin_[a] * dt * (1.0 + 1e-12) + 1e-12;
@@ -99,9 +106,15 @@ void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c) {
   double m_max = 0.0, m_own = 0.0;
   for (std::size_t a = 0; a < owned; ++a)
     m_own = std::max(m_own, margin_[a]);
-  MPI_Allreduce(&m_own, &m_max, 1, MPI_DOUBLE, MPI_MAX, slabs_.comm());
+  {
+    const ScopedSeconds talk(message_seconds_);
+    MPI_Allreduce(&m_own, &m_max, 1, MPI_DOUBLE, MPI_MAX, slabs_.comm());
+  }
   const double contact = 2.0 * r_max + 2.0 * m_max;
-  ghosts_.add_for_step(c, margin_, reach, params_.hard_contacts ? 4.0 * contact : 0.0);
+  {
+    const ScopedSeconds talk(message_seconds_);
+    ghosts_.add_for_step(c, margin_, reach, params_.hard_contacts ? 4.0 * contact : 0.0);
+  }
   for (int k = 0; k < dim_; ++k)
     start_[k].assign(c.x[k].begin(), c.x[k].begin() + static_cast<std::ptrdiff_t>(owned));
   if (params_.hard_contacts) {
@@ -117,6 +130,7 @@ void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c) {
               "rank within one step (allowed: fewer ranks, or a smaller fluid.dt)";
         throw invariant_error(os.str());
       }
+    const ScopedSeconds talk(message_seconds_);
     ghosts_.refresh_positions(c); // the owners' paths (a ghost may have missed a partner)
     ghosts_.refresh_motion(c);
   } else if (springs_) { // every pair once, on the owner of its smaller id; ghosts follow
@@ -127,6 +141,7 @@ void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c) {
         weight_[a * static_cast<std::size_t>(dim_) + k] = c.mass[a] * params_.gravity[k];
     springs_->advance(c, owned, history_, dt, ghosts_.active() ? &spring_hooks_ : nullptr,
                       falling ? &weight_ : nullptr);
+    const ScopedSeconds talk(message_seconds_);
     ghosts_.refresh_motion(c); // the last half kick
   } else {
     move_ballistic(c, c.size(), box_, dt); // owned and ghost rows alike: the same bits
@@ -154,7 +169,10 @@ void NoSlipCoupling::add_impulse(std::size_t a, const double *r, const double *d
 }
 
 void NoSlipCoupling::apply_impulses(Colloids &c, bool refresh) {
-  ghosts_.reverse(impulse_, stride_);
+  {
+    const ScopedSeconds talk(message_seconds_);
+    ghosts_.reverse(impulse_, stride_);
+  }
   for (std::size_t a = 0; a < ghosts_.owned(); ++a) {
     const std::int64_t *s = &impulse_[a * static_cast<std::size_t>(stride_)];
     const double m = c.mass[a];
@@ -168,14 +186,17 @@ void NoSlipCoupling::apply_impulses(Colloids &c, bool refresh) {
         c.omega[k][a] += fixed::to_double(s[3 + k]) / inertia;
   }
   std::fill(impulse_.begin(), impulse_.end(), 0);
-  if (refresh)
+  if (refresh) {
+    const ScopedSeconds talk(message_seconds_);
     ghosts_.refresh_motion(c);
+  }
 }
 
 void NoSlipCoupling::hand_over(Colloids &c) {
   const ScopedSeconds timed(seconds_);
   ghosts_.remove(c, &margin_);
   if (ghosts_.active()) {
+    const ScopedSeconds talk(message_seconds_);
     if (springs_) // each contact goes where its owner colloid goes
       migrate_contacts(history_, c, slabs_, contact_migration_);
     migrate_colloids(c, slabs_, migration_);

@@ -320,6 +320,15 @@ void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm 
                     "motion, bounce-back, ghost particles made and taken back)",
                     most, 100.0 * most / seconds);
       log.line(text);
+      if (sim.slabs().ranks() > 1) { // how much of it is messages and waiting
+        const double talk = busiest(ns->message_seconds());
+        std::snprintf(text, sizeof text,
+                      "no-slip coupling messages: %.4g s of the loop (%.1f %%) on the busiest "
+                      "rank (ghost colloids, impulse sums, migration; waiting for the other "
+                      "ranks included)",
+                      talk, 100.0 * talk / seconds);
+        log.line(text);
+      }
     }
     if (const auto *ns = sim.no_slip();
         ns && sim.scene().colloids->contacts == scene::ColloidContacts::hard) {

@@ -88,6 +88,10 @@ public:
   // Seconds this rank spent in the calls above since the start (the ghost particles' share of
   // the collision itself is not included).
   double seconds() const { return seconds_; }
+  // Of those, the seconds in colloid messages (ghost colloids, impulse sums, migration, the
+  // reductions), waiting for the other ranks included: there the imbalance of the fluid's work
+  // since the last message shows.
+  double message_seconds() const { return message_seconds_; }
   // Hard-sphere collisions this rank resolved since the start (ghost rows included).
   const HardSphereStats &contacts() const { return contacts_; }
   // The spring contacts (nullptr unless contacts = "spring") and the contact history this rank
@@ -149,6 +153,7 @@ private:
   SpringHooks spring_hooks_;
   std::vector<double> weight_; // M g of each owned colloid, a force in the spring sub-steps
   double seconds_ = 0.0;
+  double message_seconds_ = 0.0;
 };
 
 } // namespace narrows::colloids
