@@ -244,13 +244,13 @@ TEST(NoSlipColloid, FixedDiscInPoiseuilleFlowHasZeroFluidVelocityAtItsSurface) {
 // Gaussians of the MPC-AT+a noise (another realisation) 0.996 +- 0.021 (50 blocks), and of the
 // ghosts too 1.042 +- 0.019 (64 blocks); with the ghosts as sums per cut cell (exact in
 // distribution, another realisation) 1.002 +- 0.0200 (64 blocks: a block scatter of 0.16, so
-// the error bound below was missed by a hair; 80 blocks since, the test below). At half the seed's time step the disc
-// does spin too fast: dt = 0.005 (A doubled, U ~ 0.8): a = 2: 1.216 +- 0.050, a = 4 (L_y = 80,
-// L_x = 32): 1.059 +- 0.049; with no ghost particles (bounce-back alone) the far-field estimate
-// at dt = 0.005 is as high (1.25 +- 0.09), and bouncing back along the particle's own path
-// instead of onto the nearest surface point as well (1.20 +- 0.03), so it is neither the ghosts'
-// nor the radial move's doing; the cause is not found (an effect of a mean free path
-// dt sqrt(kT) << a that grows as dt falls).
+// the error bound below was missed by a hair; 80 blocks since, the test below). At half the seed's
+// time step the disc does spin too fast: dt = 0.005 (A doubled, U ~ 0.8): a = 2: 1.216 +- 0.050, a
+// = 4 (L_y = 80, L_x = 32): 1.059 +- 0.049; with no ghost particles (bounce-back alone) the
+// far-field estimate at dt = 0.005 is as high (1.25 +- 0.09), and bouncing back along the
+// particle's own path instead of onto the nearest surface point as well (1.20 +- 0.03), so it is
+// neither the ghosts' nor the radial move's doing; the cause is not found (an effect of a mean free
+// path dt sqrt(kT) << a that grows as dt falls).
 namespace {
 
 struct SpinResult {
