@@ -79,7 +79,10 @@ void select(const CellList &cl, const mpcd::Fluid &f, const Colloids &c, const m
 
 } // namespace
 
-double fluid_reach(const mpcd::Fluid &f, double dt, double fluid_accel) {
+double fluid_reach(const mpcd::Fluid &f, double dt, double fluid_accel, double v2_known) {
+  if (v2_known >= 0.0) // (a relative 1e-12 more: its sums may round the other way than below)
+    return f.size() == 0 ? 0.0
+                         : std::sqrt(v2_known) * (1.0 + 1e-12) * dt + 0.5 * fluid_accel * dt * dt;
   // The largest |v|^2, then one square root: the same number as the largest |v| dt + a dt^2/2
   // (sqrt and the affine map are monotonic and correctly rounded), at a third of the cost.
   // Eight running maxima (the maximum does not depend on the order: the compiler may keep

@@ -63,7 +63,7 @@ NoSlipCoupling::NoSlipCoupling(const NoSlipParams &params, const mpcd::Box &box,
   }
 }
 
-void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c) {
+void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c, double fluid_v2_max) {
   const ScopedSeconds timed(seconds_);
   const double dt = params_.dt;
   const std::size_t owned = c.size();
@@ -99,7 +99,7 @@ void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c) {
                                  params_.fluid_accel[1] * params_.fluid_accel[1] +
                                  params_.fluid_accel[2] * params_.fluid_accel[2]) +
                        std::abs(params_.sine_amplitude);
-  const double reach = ghosts_.active() ? fluid_reach(fluid, dt, accel) : 0.0;
+  const double reach = ghosts_.active() ? fluid_reach(fluid, dt, accel, fluid_v2_max) : 0.0;
   // With contacts the region reaches four collision distances further, so that the ghosts an
   // owned colloid can meet in a chain of up to three contacts within the step are all here and
   // trusted (trusted_rows; a longer chain is refused).

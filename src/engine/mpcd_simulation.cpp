@@ -238,6 +238,7 @@ void MpcdSimulation::bin_into_cells() {
 
 void MpcdSimulation::collide(std::uint64_t step) {
   const MpcdPlan &p = plan_;
+  collision_scratch_.v2_max = -1.0; // only MPC-AT+a finds it
   switch (p.collision) {
   case scene::Collision::srd:
   case scene::Collision::random_permute: // SRD, then the velocities are permuted
@@ -260,7 +261,7 @@ void MpcdSimulation::thermostat(std::uint64_t step) {
   const MpcdPlan &p = plan_;
   switch (p.thermostat) {
   case MpcdPlan::Thermostat::none:
-    break;
+    return;
   case MpcdPlan::Thermostat::layers: // seed 000 eq 3.53-3.54
     mpcd::rescale_layers(fluid_, grid_, p.kT, layer_sums_, comm_);
     break;
@@ -268,6 +269,7 @@ void MpcdSimulation::thermostat(std::uint64_t step) {
     mpcd::monte_carlo_cells(fluid_, grid_, p.kT, p.gamma, p.seed, step, layer_sums_);
     break;
   }
+  collision_scratch_.v2_max = -1.0; // the velocities changed after the collision
 }
 
 void MpcdSimulation::advance() {
@@ -301,7 +303,7 @@ void MpcdSimulation::step_stages() {
   }
   const auto streamer = [this](mpcd::Fluid &f, double t) { stream(f, t); };
   if (p.no_slip) // ghost colloids; gravity; every colloid moves (with hard contacts if any)
-    no_slip_->move_colloids(fluid_, colloids_);
+    no_slip_->move_colloids(fluid_, colloids_, collision_scratch_.v2_max);
   else if (p.colloids) // forces now; ghost colloids; copies out the fluid that may meet a colloid
     md_->take_near_fluid(fluid_, colloids_);
   stream(fluid_, p.dt); // every particle, the whole step (walls, body force exact)

@@ -321,22 +321,31 @@ void at_a_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, st
     group_change<D>(g.groups[j], par, par + D, par + 2 * D, s.group_change[j]);
   }
 
+  double v2_max = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     prefetch_record(s.cell, f.cell.data(), i, n, PS);
     const double *par = &s.cell[static_cast<std::size_t>(f.cell[i]) * PS];
     double r[3];
     for (int k = 0; k < D; ++k)
       r[k] = in_cell(f.x[k][i], g.shift[k]) - par[D + k];
+    double v[3];
     if constexpr (D == 2) {
-      f.v[0][i] = s.noise[0][i] + par[0] - par[4] * r[1];
-      f.v[1][i] = s.noise[1][i] + par[1] + par[4] * r[0];
+      v[0] = s.noise[0][i] + par[0] - par[4] * r[1];
+      v[1] = s.noise[1][i] + par[1] + par[4] * r[0];
     } else {
       double wr[3];
       cross<3>(par + 6, r, wr);
       for (int k = 0; k < 3; ++k)
-        f.v[k][i] = s.noise[k][i] + par[k] + wr[k];
+        v[k] = s.noise[k][i] + par[k] + wr[k];
     }
+    double v2 = 0.0;
+    for (int k = 0; k < D; ++k) {
+      f.v[k][i] = v[k];
+      v2 += v[k] * v[k];
+    }
+    v2_max = std::max(v2_max, v2);
   }
+  s.v2_max = v2_max;
   // GCC 12 (-march=native, AVX-512) vectorises the 2D cell loop above with ymm registers and
   // leaves them dirty on return (no vzeroupper, unlike every other kernel). Each later call
   // into libm's SSE-encoded code (the log of the next step's noise, the sines of a sine

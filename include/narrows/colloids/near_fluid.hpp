@@ -17,8 +17,9 @@
 
 namespace narrows::colloids {
 
-// The largest possible path |v| dt + |a| dt^2/2 of any particle of f this step.
-double fluid_reach(const mpcd::Fluid &f, double dt, double fluid_accel);
+// The largest possible path |v| dt + |a| dt^2/2 of any particle of f this step; v2_max: the
+// largest |v|^2 if already known (>= 0), else a pass over f finds it.
+double fluid_reach(const mpcd::Fluid &f, double dt, double fluid_accel, double v2_max = -1.0);
 
 // Lists in `index` (flags in `flag`) the particles of f near a colloid of c (owned and ghost
 // rows, margin[a] for each) this step, from the cell list `cells` of f (built by the force

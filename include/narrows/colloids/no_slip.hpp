@@ -76,7 +76,9 @@ class NoSlipCoupling {
 public:
   NoSlipCoupling(const NoSlipParams &params, const mpcd::Box &box, const parallel::Slabs &slabs);
 
-  void move_colloids(const mpcd::Fluid &fluid, Colloids &c);
+  // fluid_v2_max: the largest |v|^2 of the fluid if known (the last collision found it), or
+  // negative (a pass over the fluid finds it, on more than one rank).
+  void move_colloids(const mpcd::Fluid &fluid, Colloids &c, double fluid_v2_max = -1.0);
   BounceStats bounce_back(mpcd::Fluid &fluid, Colloids &c, const FluidStream &stream);
   void add_ghost_particles(mpcd::CellGrid &grid, const Colloids &c, std::uint64_t step);
   void take_back_ghost_particles(mpcd::CellGrid &grid, const mpcd::CollisionScratch &collision,

@@ -16,6 +16,9 @@ struct CollisionScratch {
   std::array<std::vector<double>, 3> noise; // per-particle Gaussian velocities (AT rules)
   std::vector<std::int64_t> cell_fixed;     // per-cell fixed-point sums beyond momentum
   std::vector<GroupChange> group_change;    // per grid.groups entry, what the collision did
+  // The largest |v|^2 of the fluid the last collision left, found on its way (MPC-AT+a; -1:
+  // not known): the next step's fluid reach (colloids/near_fluid.hpp) without a pass of its own.
+  double v2_max = -1.0;
 };
 
 // Every rule below (not the random solvents' own steps) also collides the particle groups of
