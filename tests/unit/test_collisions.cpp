@@ -750,3 +750,27 @@ TEST(CollisionRandom, MaxwellKeyedByParticleId) {
 }
 
 } // namespace
+
+// The largest |v|^2 the MPC-AT+a collision reports on its way (the next step's fluid reach of
+// no-slip colloids on more than one rank, instead of a pass over the fluid) is the largest |v|^2
+// of the velocities it left, to a rounding either way (bound 1e-12 relative, the margin the
+// reach adds). Shown to fail by halving each particle's |v|^2 in the running maximum.
+TEST(CollisionAtA, ReportsTheLargestSpeedItLeaves) {
+  for (int dim : {2, 3}) {
+    Scene s =
+        make_scene(dim, dim == 2 ? std::array<int, 3>{30, 30, 1} : std::array<int, 3>{10, 10, 10},
+                   43, {3, 7, 12}, 1.0);
+    Fluid f = s.f;
+    CollisionScratch sc;
+    collide_at_a(f, s.g, sc, 1.0, 43, 5);
+    double most = 0.0;
+    for (std::size_t i = 0; i < f.size(); ++i) {
+      double v2 = 0.0;
+      for (int k = 0; k < dim; ++k)
+        v2 += f.v[k][i] * f.v[k][i];
+      most = std::max(most, v2);
+    }
+    EXPECT_GT(most, 0.0);
+    EXPECT_NEAR(sc.v2_max, most, 1e-12 * most) << dim << "D";
+  }
+}
