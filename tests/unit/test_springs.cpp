@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <numbers>
 #include <random>
 
@@ -268,4 +269,57 @@ TEST(Springs, EnergyWithoutFrictionConservedOverAMillionSubsteps) {
               worst, static_cast<unsigned long long>(s.contact_updates()));
   EXPECT_GT(s.contact_updates(), 10000u);
   EXPECT_LT(worst, 1e-6);
+}
+
+// The pair list is built again within an MPCD step when a colloid has moved half its skin
+// (the springs go back to the history and come out of it on the new list): a step of 50
+// sub-steps of fast colloids (several builds a step) ends bitwise where 50 steps of one
+// sub-step each end (every build at the start of a step), positions, velocities, spins and
+// springs. 12 disks with friction (mu = 0.5, sliding and sticking) between walls.
+TEST(Springs, PairListBuiltWithinAStepChangesNothing) {
+  const auto run = [](int substeps, double dt, int calls, std::uint64_t &builds,
+                      std::uint64_t &updates) {
+    Colloids c = make(2, 12, 2.1, 25.0);
+    const mpcd::Box b = box(2, 30, true);
+    SpringParams p;
+    p.mu_cc = p.mu_cw = 0.5;
+    p.substeps = substeps;
+    SpringContacts s(p, b);
+    ContactHistory h;
+    h.dim = 2;
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (std::size_t a = 0; a < 12; ++a) {
+      c.x[0][a] = 7.0 * static_cast<double>(a % 4) + 4.0;
+      c.x[1][a] = 8.0 * static_cast<double>(a / 4) + 5.0;
+      c.v[0][a] = u(rng);
+      c.v[1][a] = u(rng);
+      c.omega[2][a] = u(rng);
+    }
+    for (int i = 0; i < calls; ++i)
+      s.advance(c, 12, h, dt);
+    builds = s.pair_list_builds();
+    updates = s.contact_updates();
+    return std::make_pair(c, h);
+  };
+  std::uint64_t builds_a = 0, builds_b = 0, updates_a = 0, updates_b = 0;
+  const auto [ca, ha] = run(50, 0.5, 200, builds_a, updates_a);
+  const auto [cb, hb] = run(1, 0.5 / 50, 200 * 50, builds_b, updates_b);
+  std::printf("[ measured ] %llu builds in 200 steps of 50 sub-steps, %llu contact updates\n",
+              static_cast<unsigned long long>(builds_a),
+              static_cast<unsigned long long>(updates_a));
+  EXPECT_GT(builds_a, 200u); // more than one a step: built within steps
+  EXPECT_GT(updates_a, 1000u);
+  EXPECT_EQ(updates_a, updates_b);
+  const auto same = [](const std::vector<double> &x, const std::vector<double> &y) {
+    return x.size() == y.size() && std::memcmp(x.data(), y.data(), 8 * x.size()) == 0;
+  };
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_TRUE(same(ca.x[k], cb.x[k])) << "x " << k;
+    EXPECT_TRUE(same(ca.v[k], cb.v[k])) << "v " << k;
+    EXPECT_TRUE(same(ha.xi[k], hb.xi[k])) << "xi " << k;
+  }
+  EXPECT_TRUE(same(ca.omega[2], cb.omega[2]));
+  EXPECT_EQ(ha.owner, hb.owner);
+  EXPECT_EQ(ha.partner, hb.partner);
 }
