@@ -52,6 +52,9 @@ void write_lammps(const std::string &path, const Colloids &c, double length) {
 } // namespace
 
 void run_dem_bench(const DemBenchOptions &o, std::ostream &out) {
+  if (!(o.disks >= 1.0 && o.disks <= 1e8)) // (~100 GB beyond: refused, not a failed allocation)
+    throw input_error("command line: --dem " + std::to_string(o.disks) +
+                      "; allowed: a number of disks from 1 to 1e8");
   // One tile: half the disks of each radius, in a channel of the length that gives phi.
   double area = 0.0;
   for (const double r : radii)

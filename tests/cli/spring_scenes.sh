@@ -117,6 +117,8 @@ check "bench --dem prints contact updates/s" \
   'grep -q "^dem: 20 sub-steps in .* contact updates/s" "$tmp/dem.txt"'
 check "the LAMMPS data file holds 2000 atoms and their velocities" \
   'grep -q "^2000 atoms$" "$tmp/dem.data" && [ "$(awk "/^Atoms/{f=1;next} /^Velocities/{f=0} f && NF==7" "$tmp/dem.data" | wc -l)" -eq 2000 ] && [ "$(awk "/^Velocities/{f=1;next} f && NF==7" "$tmp/dem.data" | wc -l)" -eq 2000 ]'
+refused "bench --dem beyond 1e8 disks" "command line: --dem .*allowed: a number of disks" \
+  "$narrows" bench --dem 1e9
 refused "bench --dem-data into a missing folder" "command line: --dem-data" \
   "$narrows" bench --dem 2000 --steps 1 --dem-data "$tmp/no/such/dir/p.data"
 finish "spring scenes"
