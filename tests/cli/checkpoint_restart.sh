@@ -7,6 +7,8 @@
 # id count not matching the positions, a 3D checkpoint for a 2D scene).
 set -u
 source "$(dirname "$0")/common.bash"
+same=$src/tests/cli/same_state.py
+fluid=fluid:id,position,velocity
 py=/usr/bin/python3
 
 cat > "$tmp/s.toml" <<'TOML'
@@ -40,19 +42,8 @@ check "no temporary files left" '! compgen -G "$tmp/part/*tmp*" > /dev/null'
 runs "restart" "$narrows" run "$tmp/s.toml" --restart "$tmp/part" --out "$tmp/part" > "$tmp/out2" 2> "$tmp/err2"
 check "restart says where it continues from" 'grep -q "restarted from .*checkpoint-0000000030.h5 at step 30" "$tmp/out2"'
 check "earlier observables kept, continuation in observables-0000000030.h5" '[ -s "$tmp/part/observables.h5" ] && [ -s "$tmp/part/observables-0000000030.h5" ]'
-cat > "$tmp/compare.py" <<'PY'
-import sys, h5py, numpy as np
-def state(path):
-    with h5py.File(path, "r") as f:
-        p = f["/particles/fluid"]
-        order = np.argsort(p["id/value"][:])
-        return p["id/value"][:][order], p["position/value"][:][order], p["velocity/value"][:][order]
-a, b = state(sys.argv[1]), state(sys.argv[2])
-same = all(np.array_equal(x.view(np.uint64), y.view(np.uint64)) for x, y in zip(a, b))
-sys.exit(0 if same else 1)
-PY
 check "2 ranks to step 30, then 1 rank to 60: bitwise the uninterrupted run" \
-  '$py "$tmp/compare.py" "$tmp/straight/checkpoint-0000000060.h5" "$tmp/part/checkpoint-0000000060.h5"'
+  '$py "$same" "$tmp/straight/checkpoint-0000000060.h5" "$tmp/part/checkpoint-0000000060.h5" $fluid'
 
 # tools/join_observables.py joins the first part and the continuation into the series of the
 # uninterrupted run (same steps; values to round-off, the 1-rank part reduces in another order).
@@ -71,7 +62,7 @@ PY'
 runs "1 rank to 30" "$narrows" run "$tmp/s.toml" --set run.steps=30 --out "$tmp/one" > /dev/null 2>&1
 runs "restart on 2 ranks from a file" "${mpi[@]}" -n 2 "$narrows" run "$tmp/s.toml" --restart "$tmp/one/checkpoint-0000000030.h5" --out "$tmp/one" > /dev/null 2> "$tmp/err3"
 check "1 rank to step 30, then 2 ranks to 60: bitwise the uninterrupted run" \
-  '$py "$tmp/compare.py" "$tmp/straight/checkpoint-0000000060.h5" "$tmp/one/checkpoint-0000000060.h5"'
+  '$py "$same" "$tmp/straight/checkpoint-0000000060.h5" "$tmp/one/checkpoint-0000000060.h5" $fluid'
 
 # Refused: exit 2, one line on stderr matching a pattern.
 good="$tmp/part/checkpoint-0000000060.h5"

@@ -8,6 +8,8 @@
 # restart is bitwise equal too, also from a checkpoint without them (older format: drawn again).
 set -u
 source "$(dirname "$0")/common.bash"
+same=$src/tests/cli/same_state.py
+both="fluid:id,position,velocity colloids:id,position,velocity"
 py=/usr/bin/python3
 
 for scene in "$src"/run/*.toml; do
@@ -57,31 +59,19 @@ checkpoint_every = 30
 progress = false
 observables = ["momentum", "energy"]
 TOML
-cat > "$tmp/compare.py" <<'PY'
-import sys, h5py, numpy as np
-def state(path, species):
-    with h5py.File(path, "r") as f:
-        p = f["/particles/" + species]
-        order = np.argsort(p["id/value"][:])
-        return p["id/value"][:][order], p["position/value"][:][order], p["velocity/value"][:][order]
-for species in ("fluid", "colloids"):
-    a, b = state(sys.argv[1], species), state(sys.argv[2], species)
-    if not all(np.array_equal(x.view(np.uint64), y.view(np.uint64)) for x, y in zip(a, b)):
-        sys.exit(1)
-PY
 runs "1 rank" "$narrows" run "$tmp/c.toml" --out "$tmp/one" > /dev/null 2>&1
 runs "2 ranks" "${mpi[@]}" -n 2 "$narrows" run "$tmp/c.toml" --out "$tmp/two" > /dev/null 2>&1
 check "colloids stored in the checkpoint" '$py -c "import h5py,sys; f=h5py.File(sys.argv[1]); assert f[\"/particles/colloids/position/value\"].shape == (3, 2)" "$tmp/one/checkpoint-0000000060.h5"'
 check "2 ranks bitwise equal to 1 rank (fluid and colloids)" \
-  '$py "$tmp/compare.py" "$tmp/one/checkpoint-0000000060.h5" "$tmp/two/checkpoint-0000000060.h5"'
+  '$py "$same" "$tmp/one/checkpoint-0000000060.h5" "$tmp/two/checkpoint-0000000060.h5" $both'
 runs "first part" "${mpi[@]}" -n 2 "$narrows" run "$tmp/c.toml" --set run.steps=30 --out "$tmp/part" > /dev/null 2>&1
 runs --err "$tmp/err" "restart" "$narrows" run "$tmp/c.toml" --restart "$tmp/part" --out "$tmp/part" > /dev/null
 check "restart (2 ranks to 30, 1 rank to 60) bitwise equal to the uninterrupted run" \
-  '$py "$tmp/compare.py" "$tmp/one/checkpoint-0000000060.h5" "$tmp/part/checkpoint-0000000060.h5"'
+  '$py "$same" "$tmp/one/checkpoint-0000000060.h5" "$tmp/part/checkpoint-0000000060.h5" $both'
 runs "first part on 1 rank" "$narrows" run "$tmp/c.toml" --set run.steps=30 --out "$tmp/part3" > /dev/null 2>&1
 runs "restart on 3 ranks" "${mpi[@]}" -n 3 "$narrows" run "$tmp/c.toml" --restart "$tmp/part3" --out "$tmp/part3" > /dev/null 2>&1
 check "restart (1 rank to 30, 3 ranks to 60: colloids handed to their slabs' owners) bitwise equal" \
-  '$py "$tmp/compare.py" "$tmp/one/checkpoint-0000000060.h5" "$tmp/part3/checkpoint-0000000060.h5"'
+  '$py "$same" "$tmp/one/checkpoint-0000000060.h5" "$tmp/part3/checkpoint-0000000060.h5" $both'
 sed 's/count = 3/count = 2/' "$tmp/c.toml" > "$tmp/c2.toml"
 refused "a scene with another colloid count" "colloids.count" \
   "$narrows" run "$tmp/c2.toml" --restart "$tmp/part/checkpoint-0000000030.h5" --out "$tmp/bad2"
@@ -120,7 +110,7 @@ PY'
 cp "$tmp/sd_part/checkpoint-0000000030.h5" "$tmp/sd_old.h5"
 runs --err "$tmp/err" "radius_sd: restart" "$narrows" run "$tmp/sd.toml" --restart "$tmp/sd_part" --out "$tmp/sd_part" > /dev/null
 check "radius_sd: restart (2 ranks to 30, 1 rank to 60) bitwise equal to the uninterrupted run" \
-  '$py "$tmp/compare.py" "$tmp/sd_one/checkpoint-0000000060.h5" "$tmp/sd_part/checkpoint-0000000060.h5"'
+  '$py "$same" "$tmp/sd_one/checkpoint-0000000060.h5" "$tmp/sd_part/checkpoint-0000000060.h5" $both'
 check "radius_sd: restart keeps radius and mass bitwise" '$py - "$tmp/sd_one/checkpoint-0000000060.h5" "$tmp/sd_part/checkpoint-0000000060.h5" <<PY
 import sys, h5py, numpy as np
 a, b = (h5py.File(p, "r")["particles/colloids"] for p in sys.argv[1:])
@@ -134,7 +124,7 @@ del f['particles/colloids/radius'], f['particles/colloids/mass']" "$tmp/sd_old.h
 runs --err "$tmp/err" "radius_sd: restart from a checkpoint without radius and mass" \
   "$narrows" run "$tmp/sd.toml" --restart "$tmp/sd_old.h5" --out "$tmp/sd_old" > /dev/null
 check "radius_sd: ... and is bitwise equal to the uninterrupted run" \
-  '$py "$tmp/compare.py" "$tmp/sd_one/checkpoint-0000000060.h5" "$tmp/sd_old/checkpoint-0000000060.h5"'
+  '$py "$same" "$tmp/sd_one/checkpoint-0000000060.h5" "$tmp/sd_old/checkpoint-0000000060.h5" $both'
 sed 's/^radius_sd = 0.2/radius_sd = 0.1/' "$tmp/sd.toml" > "$tmp/sd2.toml"
 refused "a restart with another radius_sd" 'colloids.radius_sd = 0.1[0-9]* but checkpoint .* has 0.2' \
   "$narrows" run "$tmp/sd2.toml" --restart "$tmp/sd_part/checkpoint-0000000030.h5" --out "$tmp/sd_bad"

@@ -7,6 +7,8 @@
 set -u
 source "$(dirname "$0")/common.bash"
 py=/usr/bin/python3
+same=$src/tests/cli/same_state.py
+state="fluid:id,position,velocity colloids:id,position,velocity,angular_velocity_z,orientation_w,orientation_z"
 
 cat > "$tmp/n.toml" <<'TOML'
 [run]
@@ -37,40 +39,24 @@ checkpoint_every = 100
 progress = false
 observables = ["momentum", "energy"]
 TOML
-cat > "$tmp/compare.py" <<'PY'
-import sys, h5py, numpy as np
-def state(path, species, fields):
-    with h5py.File(path, "r") as f:
-        p = f["/particles/" + species]
-        order = np.argsort(p["id/value"][:])
-        return [p[name + "/value"][:][order] for name in fields]
-pairs = [("fluid", ["id", "position", "velocity"]),
-         ("colloids", ["id", "position", "velocity", "angular_velocity_z", "orientation_w",
-                       "orientation_z"])]
-for species, fields in pairs:
-    a, b = state(sys.argv[1], species, fields), state(sys.argv[2], species, fields)
-    for name, x, y in zip(fields, a, b):
-        if not np.array_equal(x.view(np.uint64), y.view(np.uint64)):
-            sys.exit(species + " " + name + " differ")
-PY
 runs --err "$tmp/err1" "1 rank" "$narrows" run "$tmp/n.toml" --out "$tmp/one" > "$tmp/log1"
 check "the log counts the contacts" 'grep -q "colloid contacts: [1-9][0-9]* colloid-colloid" "$tmp/log1"'
 check "the colloids turned: orientation (cos t/2, 0, 0, sin t/2), a unit quaternion" '$py -c "import h5py,sys,numpy as np; g=h5py.File(sys.argv[1])[\"/particles/colloids\"]; w=g[\"orientation_w/value\"][:]; z=g[\"orientation_z/value\"][:]; assert np.allclose(w*w+z*z, 1.0) and np.abs(z).max() > 1e-3 and not g[\"orientation_x/value\"][:].any()" "$tmp/one/checkpoint-0000000200.h5"'
 check "the colloids spin" '$py -c "import h5py,sys,numpy as np; f=h5py.File(sys.argv[1]); assert np.abs(f[\"/particles/colloids/angular_velocity_z/value\"][:]).max() > 1e-4" "$tmp/one/checkpoint-0000000200.h5"'
 runs "2 ranks" "${mpi[@]}" -n 2 "$narrows" run "$tmp/n.toml" --out "$tmp/two" > /dev/null 2>&1
 check "2 ranks bitwise equal to 1 rank" \
-  '$py "$tmp/compare.py" "$tmp/one/checkpoint-0000000200.h5" "$tmp/two/checkpoint-0000000200.h5"'
+  '$py "$same" "$tmp/one/checkpoint-0000000200.h5" "$tmp/two/checkpoint-0000000200.h5" $state'
 runs "3 ranks" "${mpi[@]}" -n 3 "$narrows" run "$tmp/n.toml" --out "$tmp/three" > /dev/null 2>&1
 check "3 ranks bitwise equal to 1 rank" \
-  '$py "$tmp/compare.py" "$tmp/one/checkpoint-0000000200.h5" "$tmp/three/checkpoint-0000000200.h5"'
+  '$py "$same" "$tmp/one/checkpoint-0000000200.h5" "$tmp/three/checkpoint-0000000200.h5" $state'
 runs "first half on 2 ranks" "${mpi[@]}" -n 2 "$narrows" run "$tmp/n.toml" --set run.steps=100 --out "$tmp/p21" > /dev/null 2>&1
 runs "restart on 1 rank" "$narrows" run "$tmp/n.toml" --restart "$tmp/p21" --out "$tmp/p21" > /dev/null 2>&1
 check "restart 2 -> 1 ranks bitwise equal to the uninterrupted run" \
-  '$py "$tmp/compare.py" "$tmp/one/checkpoint-0000000200.h5" "$tmp/p21/checkpoint-0000000200.h5"'
+  '$py "$same" "$tmp/one/checkpoint-0000000200.h5" "$tmp/p21/checkpoint-0000000200.h5" $state'
 runs "first half on 1 rank" "$narrows" run "$tmp/n.toml" --set run.steps=100 --out "$tmp/p13" > /dev/null 2>&1
 runs "restart on 3 ranks" "${mpi[@]}" -n 3 "$narrows" run "$tmp/n.toml" --restart "$tmp/p13" --out "$tmp/p13" > /dev/null 2>&1
 check "restart 1 -> 3 ranks bitwise equal to the uninterrupted run" \
-  '$py "$tmp/compare.py" "$tmp/one/checkpoint-0000000200.h5" "$tmp/p13/checkpoint-0000000200.h5"'
+  '$py "$same" "$tmp/one/checkpoint-0000000200.h5" "$tmp/p13/checkpoint-0000000200.h5" $state'
 check "trajectory-free run wrote no partial files" '! ls "$tmp/one" | grep -q "\.tmp$"'
 
 # Scenes the coupling cannot run.
