@@ -9,18 +9,6 @@
 
 namespace narrows::colloids {
 
-long ContactHistory::find(std::uint64_t o, std::uint64_t p) const {
-  std::size_t lo = 0, hi = size();
-  while (lo < hi) { // first row with key >= (o, p)
-    const std::size_t mid = (lo + hi) / 2;
-    if (owner[mid] < o || (owner[mid] == o && partner[mid] < p))
-      lo = mid + 1;
-    else
-      hi = mid;
-  }
-  return lo < size() && owner[lo] == o && partner[lo] == p ? static_cast<long>(lo) : -1;
-}
-
 void ContactHistory::sort() {
   const std::size_t n = size();
   std::vector<std::size_t> order(n);

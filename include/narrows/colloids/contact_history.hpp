@@ -36,8 +36,6 @@ struct ContactHistory {
     for (int k = 0; k < 3; ++k)
       xi[k].resize(k < dim ? n : 0);
   }
-  // Row of the contact (owner, partner), or -1.
-  long find(std::uint64_t o, std::uint64_t p) const;
   // Sorts the rows by (owner, partner).
   void sort();
 };
