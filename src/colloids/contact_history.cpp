@@ -11,13 +11,16 @@ namespace narrows::colloids {
 
 void ContactHistory::sort() {
   const std::size_t n = size();
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), std::size_t{0});
   const auto less = [&](std::size_t a, std::size_t b) {
     return owner[a] < owner[b] || (owner[a] == owner[b] && partner[a] < partner[b]);
   };
-  if (std::is_sorted(order.begin(), order.end(), less))
+  bool sorted = true; // (the usual case, every step: checked without allocating)
+  for (std::size_t j = 1; j < n && sorted; ++j)
+    sorted = !less(j, j - 1);
+  if (sorted)
     return;
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), std::size_t{0});
   std::sort(order.begin(), order.end(), less);
   const ContactHistory copy = *this;
   for (std::size_t j = 0; j < n; ++j) {

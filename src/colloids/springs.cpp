@@ -397,11 +397,8 @@ void SpringContacts::build_pairs(const Colloids &c, std::size_t owned) {
     cell_cut_ = 2.0 * r_max + skin_;
     cells_.size_for(box_, cell_cut_);
   }
-  struct Slot {
-    std::uint64_t owner, partner;
-    std::uint32_t i, j;
-  };
-  std::vector<Slot> slots;
+  std::vector<Slot> &slots = build_scratch_;
+  slots.clear();
   const auto &L = box_.length;
   // The pair belongs to the rank that owns the colloid of the smaller id (pairs of two ghosts,
   // or whose smaller id is a ghost, are left to their owners).

@@ -127,6 +127,11 @@ private:
   // whether they slid (scratch of forces()).
   // (slot, rows i and j, kind 0 pair, 1 lower wall, 2 upper wall, spring).
   std::vector<std::uint32_t> hits_;
+  struct Slot { // a pair or wall contact of the list being built, with its key
+    std::uint64_t owner, partner;
+    std::uint32_t i, j;
+  };
+  std::vector<Slot> build_scratch_; // (kept: no allocation per build once warm)
   std::vector<std::uint64_t> hit_i_, hit_j_;
   std::vector<std::int64_t> hit_kind_, hit_slides_; // (one width: vectorised)
   std::array<std::vector<double>, 3> hit_xi_, hit_force_, hit_torque_;
