@@ -8,6 +8,7 @@
 #include "narrows/colloids/pair_geometry.hpp"
 #include "narrows/colloids/springs.hpp"
 #include "narrows/mpcd/cell_grid.hpp"
+#include "narrows/mpcd/streaming.hpp"
 
 #include <gtest/gtest.h>
 
@@ -15,6 +16,7 @@
 #include <cstdio>
 #include <cstring>
 #include <numbers>
+#include <optional>
 #include <random>
 
 using namespace narrows;
@@ -322,4 +324,108 @@ TEST(Springs, PairListBuiltWithinAStepChangesNothing) {
   EXPECT_TRUE(same(ca.omega[2], cb.omega[2]));
   EXPECT_EQ(ha.owner, hb.owner);
   EXPECT_EQ(ha.partner, hb.partner);
+}
+
+// A step starts from the forces the last one ended with when nothing they depend on changed;
+// the result is bitwise that of evaluating them again (a new SpringContacts for every step
+// has nothing kept). A position or a spring changed between steps is noticed.
+TEST(Springs, AStepStartsFromTheForcesTheLastEndedWithOnlyWhenNothingChanged) {
+  enum class Between { nothing, position, spring };
+  const auto run = [](bool fresh_each_step, Between change, std::uint64_t &evaluations,
+                      std::uint64_t &changes) {
+    Colloids c = make(2, 12, 2.1, 25.0);
+    const mpcd::Box b = box(2, 30, true);
+    SpringParams p;
+    p.mu_cc = p.mu_cw = 0.5;
+    std::optional<SpringContacts> s;
+    ContactHistory h;
+    h.dim = 2;
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (std::size_t a = 0; a < 12; ++a) {
+      c.x[0][a] = 4.4 * static_cast<double>(a % 4) + 4.0;
+      c.x[1][a] = 4.4 * static_cast<double>(a / 4) + 5.0;
+      c.v[0][a] = u(rng);
+      c.v[1][a] = u(rng);
+      c.omega[2][a] = u(rng);
+    }
+    evaluations = changes = 0;
+    for (int i = 0; i < 100; ++i) {
+      if (fresh_each_step || !s) {
+        if (s)
+          evaluations += s->force_evaluations();
+        s.emplace(p, b);
+      }
+      s->advance(c, 12, h, 0.05);
+      if (change == Between::position) {
+        c.x[0][i % 12] += 1e-3;
+        ++changes;
+      }
+      if (change == Between::spring && h.size() > 0) {
+        h.xi[0][0] *= 0.5;
+        ++changes;
+      }
+    }
+    evaluations += s->force_evaluations();
+    return std::make_pair(c, h);
+  };
+  const auto same = [](const std::vector<double> &x, const std::vector<double> &y) {
+    return x.size() == y.size() && std::memcmp(x.data(), y.data(), 8 * x.size()) == 0;
+  };
+  for (const Between change : {Between::nothing, Between::position, Between::spring}) {
+    std::uint64_t kept = 0, fresh = 0, changes = 0, changes_fresh = 0;
+    const auto [ca, ha] = run(false, change, kept, changes);
+    const auto [cb, hb] = run(true, change, fresh, changes_fresh);
+    const int which = static_cast<int>(change);
+    std::printf("[ measured ] change %d: %llu force evaluations kept, %llu fresh\n", which,
+                static_cast<unsigned long long>(kept), static_cast<unsigned long long>(fresh));
+    EXPECT_EQ(fresh, 100u * 11u) << which;
+    // One evaluation per sub-step, one at the first step's start and at each step's after a
+    // change (the last change, after the last step, is not seen).
+    EXPECT_EQ(kept, 100u * 10u + 1u + (changes > 0 ? changes - 1 : 0)) << which;
+    if (change != Between::nothing)
+      EXPECT_GT(changes, 50u) << which;
+    EXPECT_GT(ha.size(), 0u);
+    for (int k = 0; k < 2; ++k) {
+      EXPECT_TRUE(same(ca.x[k], cb.x[k])) << "x " << k << " change " << which;
+      EXPECT_TRUE(same(ca.v[k], cb.v[k])) << "v " << k << " change " << which;
+      EXPECT_TRUE(same(ha.xi[k], hb.xi[k])) << "xi " << k << " change " << which;
+    }
+    EXPECT_TRUE(same(ca.omega[2], cb.omega[2])) << which;
+  }
+}
+
+// The drift wraps a colloid that moves more than a period in one sub-step (the vectorised
+// drift leaves that rare case to wrap_periodic): the same positions as a plain loop of
+// x <- wrap(x + v h), along x in a box with walls and along both axes without.
+TEST(Springs, DriftWrapsAJumpByMoreThanAPeriod) {
+  for (const bool walls : {true, false}) {
+    const double v[3][2] = {{97.3, 0.0}, {-131.9, walls ? 0.0 : 75.1}, {0.01, walls ? 0.0 : -0.02}};
+    for (const auto &u : v) { // (one colloid at a time: nothing to collide with)
+      Colloids c = make(2, 1, 1.0, 25.0);
+      const mpcd::Box b = box(2, 30, walls);
+      c.x[0][0] = 5.0;
+      c.x[1][0] = 15.0;
+      c.v[0][0] = u[0];
+      c.v[1][0] = u[1];
+      Colloids expected = c;
+      SpringParams p;
+      p.substeps = 4;
+      SpringContacts s(p, b);
+      ContactHistory h;
+      h.dim = 2;
+      for (int i = 0; i < 3; ++i) {
+        s.advance(c, 1, h, 1.0);
+        for (int sub = 0; sub < 4; ++sub)
+          for (int k = 0; k < 2; ++k)
+            if (!(walls && k == 1))
+              expected.x[k][0] =
+                  mpcd::wrap_periodic(expected.x[k][0] + expected.v[k][0] * 0.25, 30.0);
+      }
+      for (int k = 0; k < 2; ++k) {
+        EXPECT_EQ(c.x[k][0], expected.x[k][0]) << "v " << u[0] << " " << u[1] << " axis " << k;
+        EXPECT_EQ(c.v[k][0], expected.v[k][0]);
+      }
+    }
+  }
 }

@@ -86,6 +86,9 @@ public:
   // Times the pair list below was built, and the seconds spent on the contact forces (the
   // kernel: which slots touch, their springs and forces, the sums), for benchmarks.
   std::uint64_t pair_list_builds() const { return builds_; }
+  // Times the contact forces were evaluated (advance: one per sub-step, one more at the start
+  // of a step unless it could start from the forces the last step ended with).
+  std::uint64_t force_evaluations() const { return evaluations_; }
   double force_seconds() const { return force_seconds_; }
 
 private:
@@ -97,13 +100,31 @@ private:
   // The contact forces of the slots that touch into sums_; with step > 0 their springs are
   // advanced first (and those of slots that no longer touch dropped).
   template <int D, bool WallsY> void forces(const Colloids &c, double step);
-  void load_springs(const ContactHistory &h);  // h's springs into the slots (the rest zero)
+  template <bool WallsY> void forces_2d(const Colloids &c, double step); // (forces' 2D path)
+  // h's springs into the slots (the rest zero); false if that changed a slot's spring or the
+  // slots are new.
+  bool load_springs(const ContactHistory &h);
   void store_springs(ContactHistory &h) const; // the touching slots into h, in key order
-  // same_rows: the rows are known to be those of the last call (only positions changed).
+  // same_rows: the rows are known to be those of the last call (only positions changed); rows
+  // before `from` are known to have moved at most sqrt(worst) since the list was built.
   template <int D, bool WallsY>
-  bool pairs_fresh(const Colloids &c, std::size_t owned, bool same_rows = false) const;
+  bool pairs_fresh(const Colloids &c, std::size_t owned, bool same_rows = false,
+                   std::size_t from = 0, double worst = 0.0) const;
   template <int D, bool WallsY> void build_pairs(const Colloids &c, std::size_t owned);
-  void kick(Colloids &c, std::size_t owned, double h, const std::vector<double> *external) const;
+  // Kicks the owned rows by h under sums_ (and `external`), twice if `twice` (the same forces),
+  // then moves them by v drift (if drift > 0), wrapped along the periodic axes, in one pass.
+  // Returns the largest squared displacement of an owned row since the list was built (as
+  // pairs_fresh measures it; infinite after a jump by more than a period).
+  template <int D, bool WallsY>
+  double kick_drift(Colloids &c, std::size_t owned, double h, bool twice, double drift,
+                    const std::vector<double> *external);
+  template <int D, bool WallsY, bool External>
+  double kick_drift(Colloids &c, std::size_t owned, double h, bool twice, double drift,
+                    const double *external);
+  // The positions and (with hooks, before the reverse) the sums of the last forces of a step,
+  // so that the next step starts from them when nothing changed in between.
+  void keep_end(const Colloids &c, bool copy_sums);
+  bool same_positions_as_end(const Colloids &c) const;
 
   SpringParams params_;
   mpcd::Box box_;
@@ -126,7 +147,7 @@ private:
   // The slots touching at the current call, with their forces, torques per unit lever arm and
   // whether they slid (scratch of forces()).
   // (slot, rows i and j, kind 0 pair, 1 lower wall, 2 upper wall, spring).
-  std::vector<std::uint32_t> hits_;
+  std::vector<std::uint64_t> hits_;
   struct Slot { // a pair or wall contact of the list being built, with its key
     std::uint64_t owner, partner;
     std::uint32_t i, j;
@@ -135,16 +156,25 @@ private:
   std::vector<std::uint64_t> hit_i_, hit_j_;
   std::vector<std::int64_t> hit_kind_, hit_slides_; // (one width: vectorised)
   std::array<std::vector<double>, 3> hit_xi_, hit_force_, hit_torque_;
+  // (2D: the separation x_j - x_i and its square, r_i + r_j or the wall overlap; the forces and
+  // torques in fixed point)
+  std::array<std::vector<double>, 3> hit_sep_;
+  std::vector<double> hit_reach_;
+  std::array<std::vector<std::int64_t>, 4> hit_fixed_;
   std::array<std::vector<double>, 3> built_x_;
   std::vector<std::uint64_t> built_id_;
   std::vector<double> built_radius_;
   std::size_t built_owned_ = 0;
   double skin_ = 0.0;
   bool built_ = false;
-  std::uint64_t builds_ = 0;
+  std::uint64_t builds_ = 0, evaluations_ = 0;
   double force_seconds_ = 0.0;
   std::vector<std::int64_t> sums_;
-  std::vector<double> inertia_; // moments of inertia of the owned rows (advance)
+  std::vector<double> inertia_;         // moments of inertia of the owned rows (advance)
+  std::vector<std::uint8_t> rare_axes_; // (kick_drift: the axes a row jumped along)
+  std::array<std::vector<double>, 3> end_x_;
+  std::vector<std::int64_t> end_sums_;
+  bool end_kept_ = false; // end_x_ (and end_sums_) hold the last forces() call
   std::uint64_t updates_ = 0, sliding_ = 0;
 };
 
