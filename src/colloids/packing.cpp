@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -66,6 +67,37 @@ double max_overlap(const Colloids &c, const mpcd::Box &box) {
   if (box.dim == 2)
     return box.walls_y ? deepest<2, true>(c, box) : deepest<2, false>(c, box);
   return box.walls_y ? deepest<3, true>(c, box) : deepest<3, false>(c, box);
+}
+
+void number_along_x(Colloids &c) {
+  const std::size_t n = c.size();
+  std::vector<std::size_t> rows(n), by_x;
+  std::iota(rows.begin(), rows.end(), std::size_t{0});
+  const auto kind_before = [&](std::size_t a, std::size_t b) {
+    return c.radius[a] < c.radius[b] || (c.radius[a] == c.radius[b] && c.mass[a] < c.mass[b]);
+  };
+  std::stable_sort(rows.begin(), rows.end(), kind_before); // (a kind's rows in row order)
+  const Colloids was = c;
+  for (std::size_t g0 = 0, g1 = 0; g0 < n; g0 = g1) {
+    g1 = g0 + 1;
+    while (g1 < n && !kind_before(rows[g0], rows[g1]))
+      ++g1;
+    by_x.assign(rows.begin() + static_cast<std::ptrdiff_t>(g0),
+                rows.begin() + static_cast<std::ptrdiff_t>(g1));
+    std::stable_sort(by_x.begin(), by_x.end(),
+                     [&](std::size_t a, std::size_t b) { return was.x[0][a] < was.x[0][b]; });
+    for (std::size_t t = 0; t < by_x.size(); ++t) {
+      const std::size_t to = rows[g0 + t], from = by_x[t];
+      for (int k = 0; k < c.dim; ++k) {
+        c.x[k][to] = was.x[k][from];
+        c.v[k][to] = was.v[k][from];
+      }
+      for (int k = 0; k < 3; ++k)
+        c.omega[k][to] = was.omega[k][from];
+      for (int k = 0; k < 4; ++k)
+        c.q[k][to] = was.q[k][from];
+    }
+  }
 }
 
 PackingReport pack_colloids(Colloids &c, const mpcd::Box &box, std::uint64_t seed,
@@ -221,6 +253,7 @@ PackingReport pack_colloids(Colloids &c, const mpcd::Box &box, std::uint64_t see
   c.radius = target;
   for (int k = 0; k < D; ++k)
     std::fill(c.v[k].begin(), c.v[k].end(), 0.0);
+  number_along_x(c);
   report.max_overlap = max_overlap(c, box) / r_min;
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return report;

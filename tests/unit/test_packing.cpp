@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -114,4 +115,61 @@ TEST(Packing, RefusesFractionBeyondJamming) {
     EXPECT_NE(what.find("colloids.packing_fraction"), std::string::npos) << what;
     EXPECT_NE(what.find("cannot be packed"), std::string::npos) << what;
   }
+}
+
+// After packing, each kind's ids run along x (number_along_x): the rows of a kind are in order
+// of x and keep their radius, mass and id.
+TEST(Packing, EachKindNumberedAlongX) {
+  Channel s = bidisperse(60, 40, 60);
+  const Colloids before = s.c;
+  pack_colloids(s.c, s.box, 5, "test");
+  int inversions = 0;
+  for (std::size_t a = 0; a < s.c.size(); ++a) {
+    EXPECT_EQ(s.c.radius[a], before.radius[a]);
+    EXPECT_EQ(s.c.mass[a], before.mass[a]);
+    EXPECT_EQ(s.c.id[a], before.id[a]);
+    inversions += a > 0 && s.c.radius[a] == s.c.radius[a - 1] && s.c.x[0][a] < s.c.x[0][a - 1];
+  }
+  EXPECT_EQ(inversions, 0);
+}
+
+// number_along_x hands each row's whole state (position, velocity, spin, orientation) to a row
+// of the same radius and mass, in order of x within each such group; radius, mass and id stay.
+TEST(Packing, NumberingAlongXMovesWholeStatesWithinAKind) {
+  Colloids c;
+  c.dim = 2;
+  c.resize(9);
+  for (std::size_t a = 0; a < 9; ++a) {
+    c.id[a] = 100 + a;
+    c.radius[a] = a % 3 == 0 ? 1.0 : 2.0;
+    c.mass[a] = a % 3 == 2 ? 7.0 : 5.0; // three groups: (1, 5), (2, 5), (2, 7)
+    c.x[0][a] = std::fmod(5.0 * static_cast<double>(a), 9.0);
+    c.x[1][a] = static_cast<double>(a);
+    c.v[0][a] = 10.0 + static_cast<double>(a);
+    c.v[1][a] = 20.0 + static_cast<double>(a);
+    c.omega[2][a] = 30.0 + static_cast<double>(a);
+    c.q[3][a] = 40.0 + static_cast<double>(a);
+  }
+  const Colloids was = c;
+  number_along_x(c);
+  for (std::size_t a = 0; a < 9; ++a) {
+    EXPECT_EQ(c.id[a], was.id[a]);
+    EXPECT_EQ(c.radius[a], was.radius[a]);
+    EXPECT_EQ(c.mass[a], was.mass[a]);
+    const auto from = static_cast<std::size_t>(c.x[1][a]); // the row this state came from
+    EXPECT_EQ(c.radius[from], c.radius[a]);
+    EXPECT_EQ(c.mass[from], c.mass[a]);
+    EXPECT_EQ(c.x[0][a], was.x[0][from]);
+    EXPECT_EQ(c.v[0][a], was.v[0][from]);
+    EXPECT_EQ(c.v[1][a], was.v[1][from]);
+    EXPECT_EQ(c.omega[2][a], was.omega[2][from]);
+    EXPECT_EQ(c.q[3][a], was.q[3][from]);
+    for (std::size_t b = a + 1; b < 9; ++b)
+      if (c.radius[b] == c.radius[a] && c.mass[b] == c.mass[a])
+        EXPECT_LT(c.x[0][a], c.x[0][b]) << a << " " << b;
+  }
+  std::vector<double> ys(c.x[1]);
+  std::sort(ys.begin(), ys.end());
+  for (std::size_t a = 0; a < 9; ++a)
+    EXPECT_EQ(ys[a], static_cast<double>(a)); // every state once
 }

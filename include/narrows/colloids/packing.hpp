@@ -50,9 +50,16 @@ struct PackingReport {
 // Places the colloids of c (radius set, positions overwritten, velocities zeroed) as a packing
 // in `box` with draws keyed by (seed, id). With walls the centres start at least their radius
 // from the walls. input_error naming `key` if the overlaps cannot be brought below the
-// tolerance within max_iterations.
+// tolerance within max_iterations. At the end the rows are numbered along x
+// (number_along_x).
 PackingReport pack_colloids(Colloids &c, const mpcd::Box &box, std::uint64_t seed,
                             const std::string &key, const PackingParams &params = {});
+
+// Rows of the same radius and mass (interchangeable) exchange their state (position,
+// velocity, spin, orientation) so that within each such group the row order is the order in
+// x: colloids near in the channel are then near in memory, which the loops over neighbours
+// (contacts, bounce-back, ghosts) read faster. (LAMMPS sorts its atoms in space likewise.)
+void number_along_x(Colloids &c);
 
 // The deepest overlap r_a + r_b - |x_a - x_b| of two colloids or of a colloid and a wall
 // (0 if none), from the same cell-list pair search as the contacts.
