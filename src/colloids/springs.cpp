@@ -12,7 +12,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
-#if defined(__AVX512F__) && defined(__AVX512DQ__)
+#if defined(__AVX512F__) && defined(__AVX512DQ__) && defined(__AVX512BW__) && defined(__AVX512VL__)
 // GCC 12's AVX-512 headers leave a dummy operand undefined on purpose (GCC bug 105593).
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <immintrin.h>
@@ -29,18 +29,27 @@ constexpr std::uint32_t wall_low_row = ~std::uint32_t{0}, wall_high_row = wall_l
 // (3D) loop, written with scalars and selects so that they vectorise (the generic loop's small
 // arrays keep it scalar). The hits of a block of slots: slot, rows i and j (j = i for a wall),
 // kind (0 pair, 1 lower wall, 2 upper wall), what the touch test found of the geometry (d = x_j
-// - x_i with its minimum image, |d|^2, and r_i + r_j or a wall's overlap), and the spring.
+// - x_i with its minimum image, |d|^2, r_i + r_j or a wall's overlap, and the lever arms r_i
+// and r_j, 0 for a wall), and the spring.
 struct Hits2 {
   std::uint64_t *slot, *i, *j;
   std::int64_t *kind;
-  double *d[2], *r2, *reach, *xi[2];
+  double *d[2], *r2, *reach, *r[2], *xi[2];
+};
+
+// The slots' side of the touch test: with `update`, whether each slot touches, and its spring
+// dropped (zeroed) if it does not (a touching slot's goes to the hits first).
+struct Slots2 {
+  double *xi[2];
+  std::uint8_t *touch;
+  bool update;
 };
 
 // One slot's touch test (the scalar form of touching_2d's vector body): written at hits[nh],
 // which grows only if the slot touches.
 template <bool WallsY>
 inline std::size_t touch_slot_2d(const Colloids &c, std::uint64_t i, std::uint32_t p, std::size_t q,
-                                 const double *const slot_xi[2], const std::array<double, 3> &L,
+                                 const Slots2 &slots, const std::array<double, 3> &L,
                                  const Hits2 &hit, std::size_t nh) {
   const double *x0 = c.x[0].data(), *x1 = c.x[1].data(), *rad = c.radius.data();
   const bool wall = WallsY && p >= wall_high_row, low = p == wall_low_row;
@@ -52,7 +61,7 @@ inline std::size_t touch_slot_2d(const Colloids &c, std::uint64_t i, std::uint32
   double r2 = 0.0;
   r2 += d0 * d0;
   r2 += d1 * d1;
-  const double ri = rad[i], R = ri + rad[j], y = x1[i];
+  const double ri = rad[i], rj = rad[j], R = ri + rj, y = x1[i];
   const double wall_delta = low ? ri - y : y + ri - L[1];
   const bool touch = wall ? wall_delta > 0.0 : r2 < R * R;
   hit.slot[nh] = q;
@@ -63,8 +72,15 @@ inline std::size_t touch_slot_2d(const Colloids &c, std::uint64_t i, std::uint32
   hit.d[1][nh] = d1;
   hit.r2[nh] = r2;
   hit.reach[nh] = wall ? wall_delta : R;
-  hit.xi[0][nh] = slot_xi[0][q];
-  hit.xi[1][nh] = slot_xi[1][q];
+  hit.r[0][nh] = ri;
+  hit.r[1][nh] = wall ? 0.0 : rj;
+  for (int k = 0; k < 2; ++k) {
+    hit.xi[k][nh] = slots.xi[k][q];
+    if (slots.update)
+      slots.xi[k][q] = touch ? slots.xi[k][q] : 0.0;
+  }
+  if (slots.update)
+    slots.touch[q] = touch;
   return nh + touch;
 }
 
@@ -75,10 +91,10 @@ inline std::size_t touch_slot_2d(const Colloids &c, std::uint64_t i, std::uint32
 // operations, so the same bits, as touch_slot_2d, which does the rest.
 template <bool WallsY>
 std::size_t touching_2d(const Colloids &c, const std::uint32_t *pi, const std::uint32_t *pj,
-                        std::size_t q0, std::size_t q1, const double *const slot_xi[2],
+                        std::size_t q0, std::size_t q1, const Slots2 &slots,
                         const std::array<double, 3> &L, const Hits2 &hit) {
   std::size_t nh = 0, q = q0;
-#if defined(__AVX512F__) && defined(__AVX512DQ__)
+#if defined(__AVX512F__) && defined(__AVX512DQ__) && defined(__AVX512BW__) && defined(__AVX512VL__)
   const double *x0 = c.x[0].data(), *x1 = c.x[1].data(), *rad = c.radius.data();
   const __m512d L0 = _mm512_set1_pd(L[0]), L1 = _mm512_set1_pd(L[1]);
   const __m512d up0 = _mm512_set1_pd(0.5 * L[0]), down0 = _mm512_set1_pd(-(0.5 * L[0]));
@@ -132,13 +148,20 @@ std::size_t touching_2d(const Colloids &c, const std::uint32_t *pi, const std::u
     putd(hit.d[1] + nh, d1);
     putd(hit.r2 + nh, r2);
     putd(hit.reach + nh, _mm512_mask_blend_pd(wall, R, wall_delta));
-    putd(hit.xi[0] + nh, _mm512_loadu_pd(slot_xi[0] + q));
-    putd(hit.xi[1] + nh, _mm512_loadu_pd(slot_xi[1] + q));
+    putd(hit.r[0] + nh, ri);
+    putd(hit.r[1] + nh, _mm512_mask_blend_pd(wall, rj, zero));
+    for (int k = 0; k < 2; ++k) {
+      putd(hit.xi[k] + nh, _mm512_loadu_pd(slots.xi[k] + q));
+      if (slots.update)
+        _mm512_mask_storeu_pd(slots.xi[k] + q, static_cast<__mmask8>(~touch), zero);
+    }
+    if (slots.update) // (one byte per slot, 0 or 1)
+      _mm_storel_epi64(reinterpret_cast<__m128i *>(slots.touch + q), _mm_maskz_set1_epi8(touch, 1));
     nh += static_cast<std::size_t>(__builtin_popcount(touch));
   }
 #endif
   for (; q < q1; ++q)
-    nh = touch_slot_2d<WallsY>(c, pi[q], pj[q], q, slot_xi, L, hit, nh);
+    nh = touch_slot_2d<WallsY>(c, pi[q], pj[q], q, slots, L, hit, nh);
   return nh;
 }
 
@@ -153,13 +176,13 @@ struct Forces2 {
 template <bool Update>
 std::int64_t contacts_2d(const Colloids &c, const Hits2 &hit, const Forces2 &out, std::size_t nh,
                          const SpringParams &p, double step, double *over) {
-  const double *v0 = c.v[0].data(), *v1 = c.v[1].data(), *om = c.omega[2].data(),
-               *rad = c.radius.data();
+  const double *v0 = c.v[0].data(), *v1 = c.v[1].data(), *om = c.omega[2].data();
   const double kn = p.kn, kt = p.kt, mu_cc = p.mu_cc, mu_cw = p.mu_cw;
   // (Local pointers: loads through the structs would not be hoisted from the loop.)
   const std::uint64_t *hi = hit.i, *hj = hit.j;
   const std::int64_t *kind = hit.kind;
-  const double *sep0 = hit.d[0], *sep1 = hit.d[1], *sep2 = hit.r2, *reach = hit.reach;
+  const double *sep0 = hit.d[0], *sep1 = hit.d[1], *sep2 = hit.r2, *reach = hit.reach,
+               *arm_i = hit.r[0], *arm_j = hit.r[1];
   double *hxi0 = hit.xi[0], *hxi1 = hit.xi[1];
   std::int64_t *f0 = out.force[0], *f1 = out.force[1], *f2 = out.force[2], *f3 = out.force[3],
                *slides = out.slides;
@@ -169,7 +192,7 @@ std::int64_t contacts_2d(const Colloids &c, const Hits2 &hit, const Forces2 &out
   for (std::size_t h = 0; h < nh; ++h) {
     const std::uint64_t i = hi[h], j = hj[h]; // j = i for a wall
     const bool wall = kind[h] != 0, low = kind[h] == 1;
-    const double ri = rad[i], rj_row = rad[j], rj = wall ? 0.0 : rj_row;
+    const double ri = arm_i[h], rj = arm_j[h]; // (rj 0 for a wall)
     const double d0 = sep0[h], d1 = sep1[h];
     const double dist = std::sqrt(sep2[h]);
     // (Every sum in the order of the generic loop: the same roundings.)
@@ -309,7 +332,7 @@ template <bool WallsY> void SpringContacts::forces_2d(const Colloids &c, double 
   const bool update = step > 0.0;
   const std::size_t m = pair_i_.size();
   if (update)
-    slot_touch_.assign(m, 0);
+    slot_touch_.resize(m); // (each written by the touch test)
   // The slots a block at a time, so that the touching ones and their forces stay in the cache
   // between the passes.
   constexpr std::size_t block = 2048, room = block + 8; // (+8: whole vectors stored)
@@ -323,6 +346,8 @@ template <bool WallsY> void SpringContacts::forces_2d(const Colloids &c, double 
   }
   hit_sep_[2].resize(room);
   hit_reach_.resize(room);
+  for (auto &r : hit_arm_)
+    r.resize(room);
   for (auto &f : hit_fixed_)
     f.resize(room);
   hit_slides_.resize(room);
@@ -333,16 +358,17 @@ template <bool WallsY> void SpringContacts::forces_2d(const Colloids &c, double 
                   {hit_sep_[0].data(), hit_sep_[1].data()},
                   hit_sep_[2].data(),
                   hit_reach_.data(),
+                  {hit_arm_[0].data(), hit_arm_[1].data()},
                   {hit_xi_[0].data(), hit_xi_[1].data()}};
   const Forces2 out{
       {hit_fixed_[0].data(), hit_fixed_[1].data(), hit_fixed_[2].data(), hit_fixed_[3].data()},
       hit_slides_.data()};
-  const double *const slot_xi[2] = {slot_xi_[0].data(), slot_xi_[1].data()};
+  const Slots2 slots{{slot_xi_[0].data(), slot_xi_[1].data()}, slot_touch_.data(), update};
   for (std::size_t q0 = 0; q0 < m; q0 += block) {
     const std::size_t q1 = std::min(m, q0 + block);
     // 1. The slots that touch now, in key order, with their geometry and springs.
     const std::size_t nh =
-        touching_2d<WallsY>(c, pair_i_.data(), pair_j_.data(), q0, q1, slot_xi, box_.length, hit);
+        touching_2d<WallsY>(c, pair_i_.data(), pair_j_.data(), q0, q1, slots, box_.length, hit);
     // 2. Their springs (advanced when updating) and forces, in fixed point.
     double over = 0.0;
     const std::int64_t bad = update ? contacts_2d<true>(c, hit, out, nh, params_, step, &over)
@@ -365,15 +391,12 @@ template <bool WallsY> void SpringContacts::forces_2d(const Colloids &c, double 
       sliding += static_cast<std::uint64_t>(out.slides[h]);
     }
     if (update) {
-      // The springs of the block's slots that no longer touch are dropped.
-      for (int k = 0; k < 2; ++k)
-        std::fill(slot_xi_[k].begin() + static_cast<std::ptrdiff_t>(q0),
-                  slot_xi_[k].begin() + static_cast<std::ptrdiff_t>(q1), 0.0);
+      // The advanced springs back to their slots (those of the slots that no longer touch were
+      // dropped by the touch test).
       for (std::size_t h = 0; h < nh; ++h) {
         const std::uint64_t q = hit.slot[h];
-        slot_touch_[q] = 1;
-        slot_xi_[0][q] = hit.xi[0][h];
-        slot_xi_[1][q] = hit.xi[1][h];
+        slots.xi[0][q] = hit.xi[0][h];
+        slots.xi[1][q] = hit.xi[1][h];
       }
       updates_ += nh;
       sliding_ += sliding;

@@ -156,10 +156,11 @@ private:
   std::vector<std::uint64_t> hit_i_, hit_j_;
   std::vector<std::int64_t> hit_kind_, hit_slides_; // (one width: vectorised)
   std::array<std::vector<double>, 3> hit_xi_, hit_force_, hit_torque_;
-  // (2D: the separation x_j - x_i and its square, r_i + r_j or the wall overlap; the forces and
-  // torques in fixed point)
+  // (2D: the separation x_j - x_i and its square, r_i + r_j or the wall overlap, the lever arms;
+  // the forces and torques in fixed point)
   std::array<std::vector<double>, 3> hit_sep_;
   std::vector<double> hit_reach_;
+  std::array<std::vector<double>, 2> hit_arm_;
   std::array<std::vector<std::int64_t>, 4> hit_fixed_;
   std::array<std::vector<double>, 3> built_x_;
   std::vector<std::uint64_t> built_id_;
