@@ -281,13 +281,41 @@ void SpringContacts::compute(const Colloids &c, std::size_t owned, ContactHistor
 }
 
 bool SpringContacts::load_springs(const ContactHistory &h) {
-  // Both in key order: one walk along h.
   const std::size_t m = slot_owner_.size();
-  bool same = true;
-  for (int k = 0; k < 3; ++k) {
-    same = same && slot_xi_[k].size() == m;
-    slot_xi_[k].resize(m);
+  bool sized = slot_touch_.size() == m;
+  for (int k = 0; k < 3; ++k)
+    sized = sized && slot_xi_[k].size() == m;
+  bool same = sized;
+  if (sized) {
+    // Usually h is what store_springs made of these slots: the touching ones, in order. Then
+    // one pass without branches; it falls through to the general walk when a key differs.
+    std::size_t n = 0;
+    for (std::size_t q = 0; q < m; ++q)
+      n += slot_touch_[q];
+    if (n == h.size()) {
+      bool differ = false;
+      std::size_t r = 0;
+      for (std::size_t q = 0; q < m; ++q) {
+        const bool touch = slot_touch_[q] != 0;
+        const std::size_t at = r < n ? r : 0; // (read, then not used, past the end)
+        differ = differ ||
+                 (touch && (h.owner[at] != slot_owner_[q] || h.partner[at] != slot_partner_[q]));
+        for (int k = 0; k < dim_; ++k) {
+          const double xi = touch ? h.xi[k][at] : 0.0;
+          same = same &&
+                 std::bit_cast<std::uint64_t>(xi) == std::bit_cast<std::uint64_t>(slot_xi_[k][q]);
+          slot_xi_[k][q] = xi;
+        }
+        r += touch;
+      }
+      if (!differ)
+        return same;
+      same = false; // (a contact came or went; the slots are partly overwritten)
+    }
   }
+  // Both in key order: one walk along h.
+  for (int k = 0; k < 3; ++k)
+    slot_xi_[k].resize(m);
   std::size_t walk = 0;
   for (std::size_t q = 0; q < m; ++q) {
     const std::uint64_t o = slot_owner_[q], p = slot_partner_[q];
@@ -310,16 +338,16 @@ void SpringContacts::store_springs(ContactHistory &h) const {
   for (std::size_t q = 0; q < m; ++q)
     n += slot_touch_[q];
   h.dim = dim_;
-  h.resize(n);
+  h.resize(n + 1); // (+1: every slot is written at the end, which grows only by those that touch)
   std::size_t r = 0;
-  for (std::size_t q = 0; q < m; ++q)
-    if (slot_touch_[q]) {
-      h.owner[r] = slot_owner_[q];
-      h.partner[r] = slot_partner_[q];
-      for (int k = 0; k < dim_; ++k)
-        h.xi[k][r] = slot_xi_[k][q];
-      ++r;
-    }
+  for (std::size_t q = 0; q < m; ++q) {
+    h.owner[r] = slot_owner_[q];
+    h.partner[r] = slot_partner_[q];
+    for (int k = 0; k < dim_; ++k)
+      h.xi[k][r] = slot_xi_[k][q];
+    r += slot_touch_[q];
+  }
+  h.resize(n);
 }
 
 template <bool WallsY> void SpringContacts::forces_2d(const Colloids &c, double step) {
