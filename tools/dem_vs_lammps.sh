@@ -6,7 +6,9 @@
 #
 # `narrows bench --dem DISKS --dem-data DIR/packing.data` times narrows' spring contacts alone
 # (no fluid, one core) on seed 001 Table 6.1's bidisperse mixture at phi = 0.8 between walls
-# and writes the same packing with its thermal velocities as a LAMMPS data file. LAMMPS (Debian's
+# and writes the same packing with its thermal velocities as a LAMMPS data file, atoms in
+# narrows' order (each kind numbered along x, as every narrows packing; LAMMPS also sorts its
+# atoms in space itself). LAMMPS (Debian's
 # `lammps`, installed here if missing) then runs the same model on it, one process:
 # pair gran/hooke/history and fix wall/gran hooke/history with k_n = k_t = 2500, no damping,
 # mu = 1, fix nve/sphere disc (the disc's moment of inertia), the same sub-step 0.002 and the same
