@@ -62,7 +62,7 @@ refused() {
   "$@" > "$tmp/rout" 2> "$tmp/rerr"
   local code=$?
   check "$name: exit 2 (got $code)" '[ "$code" -eq 2 ]'
-  check "$name: one line on stderr" '[ "$(grep -c . "$tmp/rerr")" -eq 1 ]'
+  check "$name: one line on stderr" '[ "$(grep -c . "$tmp/rerr")" -eq 1 ] || { cat "$tmp/rerr"; false; }'
   check "$name: message matches '$pattern'" 'grep -q -- "$pattern" "$tmp/rerr" || { cat "$tmp/rerr"; false; }'
 }
 finish() {

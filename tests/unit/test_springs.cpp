@@ -273,6 +273,30 @@ TEST(Springs, EnergyWithoutFrictionConservedOverAMillionSubsteps) {
   EXPECT_LT(worst, 1e-6);
 }
 
+namespace {
+
+// 12 disks of radius 2.1 (density 25) on a 4 x 3 grid from (4, 5) with the given spacing,
+// random velocities and spins (the same for every call).
+Colloids twelve_disks(double spacing_x, double spacing_y) {
+  Colloids c = make(2, 12, 2.1, 25.0);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (std::size_t a = 0; a < 12; ++a) {
+    c.x[0][a] = spacing_x * static_cast<double>(a % 4) + 4.0;
+    c.x[1][a] = spacing_y * static_cast<double>(a / 4) + 5.0;
+    c.v[0][a] = u(rng);
+    c.v[1][a] = u(rng);
+    c.omega[2][a] = u(rng);
+  }
+  return c;
+}
+
+bool bitwise_same(const std::vector<double> &x, const std::vector<double> &y) {
+  return x.size() == y.size() && std::memcmp(x.data(), y.data(), 8 * x.size()) == 0;
+}
+
+} // namespace
+
 // The pair list is built again within an MPCD step when a colloid has moved half its skin
 // (the springs go back to the history and come out of it on the new list): a step of 50
 // sub-steps of fast colloids (several builds a step) ends bitwise where 50 steps of one
@@ -281,7 +305,7 @@ TEST(Springs, EnergyWithoutFrictionConservedOverAMillionSubsteps) {
 TEST(Springs, PairListBuiltWithinAStepChangesNothing) {
   const auto run = [](int substeps, double dt, int calls, std::uint64_t &builds,
                       std::uint64_t &updates) {
-    Colloids c = make(2, 12, 2.1, 25.0);
+    Colloids c = twelve_disks(7.0, 8.0);
     const mpcd::Box b = box(2, 30, true);
     SpringParams p;
     p.mu_cc = p.mu_cw = 0.5;
@@ -289,15 +313,6 @@ TEST(Springs, PairListBuiltWithinAStepChangesNothing) {
     SpringContacts s(p, b);
     ContactHistory h;
     h.dim = 2;
-    std::mt19937_64 rng(11);
-    std::uniform_real_distribution<double> u(-1.0, 1.0);
-    for (std::size_t a = 0; a < 12; ++a) {
-      c.x[0][a] = 7.0 * static_cast<double>(a % 4) + 4.0;
-      c.x[1][a] = 8.0 * static_cast<double>(a / 4) + 5.0;
-      c.v[0][a] = u(rng);
-      c.v[1][a] = u(rng);
-      c.omega[2][a] = u(rng);
-    }
     for (int i = 0; i < calls; ++i)
       s.advance(c, 12, h, dt);
     builds = s.pair_list_builds();
@@ -313,15 +328,12 @@ TEST(Springs, PairListBuiltWithinAStepChangesNothing) {
   EXPECT_GT(builds_a, 200u); // more than one a step: built within steps
   EXPECT_GT(updates_a, 1000u);
   EXPECT_EQ(updates_a, updates_b);
-  const auto same = [](const std::vector<double> &x, const std::vector<double> &y) {
-    return x.size() == y.size() && std::memcmp(x.data(), y.data(), 8 * x.size()) == 0;
-  };
   for (int k = 0; k < 2; ++k) {
-    EXPECT_TRUE(same(ca.x[k], cb.x[k])) << "x " << k;
-    EXPECT_TRUE(same(ca.v[k], cb.v[k])) << "v " << k;
-    EXPECT_TRUE(same(ha.xi[k], hb.xi[k])) << "xi " << k;
+    EXPECT_TRUE(bitwise_same(ca.x[k], cb.x[k])) << "x " << k;
+    EXPECT_TRUE(bitwise_same(ca.v[k], cb.v[k])) << "v " << k;
+    EXPECT_TRUE(bitwise_same(ha.xi[k], hb.xi[k])) << "xi " << k;
   }
-  EXPECT_TRUE(same(ca.omega[2], cb.omega[2]));
+  EXPECT_TRUE(bitwise_same(ca.omega[2], cb.omega[2]));
   EXPECT_EQ(ha.owner, hb.owner);
   EXPECT_EQ(ha.partner, hb.partner);
 }
@@ -334,22 +346,13 @@ TEST(Springs, AStepStartsFromTheForcesTheLastEndedWithOnlyWhenNothingChanged) {
   enum class Between { nothing, position, spring, contact, partner };
   const auto run = [](bool fresh_each_step, Between change, std::uint64_t &evaluations,
                       std::uint64_t &changes) {
-    Colloids c = make(2, 12, 2.1, 25.0);
+    Colloids c = twelve_disks(4.4, 4.4);
     const mpcd::Box b = box(2, 30, true);
     SpringParams p;
     p.mu_cc = p.mu_cw = 0.5;
     std::optional<SpringContacts> s;
     ContactHistory h;
     h.dim = 2;
-    std::mt19937_64 rng(11);
-    std::uniform_real_distribution<double> u(-1.0, 1.0);
-    for (std::size_t a = 0; a < 12; ++a) {
-      c.x[0][a] = 4.4 * static_cast<double>(a % 4) + 4.0;
-      c.x[1][a] = 4.4 * static_cast<double>(a / 4) + 5.0;
-      c.v[0][a] = u(rng);
-      c.v[1][a] = u(rng);
-      c.omega[2][a] = u(rng);
-    }
     evaluations = changes = 0;
     for (int i = 0; i < 100; ++i) {
       if (fresh_each_step || !s) {
@@ -381,9 +384,6 @@ TEST(Springs, AStepStartsFromTheForcesTheLastEndedWithOnlyWhenNothingChanged) {
     evaluations += s->force_evaluations();
     return std::make_pair(c, h);
   };
-  const auto same = [](const std::vector<double> &x, const std::vector<double> &y) {
-    return x.size() == y.size() && std::memcmp(x.data(), y.data(), 8 * x.size()) == 0;
-  };
   for (const Between change :
        {Between::nothing, Between::position, Between::spring, Between::contact, Between::partner}) {
     std::uint64_t kept = 0, fresh = 0, changes = 0, changes_fresh = 0;
@@ -401,11 +401,11 @@ TEST(Springs, AStepStartsFromTheForcesTheLastEndedWithOnlyWhenNothingChanged) {
     if (change < Between::contact) // (else: contacts in more than 50 of the steps, above)
       EXPECT_GT(ha.size(), 0u);
     for (int k = 0; k < 2; ++k) {
-      EXPECT_TRUE(same(ca.x[k], cb.x[k])) << "x " << k << " change " << which;
-      EXPECT_TRUE(same(ca.v[k], cb.v[k])) << "v " << k << " change " << which;
-      EXPECT_TRUE(same(ha.xi[k], hb.xi[k])) << "xi " << k << " change " << which;
+      EXPECT_TRUE(bitwise_same(ca.x[k], cb.x[k])) << "x " << k << " change " << which;
+      EXPECT_TRUE(bitwise_same(ca.v[k], cb.v[k])) << "v " << k << " change " << which;
+      EXPECT_TRUE(bitwise_same(ha.xi[k], hb.xi[k])) << "xi " << k << " change " << which;
     }
-    EXPECT_TRUE(same(ca.omega[2], cb.omega[2])) << which;
+    EXPECT_TRUE(bitwise_same(ca.omega[2], cb.omega[2])) << which;
   }
 }
 
