@@ -200,7 +200,7 @@ void NoSlipCoupling::add_ghost_particles(mpcd::CellGrid &grid, const Colloids &c
       const auto take = [&](bool valid, double qx, double qy) {
         const double rx = corner[0] + qx, ry = corner[1] + qy, y = Y + ry;
         // bitwise &, not &&: no branch on the random outcome
-        const bool in = valid & (rx * rx + ry * ry < R2) & (!walls | ((y >= 0.0) & (y <= Ly)));
+        const bool in = valid & (rx * rx + ry * ry < R2) & ((!walls) | ((y >= 0.0) & (y <= Ly)));
         const double m = static_cast<double>(in);
         kept += m;
         s1[0] += m * qx;

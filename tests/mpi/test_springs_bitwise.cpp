@@ -177,8 +177,9 @@ TEST(SpringBitwise, PlugAcrossSlabEdgesEqualsOneRank) {
   std::printf("%d ranks: %zu contacts at the end; the longest between two colloids lasted %d "
               "steps, the longest across a slab edge %d\n",
               world_size(), par_contacts.size(), longest, longest_straddling);
-  if (world_size() > 1)
+  if (world_size() > 1) {
     EXPECT_GE(longest_straddling, steps / 2) << "no contact across a slab edge lasted";
+  }
   engine::MpcdSimulation ser(s, MPI_COMM_SELF);
   for (int i = 0; i < steps; ++i)
     ser.advance();

@@ -396,10 +396,12 @@ TEST(Springs, AStepStartsFromTheForcesTheLastEndedWithOnlyWhenNothingChanged) {
     // One evaluation per sub-step, one at the first step's start and at each step's after a
     // change (the last change, after the last step, is not seen).
     EXPECT_EQ(kept, 100u * 10u + 1u + (changes > 0 ? changes - 1 : 0)) << which;
-    if (change != Between::nothing)
+    if (change != Between::nothing) {
       EXPECT_GT(changes, 50u) << which;
-    if (change < Between::contact) // (else: contacts in more than 50 of the steps, above)
+    }
+    if (change < Between::contact) { // (else: contacts in more than 50 of the steps, above)
       EXPECT_GT(ha.size(), 0u);
+    }
     for (int k = 0; k < 2; ++k) {
       EXPECT_TRUE(bitwise_same(ca.x[k], cb.x[k])) << "x " << k << " change " << which;
       EXPECT_TRUE(bitwise_same(ca.v[k], cb.v[k])) << "v " << k << " change " << which;

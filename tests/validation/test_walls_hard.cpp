@@ -65,8 +65,9 @@ TEST_P(WallsHard, StrongForceAndParticlesOnTheWalls) {
   long centre_count = 0;
   for (int step = 1; step <= 10000; ++step) {
     sim.advance();
-    if (step % 100 == 0)
+    if (step % 100 == 0) {
       ASSERT_NO_THROW(invariants.check(sim)) << "step " << step;
+    }
     if (step > 2000 && step % 10 == 0)
       for (std::size_t i = 0; i < f.size(); ++i)
         if (std::abs(f.x[1][i] - 0.5 * L) < 1.0) {
@@ -79,8 +80,9 @@ TEST_P(WallsHard, StrongForceAndParticlesOnTheWalls) {
               analysis::temperature(f, MPI_COMM_SELF));
   // Slip walls do not hold the fluid back: it accelerates freely (only the virtual particles
   // drag it), so only the no-slip cases reach the Poiseuille Ma.
-  if (!c.slip)
+  if (!c.slip) {
     EXPECT_GT(mach, 0.35);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Cases, WallsHard,
