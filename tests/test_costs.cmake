@@ -5,6 +5,8 @@
 # instead. Figures of a full run on this 2-core machine (ctest -j2); only the order matters.
 # The validation tests (defined at build time by gtest_discover_tests); the command-line and
 # MPI tests get theirs in tests/CMakeLists.txt, where they are defined.
+set_tests_properties("validation.NoSlipHardCase.TwoHundredBidisperseDisksAtHalfAreaFraction" PROPERTIES COST 200)
+set_tests_properties("validation.SpringHardCase.DensePackingWithoutSlidingUnderTheStrongestDrive" PROPERTIES COST 192)
 set_tests_properties("validation.PoiseuilleVirtualParticles.HoldTheFluidAtTheWall" PROPERTIES COST 115)
 set_tests_properties("validation.Rules/Viscosity.KolmogorovFlowMatchesTheory/srd3d_a130_dt1" PROPERTIES COST 54)
 set_tests_properties("validation.FhpVacf.LongTimeTailApproachesOneOverT" PROPERTIES COST 50)
