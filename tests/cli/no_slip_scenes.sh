@@ -2,8 +2,9 @@
 # No-slip colloids with hard contacts (issue 20) through the command line: a channel under a
 # pressure drive with settling colloids runs on 1, 2 and 3 ranks to bitwise the same final
 # checkpoint (fluid, colloids and their angular velocities, compared by id); restarts 2 -> 1
-# and 1 -> 3 ranks continue bitwise; the run log counts the contacts; scenes the coupling cannot
-# run are refused in one line naming the key.
+# and 1 -> 3 ranks continue bitwise; fluid fast enough to cross several cells a step around
+# colloids runs on 3 uneven slabs bitwise as on 1 rank; the run log counts the contacts; scenes
+# the coupling cannot run are refused in one line naming the key.
 set -u
 source "$(dirname "$0")/common.bash"
 py=/usr/bin/python3
@@ -58,6 +59,46 @@ runs "restart on 3 ranks" "${mpi[@]}" -n 3 "$narrows" run "$tmp/n.toml" --restar
 check "restart 1 -> 3 ranks bitwise equal to the uninterrupted run" \
   '$py "$same" "$tmp/one/checkpoint-0000000200.h5" "$tmp/p13/checkpoint-0000000200.h5" $state'
 check "trajectory-free run wrote no partial files" '! ls "$tmp/one" | grep -q "\.tmp$"'
+
+# Fast fluid: SRD with dt = 2 moves particles up to ~8 cells a step, further than the colloids'
+# own reach, so the region whose colloids a rank holds as ghosts is sized by the fluid's reach
+# (fluid_reach). On 3 uneven slabs (11, 10, 10 columns) the run is bitwise that of 1 rank; with
+# the reach set to zero it stops at step 6 ("fluid particle ... outside the region whose colloids
+# this rank held"). Spring contacts: hard contacts widen the region by their own margin and hide it.
+cat > "$tmp/fast.toml" <<'TOML'
+[run]
+dimensions = 2
+seed = 5
+steps = 100
+[domain]
+size = [31.0, 12.0]
+[fluid]
+collision = "srd"
+density = 5
+dt = 2.0
+[walls]
+virtual_particles = true
+[colloids]
+coupling = "no-slip"
+contacts = "spring"
+radius = 1.2
+count = 24
+mass = 400.0
+placement = "random"
+[colloids.spring]
+kn = 100
+kt = 100
+substeps = 20
+[output]
+every = 100
+checkpoint_every = 100
+progress = false
+observables = ["momentum"]
+TOML
+runs "fast fluid, 1 rank" "$narrows" run "$tmp/fast.toml" --out "$tmp/fast1" > /dev/null 2>&1
+runs --err "$tmp/err_fast3" "fast fluid, 3 ranks" "${mpi[@]}" -n 3 "$narrows" run "$tmp/fast.toml" --out "$tmp/fast3" > /dev/null
+check "fast fluid: 3 ranks bitwise equal to 1 rank" \
+  '$py "$same" "$tmp/fast1/checkpoint-0000000100.h5" "$tmp/fast3/checkpoint-0000000100.h5" fluid:id,position,velocity colloids:id,position,velocity,angular_velocity_z'
 
 # Scenes the coupling cannot run.
 bad() { sed "$1" "$tmp/n.toml" > "$tmp/bad.toml"; }
