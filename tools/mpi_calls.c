@@ -7,10 +7,10 @@
 #include <stdlib.h>
 
 enum { ALLTOALL, ALLTOALLV, ALLREDUCE, REDUCE, BCAST, ALLGATHER, ALLGATHERV, GATHER, GATHERV,
-       SCAN, EXSCAN, BARRIER, SENDRECV, SEND, ISEND, KINDS };
+       SCAN, EXSCAN, BARRIER, SENDRECV, SEND, ISEND, IRECV, KINDS };
 static const char *names[KINDS] = {"alltoall", "alltoallv", "allreduce", "reduce", "bcast",
                                    "allgather", "allgatherv", "gather", "gatherv", "scan",
-                                   "exscan", "barrier", "sendrecv", "send", "isend"};
+                                   "exscan", "barrier", "sendrecv", "send", "isend", "irecv"};
 static unsigned long long calls[KINDS], bytes[KINDS];
 
 static long long size_of(MPI_Datatype t) {
@@ -97,6 +97,11 @@ int MPI_Isend(const void *b, int c, MPI_Datatype t, int dest, int tag, MPI_Comm 
               MPI_Request *req) {
   COUNT(ISEND, (long long)c * size_of(t));
   return PMPI_Isend(b, c, t, dest, tag, comm, req);
+}
+int MPI_Irecv(void *b, int c, MPI_Datatype t, int src, int tag, MPI_Comm comm,
+              MPI_Request *req) {
+  COUNT(IRECV, (long long)c * size_of(t)); /* (bytes received) */
+  return PMPI_Irecv(b, c, t, src, tag, comm, req);
 }
 int MPI_Finalize(void) {
   const char *out = getenv("MPI_CALLS_OUT");

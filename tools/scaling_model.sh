@@ -19,13 +19,13 @@ mpi=(mpirun --oversubscribe)
 [ "$(id -u)" -eq 0 ] && mpi+=(--allow-run-as-root)
 scene=$here/run/seed001_table6_1.toml
 "$narrows" run "$scene" --set run.steps=50 --set output.checkpoint_every=100000 \
-  --out "$dir/one" >"$dir/one.log" 2>&1
+  --out "$dir/one" --overwrite >"$dir/one.log" 2>&1
 rate=$(sed -n 's/^Loop time .*(\([0-9.e+]*\) particle-steps\/s)$/\1/p' "$dir/one.log")
 for steps in 20 70; do
   rm -f "$dir/calls_$steps.txt"
   MPI_CALLS_OUT=$dir/calls_$steps.txt "${mpi[@]}" -n 3 -x LD_PRELOAD="$dir/mpi_calls.so" \
     -x MPI_CALLS_OUT "$narrows" run "$scene" --set run.steps=$steps \
-    --set output.checkpoint_every=100000 --out "$dir/three_$steps" >"$dir/three_$steps.log" 2>&1
+    --set output.checkpoint_every=100000 --out "$dir/three_$steps" --overwrite >"$dir/three_$steps.log" 2>&1
 done
 /usr/bin/python3 "$here/tools/scaling_model.py" "$dir/calls_20.txt" "$dir/calls_70.txt" \
   --steps 50 --rate "$rate"

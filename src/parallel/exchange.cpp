@@ -1,8 +1,10 @@
-// Migrate, copy, refresh and reverse for any structure-of-arrays species, over MPI_Alltoallv.
+// Migrate, copy, refresh and reverse for any structure-of-arrays species: the row counts by
+// MPI_Alltoall, the rows by point-to-point messages to and from the ranks that have any.
 #include "narrows/parallel/exchange.hpp"
 
 #include "narrows/core/error.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <limits>
 #include <string>
@@ -33,11 +35,19 @@ Exchange::Exchange(MPI_Comm comm) : comm_(comm) {
 
 namespace {
 
-// Alltoallv of rows of `row` words: counts are in rows. Returns received rows in recv.
+// The tag of the rows' messages (an exchange completes before the next starts, so messages of
+// two exchanges between the same ranks are never matched with each other).
+constexpr int rows_tag = 0x6e72;
+
+// Rows of `row` words to every rank (counts in rows, send in rank order); the received rows in
+// recv, in the order of their source ranks. The counts go by MPI_Alltoall; the rows only between
+// ranks that have any for each other, as point-to-point messages (an MPI_Alltoallv may pay a
+// latency for each of the P - 1 ranks even when the message is empty: the cost of a halo
+// exchange would grow with the number of ranks).
 void exchange_rows(MPI_Comm comm, int ranks, std::size_t row, const std::vector<int> &send_rows,
                    std::vector<int> &recv_rows, std::vector<int> &sdispl, std::vector<int> &rdispl,
                    const std::vector<std::uint64_t> &send, std::vector<std::uint64_t> &recv,
-                   std::uint64_t &bytes_sent) {
+                   std::vector<MPI_Request> &requests, std::uint64_t &bytes_sent) {
   recv_rows.assign(ranks, 0);
   MPI_Alltoall(send_rows.data(), 1, MPI_INT, recv_rows.data(), 1, MPI_INT, comm);
   std::vector<int> scount(ranks), rcount(ranks);
@@ -58,8 +68,22 @@ void exchange_rows(MPI_Comm comm, int ranks, std::size_t row, const std::vector<
   int me = 0;
   MPI_Comm_rank(comm, &me);
   bytes_sent += 8 * static_cast<std::uint64_t>(stotal - scount[me]);
-  MPI_Alltoallv(send.data(), scount.data(), sdispl.data(), MPI_UINT64_T, recv.data(), rcount.data(),
-                rdispl.data(), MPI_UINT64_T, comm);
+  requests.clear();
+  for (int r = 0; r < ranks; ++r)
+    if (r != me && rcount[r] > 0) {
+      requests.emplace_back();
+      MPI_Irecv(recv.data() + rdispl[r], rcount[r], MPI_UINT64_T, r, rows_tag, comm,
+                &requests.back());
+    }
+  for (int r = 0; r < ranks; ++r)
+    if (r != me && scount[r] > 0) {
+      requests.emplace_back();
+      MPI_Isend(send.data() + sdispl[r], scount[r], MPI_UINT64_T, r, rows_tag, comm,
+                &requests.back());
+    }
+  std::copy(send.begin() + sdispl[me], send.begin() + sdispl[me] + scount[me],
+            recv.begin() + rdispl[me]); // (the rows a rank keeps)
+  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
 }
 
 // Rows per destination rank (into counts) and where each rank's rows start in the send
@@ -128,7 +152,7 @@ void Exchange::migrate(const SoaView &s, const std::vector<std::size_t> &leavers
     }
   }
   exchange_rows(comm_, ranks_, F, send_counts_, recv_counts_, send_displs_, recv_displs_, send_,
-                recv_, bytes_sent_);
+                recv_, requests_, bytes_sent_);
   const std::size_t arrived = recv_.size() / (F ? F : 1);
   s.resize(n + arrived);
   for (std::size_t j = 0; j < arrived; ++j) {
@@ -162,7 +186,7 @@ Halo Exchange::copy(const SoaView &s, const CopyList &list) {
     row[f] = i;
   }
   exchange_rows(comm_, ranks_, row_len, send_counts_, recv_counts_, send_displs_, recv_displs_,
-                send_, recv_, bytes_sent_);
+                send_, recv_, requests_, bytes_sent_);
   const std::size_t n = s.size(), g = recv_.size() / row_len;
   s.resize(n + g);
   Halo h;
@@ -196,7 +220,7 @@ void Exchange::refresh(const std::vector<std::vector<double> *> &fields, const C
       row[f] = std::bit_cast<std::uint64_t>((*fields[f])[list.index[j]]);
   }
   exchange_rows(comm_, ranks_, F, send_counts_, recv_counts_, send_displs_, recv_displs_, send_,
-                recv_, bytes_sent_);
+                recv_, requests_, bytes_sent_);
   const std::size_t g = F ? recv_.size() / F : 0;
   for (std::size_t j = 0; j < g; ++j)
     for (std::size_t f = 0; f < F; ++f)
@@ -217,7 +241,7 @@ void Exchange::reverse(const Halo &h, const std::vector<std::int64_t> &per_ghost
       row[1 + j] = static_cast<std::uint64_t>(per_ghost[g * k + j]);
   }
   exchange_rows(comm_, ranks_, row_len, send_counts_, recv_counts_, send_displs_, recv_displs_,
-                send_, recv_, bytes_sent_);
+                send_, recv_, requests_, bytes_sent_);
   for (std::size_t j = 0; j < recv_.size() / row_len; ++j) {
     const std::uint64_t *row = &recv_[j * row_len];
     for (int q = 0; q < k; ++q)

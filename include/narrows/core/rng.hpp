@@ -2,7 +2,13 @@
 // of (seed, purpose, step, id), so no generator state exists to communicate or checkpoint.
 #pragma once
 
+// (It includes immintrin.h, whose AVX-512 part GCC 12 warns about: a dummy operand is left
+// undefined on purpose, GCC bug 105593.)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <Random123/philox.h>
+#pragma GCC diagnostic pop
 
 #include <array>
 #include <cmath>

@@ -63,7 +63,7 @@ public:
   void refresh(const std::vector<std::vector<double> *> &fields, const CopyList &list,
                std::size_t first_ghost);
 
-  // Bytes this rank has sent through MPI_Alltoallv since construction (a figure for benchmarks).
+  // Bytes of rows this rank has sent to other ranks since construction (a figure for benchmarks).
   std::uint64_t bytes_sent() const { return bytes_sent_; }
 
   // For each ghost of `halo`, `per_ghost[g * k + j]` (k values per ghost) is added to
@@ -79,6 +79,7 @@ private:
   // Buffers reused between calls (no allocation in the step loop once warm).
   std::vector<int> send_counts_, recv_counts_, send_displs_, recv_displs_;
   std::vector<std::uint64_t> send_, recv_;
+  std::vector<MPI_Request> requests_;
   std::vector<std::size_t> leavers_;
   std::vector<int> leaver_dest_;
   std::uint64_t bytes_sent_ = 0;
