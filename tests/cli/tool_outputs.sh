@@ -43,5 +43,8 @@ check "scaling_model.py exits 0 (got $code)" '[ "$code" -eq 0 ] || { cat "$tmp/m
 exchanges=$(sed -n 's/^measured per step .*: \([0-9.]*\) halo exchanges.*/\1/p' "$tmp/model.txt")
 check "at least one halo exchange per step (got '$exchanges')" \
   '/usr/bin/python3 -c "import sys; sys.exit(not float(sys.argv[1]) >= 1)" "${exchanges:-0}"'
+messages=$(sed -n 's/^measured per step .*, \([0-9.]*\) messages of rows sent.*/\1/p' "$tmp/model.txt")
+check "rows sent as messages every step (got '$messages')" \
+  '/usr/bin/python3 -c "import sys; sys.exit(not float(sys.argv[1]) >= 1)" "${messages:-0}"'
 check "one table row per rank count" '[ "$(grep -c "^| [0-9]" "$tmp/model.txt")" -eq 2 ]'
 finish tool_outputs
