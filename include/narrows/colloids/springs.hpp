@@ -15,7 +15,8 @@
 // Integration: velocity Verlet sub-steps (half kick, drift, springs updated with the half-step
 // relative velocity at the new positions, forces, half kick). Forces are pure functions of the
 // positions and springs, so the force of the first half kick of an MPCD step is recomputed
-// from the state the last step left (the same bits, on any number of ranks and on restart).
+// from the state the last step left (the same bits, on any number of ranks and on restart),
+// or kept from the end of the last step when no row, position or spring has changed since.
 //
 // Parallel model: each pair is computed once, on the rank that owns the colloid of the smaller
 // id (it owns the contact's history); the force and torque on a partner held as a ghost row go
