@@ -730,7 +730,7 @@ void SpringContacts::build_pairs(const Colloids &c, std::size_t owned) {
   ++builds_;
 }
 
-template <int D, bool WallsY, bool External>
+template <int D, bool WallsY, bool External, bool Moves>
 double SpringContacts::kick_drift(Colloids &c, std::size_t owned, double h, bool twice,
                                   double drift, const double *external) {
   constexpr int S = D == 2 ? 3 : 6, T = D == 2 ? 1 : 3;
@@ -745,7 +745,6 @@ double SpringContacts::kick_drift(Colloids &c, std::size_t owned, double h, bool
     omega[k] = c.omega[k].data();
   }
   const auto &L = box_.length;
-  const bool moves = drift > 0.0;
   rare_axes_.resize(owned);
   std::uint8_t *rare_axes = rare_axes_.data();
   double worst = 0.0;
@@ -762,23 +761,25 @@ double SpringContacts::kick_drift(Colloids &c, std::size_t owned, double h, bool
       double u = v[k][a] + dv;
       u = twice ? u + dv : u;
       v[k][a] = u;
-      // The drift, wrapped as wrap_periodic does; its rare case (a jump by more than a period)
-      // is left to the loop below.
-      const double old = x[k][a];
-      double to = old + u * drift;
-      bool odd = false;
-      if (!(WallsY && k == 1)) {
-        const double up = to - L[k], down = to + L[k];
-        odd = moves && (to >= L[k] ? up >= L[k] : to < 0.0 && down < 0.0);
-        to = to >= L[k] ? up : (to < 0.0 ? (down >= L[k] ? 0.0 : down) : to);
+      if constexpr (Moves) {
+        // The drift, wrapped as wrap_periodic does; its rare case (a jump by more than a
+        // period) is left to the loop below.
+        const double old = x[k][a];
+        double to = old + u * drift;
+        bool odd = false;
+        if (!(WallsY && k == 1)) {
+          const double up = to - L[k], down = to + L[k];
+          odd = to >= L[k] ? up >= L[k] : to < 0.0 && down < 0.0;
+          to = to >= L[k] ? up : (to < 0.0 ? (down >= L[k] ? 0.0 : down) : to);
+        }
+        odd_axes |= odd << k;
+        x[k][a] = odd ? old : to;
+        // The displacement since the list was built, as pairs_fresh measures it.
+        double d = to - built[k][a];
+        if (!(WallsY && k == 1))
+          d = d > 0.5 * L[k] ? d - L[k] : (d < -0.5 * L[k] ? d + L[k] : d);
+        r2 += d * d;
       }
-      odd_axes |= odd << k;
-      x[k][a] = moves && !odd ? to : old;
-      // The displacement since the list was built, as pairs_fresh measures it.
-      double d = to - built[k][a];
-      if (!(WallsY && k == 1))
-        d = d > 0.5 * L[k] ? d - L[k] : (d < -0.5 * L[k] ? d + L[k] : d);
-      r2 += d * d;
     }
     for (int k = 0; k < T; ++k) {
       const double dw = h * fixed::to_double(s[a * S + D + k]) / inertia[a];
@@ -786,9 +787,11 @@ double SpringContacts::kick_drift(Colloids &c, std::size_t owned, double h, bool
       w = twice ? w + dw : w;
       omega[D == 2 ? 2 : k][a] = w;
     }
-    rare_axes[a] = static_cast<std::uint8_t>(odd_axes);
-    rare += odd_axes != 0;
-    worst = r2 > worst ? r2 : worst;
+    if constexpr (Moves) {
+      rare_axes[a] = static_cast<std::uint8_t>(odd_axes);
+      rare += odd_axes != 0;
+      worst = r2 > worst ? r2 : worst;
+    }
   }
   if (rare > 0) { // (their positions were left as they were)
     for (std::size_t a = 0; a < owned; ++a)
@@ -799,6 +802,7 @@ double SpringContacts::kick_drift(Colloids &c, std::size_t owned, double h, bool
   }
   return worst;
 }
+
 void SpringContacts::advance(Colloids &c, std::size_t owned, ContactHistory &h, double dt,
                              const SpringHooks *hooks, const std::vector<double> *external) {
   if (dim_ == 2)
@@ -812,8 +816,12 @@ void SpringContacts::advance(Colloids &c, std::size_t owned, ContactHistory &h, 
 template <int D, bool WallsY>
 double SpringContacts::kick_drift(Colloids &c, std::size_t owned, double h, bool twice,
                                   double drift, const std::vector<double> *external) {
-  return external ? kick_drift<D, WallsY, true>(c, owned, h, twice, drift, external->data())
-                  : kick_drift<D, WallsY, false>(c, owned, h, twice, drift, nullptr);
+  const double *ext = external ? external->data() : nullptr;
+  if (drift > 0.0)
+    return external ? kick_drift<D, WallsY, true, true>(c, owned, h, twice, drift, ext)
+                    : kick_drift<D, WallsY, false, true>(c, owned, h, twice, drift, ext);
+  return external ? kick_drift<D, WallsY, true, false>(c, owned, h, twice, drift, ext)
+                  : kick_drift<D, WallsY, false, false>(c, owned, h, twice, drift, ext);
 }
 
 template <int D, bool WallsY>

@@ -44,13 +44,17 @@ constexpr int rows_tag = 0x6e72;
 // ranks that have any for each other, as point-to-point messages (an MPI_Alltoallv may pay a
 // latency for each of the P - 1 ranks even when the message is empty: the cost of a halo
 // exchange would grow with the number of ranks).
+// Words (not rows) per rank and their offsets go to scount, rcount, sdispl, rdispl (kept by the
+// caller: no allocation per exchange).
 void exchange_rows(MPI_Comm comm, int ranks, std::size_t row, const std::vector<int> &send_rows,
-                   std::vector<int> &recv_rows, std::vector<int> &sdispl, std::vector<int> &rdispl,
+                   std::vector<int> &recv_rows, std::vector<int> &scount, std::vector<int> &rcount,
+                   std::vector<int> &sdispl, std::vector<int> &rdispl,
                    const std::vector<std::uint64_t> &send, std::vector<std::uint64_t> &recv,
                    std::vector<MPI_Request> &requests, std::uint64_t &bytes_sent) {
   recv_rows.assign(ranks, 0);
   MPI_Alltoall(send_rows.data(), 1, MPI_INT, recv_rows.data(), 1, MPI_INT, comm);
-  std::vector<int> scount(ranks), rcount(ranks);
+  scount.resize(ranks);
+  rcount.resize(ranks);
   sdispl.assign(ranks, 0);
   rdispl.assign(ranks, 0);
   long long stotal = 0, rtotal = 0;
@@ -151,8 +155,8 @@ void Exchange::migrate(const SoaView &s, const std::vector<std::size_t> &leavers
         (*a)[*it] = (*a)[n];
     }
   }
-  exchange_rows(comm_, ranks_, F, send_counts_, recv_counts_, send_displs_, recv_displs_, send_,
-                recv_, requests_, bytes_sent_);
+  exchange_rows(comm_, ranks_, F, send_counts_, recv_counts_, send_words_, recv_words_,
+                send_displs_, recv_displs_, send_, recv_, requests_, bytes_sent_);
   const std::size_t arrived = recv_.size() / (F ? F : 1);
   s.resize(n + arrived);
   for (std::size_t j = 0; j < arrived; ++j) {
@@ -185,8 +189,8 @@ Halo Exchange::copy(const SoaView &s, const CopyList &list) {
       row[f++] = (*a)[i];
     row[f] = i;
   }
-  exchange_rows(comm_, ranks_, row_len, send_counts_, recv_counts_, send_displs_, recv_displs_,
-                send_, recv_, requests_, bytes_sent_);
+  exchange_rows(comm_, ranks_, row_len, send_counts_, recv_counts_, send_words_, recv_words_,
+                send_displs_, recv_displs_, send_, recv_, requests_, bytes_sent_);
   const std::size_t n = s.size(), g = recv_.size() / row_len;
   s.resize(n + g);
   Halo h;
@@ -219,8 +223,8 @@ void Exchange::refresh(const std::vector<std::vector<double> *> &fields, const C
     for (std::size_t f = 0; f < F; ++f)
       row[f] = std::bit_cast<std::uint64_t>((*fields[f])[list.index[j]]);
   }
-  exchange_rows(comm_, ranks_, F, send_counts_, recv_counts_, send_displs_, recv_displs_, send_,
-                recv_, requests_, bytes_sent_);
+  exchange_rows(comm_, ranks_, F, send_counts_, recv_counts_, send_words_, recv_words_,
+                send_displs_, recv_displs_, send_, recv_, requests_, bytes_sent_);
   const std::size_t g = F ? recv_.size() / F : 0;
   for (std::size_t j = 0; j < g; ++j)
     for (std::size_t f = 0; f < F; ++f)
@@ -240,8 +244,8 @@ void Exchange::reverse(const Halo &h, const std::vector<std::int64_t> &per_ghost
     for (int j = 0; j < k; ++j)
       row[1 + j] = static_cast<std::uint64_t>(per_ghost[g * k + j]);
   }
-  exchange_rows(comm_, ranks_, row_len, send_counts_, recv_counts_, send_displs_, recv_displs_,
-                send_, recv_, requests_, bytes_sent_);
+  exchange_rows(comm_, ranks_, row_len, send_counts_, recv_counts_, send_words_, recv_words_,
+                send_displs_, recv_displs_, send_, recv_, requests_, bytes_sent_);
   for (std::size_t j = 0; j < recv_.size() / row_len; ++j) {
     const std::uint64_t *row = &recv_[j * row_len];
     for (int q = 0; q < k; ++q)

@@ -115,11 +115,11 @@ private:
   // Kicks the owned rows by h under sums_ (and `external`), twice if `twice` (the same forces),
   // then moves them by v drift (if drift > 0), wrapped along the periodic axes, in one pass.
   // Returns the largest squared displacement of an owned row since the list was built (as
-  // pairs_fresh measures it; infinite after a jump by more than a period).
+  // pairs_fresh measures it; infinite after a jump by more than a period; 0 without a drift).
   template <int D, bool WallsY>
   double kick_drift(Colloids &c, std::size_t owned, double h, bool twice, double drift,
                     const std::vector<double> *external);
-  template <int D, bool WallsY, bool External>
+  template <int D, bool WallsY, bool External, bool Moves>
   double kick_drift(Colloids &c, std::size_t owned, double h, bool twice, double drift,
                     const double *external);
   // The positions and (with hooks, before the reverse) the sums of the last forces of a step,

@@ -77,7 +77,7 @@ private:
   MPI_Comm comm_;
   int rank_ = 0, ranks_ = 1;
   // Buffers reused between calls (no allocation in the step loop once warm).
-  std::vector<int> send_counts_, recv_counts_, send_displs_, recv_displs_;
+  std::vector<int> send_counts_, recv_counts_, send_words_, recv_words_, send_displs_, recv_displs_;
   std::vector<std::uint64_t> send_, recv_;
   std::vector<MPI_Request> requests_;
   std::vector<std::size_t> leavers_;
