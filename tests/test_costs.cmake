@@ -42,4 +42,4 @@ set_tests_properties("validation.Rules/Viscosity.KolmogorovFlowMatchesTheory/srd
 set_tests_properties("validation.Srd/SelfDiffusion.MatchesKineticTheory/srd3d_a130_dt0_5" PROPERTIES COST 8)
 set_tests_properties("validation.ColloidHardCase.TouchingStartUnderStrongGravity" PROPERTIES COST 7)
 set_tests_properties("validation.Rules/Poiseuille.ViscosityFromTheProfile/srd2d_fig3_7_report" PROPERTIES COST 6)
-set_tests_properties("validation.RunScenes/HardCaseLongRun.InvariantsHoldEvery100StepsFor1e5Steps/seed001_ata_3d" PROPERTIES COST 5)
+set_tests_properties("validation.RunScenes/HardCaseLongRun.InvariantsHoldEvery100StepsFor1e5Steps/ata_fluid_table5_1_3d" PROPERTIES COST 5)

@@ -10,7 +10,7 @@ Engines and their knobs (each a function in ENGINES below):
           slit (walls at y = 0, L_y) against the kinetic theory that `narrows info` prints
           (3D: at+a has a formula there, not in 2D). Cost per cell and unit of simulated time.
   md      colloids.md_substeps: energy drift (E_end - E_0)/E_0 of run/colloids_conservation.toml
-          and the settling velocity of run/seed000_fig4_10.toml against that of the finest
+          and the settling velocity of run/sedimentation_fig4_10.toml against that of the finest
           sub-step. Cost per unit of simulated time.
   fhp     lattice size x run length: nu from the decay of a shear wave (FHP-III, d = 0.3),
           against the Boltzmann value, with its statistical error over seeds. Cost per nu.
@@ -94,7 +94,7 @@ def mpcd_rows(args, scale):
                 base = [f"fluid.collision={rule}", f"fluid.dt={dt}", f"fluid.density={n}",
                         f"domain.size=[{size[0]}.0, {size[1]}.0, {size[2]}.0]",
                         "run.dimensions=3", "walls.virtual_flow=mirror"]
-                nu0 = info_nu(args.narrows, "run/seed001_ata_3d.toml", base)
+                nu0 = info_nu(args.narrows, "run/ata_fluid_table5_1_3d.toml", base)
                 L = size[1]
                 g = 8.0 * nu0 * 0.05 / L**2  # centre velocity 0.05 (Ma ~ 0.04)
                 relax = L**2 / (math.pi**2 * nu0)  # momentum relaxation time
@@ -104,7 +104,7 @@ def mpcd_rows(args, scale):
                 sets = base + [f"body_force.value=[{g!r}, 0.0, 0.0]", f"run.steps={steps}",
                                f"output.every={every}",
                                "output.observables=[\"velocity_profile\",\"temperature\"]"]
-                cpu = narrows_run(args.narrows, "run/seed001_ata_3d.toml", d, sets)
+                cpu = narrows_run(args.narrows, "run/ata_fluid_table5_1_3d.toml", d, sets)
                 with h5py.File(os.path.join(d, "observables.h5"), "r") as f:
                     y = f["observables/velocity_profile/bins"][()]
                     prof = f["observables/velocity_profile/value"][()][:, :, 0]
@@ -117,7 +117,7 @@ def mpcd_rows(args, scale):
                 stat = fits[0].std(ddof=1) / math.sqrt(fits.shape[1]) / abs(a)
                 # theory at the measured temperature (nu is not linear in kT: ask narrows again)
                 kT = float(np.mean(temp[len(temp) // 2:]))
-                nu_t = info_nu(args.narrows, "run/seed001_ata_3d.toml", base + [f"fluid.kT={kT!r}"])
+                nu_t = info_nu(args.narrows, "run/ata_fluid_table5_1_3d.toml", base + [f"fluid.kT={kT!r}"])
                 work = size[0] * size[1] * size[2] * steps * dt
                 rows.append(Row(engine="mpcd", knob=f"{rule} dt={dt:g} n={n:g}",
                                 error=nu / nu_t - 1.0, stat=stat, cpu=cpu,
@@ -136,9 +136,9 @@ def md_rows(args, scale):
     v_ref = None
     rows = []
     for k in [ref_k] + ks:
-        # settling velocity (run/seed000_fig4_10.toml at n = 5)
+        # settling velocity (run/sedimentation_fig4_10.toml at n = 5)
         d = os.path.join(args.out, f"md_settle_k{k}")
-        cpu_s = narrows_run(args.narrows, "run/seed000_fig4_10.toml", d,
+        cpu_s = narrows_run(args.narrows, "run/sedimentation_fig4_10.toml", d,
                             [f"colloids.md_substeps={k}", f"run.steps={settle_steps}",
                              "fluid.density=5", "output.every=10"])
         with h5py.File(os.path.join(d, "observables.h5"), "r") as f:

@@ -1,5 +1,5 @@
 """The shock of a sedimenting colloid chain (seed 000 §4.5 and ch.5) from an mpcd run with
-colloids (e.g. run/seed000_chain_31.toml, observables "colloid_positions" and
+colloids (e.g. run/sedimentation_chain_31.toml, observables "colloid_positions" and
 "settling_velocity"), and its continuum prediction (flux "colloid-chain", seed 000 eq 5.3).
 Imported by shock_report.py (--chain).
 

@@ -5,7 +5,7 @@
 # Usage: bash tools/scaling_model.sh [NARROWS] [DIR]
 #   defaults: build/narrows, out/scaling_model
 #
-# Runs run/seed001_table6_1.toml (l = 600 b) on 1 rank for 50 steps (the one-rank cost per fluid
+# Runs run/pulses_table6_1.toml (l = 600 b) on 1 rank for 50 steps (the one-rank cost per fluid
 # particle-step) and on 3 ranks for 20 and 70 steps with tools/mpi_calls.c preloaded, which
 # counts every MPI call and the bytes it sends; the difference of the two counts is per step.
 # Nothing is asserted: the network parameters are the model's (see scaling_model.py).
@@ -17,7 +17,7 @@ mkdir -p "$dir"
 mpicc -shared -fPIC -O2 -o "$dir/mpi_calls.so" "$here/tools/mpi_calls.c"
 mpi=(mpirun --oversubscribe)
 [ "$(id -u)" -eq 0 ] && mpi+=(--allow-run-as-root)
-scene=$here/run/seed001_table6_1.toml
+scene=$here/run/pulses_table6_1.toml
 "$narrows" run "$scene" --set run.steps=50 --set output.checkpoint_every=100000 \
   --out "$dir/one" --overwrite >"$dir/one.log" 2>&1
 rate=$(sed -n 's/^Loop time .*(\([0-9.e+]*\) particle-steps\/s)$/\1/p' "$dir/one.log")

@@ -5,7 +5,7 @@
 #   bash tools/scene_snapshot.sh --compare OUTDIR_A OUTDIR_B [--exclude /path ...]
 #                                       # h5diff of every HDF5 file, without the objects named
 #                                       # (e.g. a dataset one side adds on purpose)
-# SCENES='run/seed000_*.toml' limits the run to the scenes the glob names (default run/*.toml).
+# SCENES='run/sedimentation_*.toml' limits the run to the scenes the glob names (default run/*.toml).
 # Timing lines of the logs differ between runs; only the HDF5 files are compared.
 set -uo pipefail
 cd "$(dirname "$0")/.."

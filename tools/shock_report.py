@@ -11,7 +11,7 @@ its variance (kmc against 2 D_s t). A table of shock speed and diffusion constan
 source is printed and written next to the PNG (same name, .txt).
 
 Three ways (issue 22 item 4, --chain RUN_DIR): a second row for a sedimenting colloid chain, an
-mpcd run with colloids (run/seed000_chain_31.toml, seed 000 §4.5 and ch.5; see chain_shock.py):
+mpcd run with colloids (run/sedimentation_chain_31.toml, seed 000 §4.5 and ch.5; see chain_shock.py):
 the chain's line density at four times against the continuum engine's colloid-chain flux (eq
 5.3, c and c' of --c, --c-prime; co-moving frame, v_cm = 0), the head shock's position against
 time (mpcd, continuum, Rankine-Hugoniot c rho0 + c'), and the mean square of its displacement
@@ -142,7 +142,7 @@ def main():
                     help="three ways: the run directory of a sedimenting colloid chain (mpcd)")
     ap.add_argument("--c", type=float, default=0.1605,
                     help="c of eq 5.2 for the chain, velocity x length (default: the settling "
-                    "velocities of run/seed000_sedimentation_1000.toml, 0.02057 and 0.03341 at "
+                    "velocities of run/sedimentation_1000.toml, 0.02057 and 0.03341 at "
                     "10 and 90 colloids per 1000)")
     ap.add_argument("--c-prime", type=float, default=0.0190,
                     help="c' of eq 5.2, the settling velocity of a lone colloid (same source)")

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # One shock three ways (issue 22 item 4, acceptance 5; seed 000 ch.5): runs the three-state
 # lattice gas with a shock (kmc, run/kmc_family2_shock.toml), the sedimenting colloid chain
-# (mpcd with colloids, run/seed000_chain_31.toml, cut to --chain-steps) and writes the report
+# (mpcd with colloids, run/sedimentation_chain_31.toml, cut to --chain-steps) and writes the report
 # with the continuum engine's predictions for both (tools/shock_report.py --chain): OUT/shock_three_ways.png
 # and OUT/shock_three_ways.txt, the table of shock speed and diffusion constant from each.
 #
@@ -61,7 +61,7 @@ echo "shock_three_ways: kmc lattice gas -> $out/kmc"
 "$narrows" run "$src/run/kmc_family2_shock.toml" "${kmc[@]}" --out "$out/kmc" "${overwrite[@]}" \
   > "$out/kmc.out"
 echo "shock_three_ways: mpcd colloid chain -> $out/chain"
-"$narrows" run "$src/run/seed000_chain_31.toml" "${chain[@]}" --out "$out/chain" \
+"$narrows" run "$src/run/sedimentation_chain_31.toml" "${chain[@]}" --out "$out/chain" \
   "${overwrite[@]}" > "$out/chain.out"
 /usr/bin/python3 "$here/shock_report.py" "$out/kmc/observables.h5" --chain "$out/chain" \
   --narrows "$narrows" --png "$out/shock_three_ways.png" "$@"

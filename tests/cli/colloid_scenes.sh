@@ -32,7 +32,7 @@ for name in f:
 PY'
 done
 # The density-wake tool on the wake scene's 100 steps (3 frames of every fluid particle).
-runs "sedimentation.py --wake" $py "$src/tools/sedimentation.py" "$tmp/seed000_random_solvent_wake" \
+runs "sedimentation.py --wake" $py "$src/tools/sedimentation.py" "$tmp/random_solvent_wake" \
   --skip 0 --blocks 3 --wake "$tmp/wake.png" > "$tmp/wake.txt"
 check "sedimentation.py --wake reads the trajectory" \
   'grep -q "lane, ahead" "$tmp/wake.txt" && [ -s "$tmp/wake.png" ]'

@@ -13,7 +13,7 @@ source "$(dirname "$0")/common.bash"
 py=/usr/bin/python3
 
 for g in 0.05 0.1 0.2; do
-  started "g = $g run" "$narrows" run "$src/run/seed000_fig4_10.toml" --set run.steps=100000 \
+  started "g = $g run" "$narrows" run "$src/run/sedimentation_fig4_10.toml" --set run.steps=100000 \
     --set "colloids.gravity=[$g,0.0]" --set output.progress=false --out "$tmp/g$g" \
     > /dev/null 2> "$tmp/g$g.err"
 done

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # tools/segregation_fit.py recovers a known K_d (issue 22, acceptance 4): a synthetic
-# density_kde of a 2D channel like run/seed001_segregation_2d.toml (w = 20, kinds a = 4 x 20 and
+# density_kde of a 2D channel like run/segregation_2d.toml (w = 20, kinds a = 4 x 20 and
 # a = 2 x 40 in 100 x 40) is the engine's steady profile at K_d = 3 with 2 % Gaussian noise per
 # bin (fixed seed) and those errors; the fit must give K_d within 2 % and its stated error must
 # cover the truth within 3 sigma. Bad input exits 2 with one line.

@@ -45,7 +45,7 @@ TEST(HardCaseTimeStep, CheckWarnsBelowTheMeanFreePathLimitForEachRule) {
   };
   for (const Case c :
        {Case{"quickstart.toml", "srd", true}, Case{"quickstart.toml", "at", true},
-        Case{"seed001_ata_3d.toml", "at+a", true}, Case{"quickstart.toml", "at+a", false},
+        Case{"ata_fluid_table5_1_3d.toml", "at+a", true}, Case{"quickstart.toml", "at+a", false},
         Case{"quickstart.toml", "random-permute", false},
         Case{"quickstart.toml", "random-maxwell", false}})
     for (const double kT : {1.0, 4.0}) {
@@ -106,17 +106,17 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         SceneClass{"quickstart.toml", tiny2d},     // SRD channel, body force, virtual particles
         SceneClass{"strong_scaling.toml", tiny2d}, // periodic SRD box
-        SceneClass{"seed000_fig3_7.toml", tiny2d}, // SRD channel of seed 000 ch.3
-        SceneClass{"seed001_ata_2d.toml", tiny2d}, // MPC-AT+a channel
-        SceneClass{"seed001_ata_3d.toml",
+        SceneClass{"poiseuille_fig3_7.toml", tiny2d}, // SRD channel of seed 000 ch.3
+        SceneClass{"ata_fluid_table5_1_2d.toml", tiny2d}, // MPC-AT+a channel
+        SceneClass{"ata_fluid_table5_1_3d.toml",
                    {"domain.size=[4.0, 4.0, 4.0]", "fluid.density=2"}}, // 3D AT+a slit
         SceneClass{"colloids_conservation.toml",
                    {"domain.size=[16.0, 8.0]", "fluid.density=3", "colloids.count=2",
                     "colloids.md_substeps=5"}}, // colloids, periodic, no force
-        SceneClass{"seed000_fig4_10.toml",
+        SceneClass{"sedimentation_fig4_10.toml",
                    {"domain.size=[12.0, 10.0]", "fluid.density=3", "colloids.count=1",
                     "colloids.md_substeps=5"}}, // colloids sedimenting in a channel
-        SceneClass{"seed000_random_solvent_wake.toml",
+        SceneClass{"random_solvent_wake.toml",
                    {"domain.size=[12.0, 10.0]", "fluid.density=3", "colloids.md_substeps=5",
                     "output.trajectory_every=0"}}), // random solvent + colloid
     [](const auto &info) {

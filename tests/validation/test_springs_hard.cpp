@@ -115,7 +115,7 @@ TEST(SpringHardCase, DiskWedgedBetweenTwoOthersAndAWall) {
 // (2w = 50, l = 100: 200 disks; at l = 60 the packing jams below 0.82), friction that never slides
 // (mu = inf between the disks and with the walls), under the seed's strongest drive (sigma = 1.25:
 // 0.05 per fluid particle, and the same pressure gradient on the colloids, M g = sigma V),
-// MPC-AT+a, n = 25, dt = 0.02, as run/seed001_table6_1.toml. At phi = 0.82 most of the fluid sits
+// MPC-AT+a, n = 25, dt = 0.02, as run/pulses_table6_1.toml. At phi = 0.82 most of the fluid sits
 // in gaps between surfaces thinner than one cell; the run counts those particles at the end (the
 // third hard case: fluid trapped in a gap thinner than a cell). Every 100 steps: the invariants
 // (count, ids, no NaN or runaway speed); every step the bounce-back refuses a particle left inside
