@@ -1,13 +1,13 @@
 // The narrows command line: run, check, info, bench (DESIGN.md, "The user-facing contract").
 #include "narrows/colloids/dem_bench.hpp"
-#include "narrows/continuum/bench.hpp"
-#include "narrows/continuum/driver.hpp"
 #include "narrows/core/error.hpp"
-#include "narrows/engine/bench.hpp"
-#include "narrows/engine/info.hpp"
-#include "narrows/engine/run.hpp"
-#include "narrows/kmc/driver.hpp"
-#include "narrows/lattice/driver.hpp"
+#include "narrows/engines/continuum/bench.hpp"
+#include "narrows/engines/continuum/driver.hpp"
+#include "narrows/engines/kmc/driver.hpp"
+#include "narrows/engines/lgca/driver.hpp"
+#include "narrows/engines/mpcd/bench.hpp"
+#include "narrows/engines/mpcd/driver.hpp"
+#include "narrows/engines/mpcd/info.hpp"
 #include "narrows/run/shell.hpp"
 #include "narrows/scene/parse.hpp"
 
@@ -61,7 +61,7 @@ int main_inner(int argc, char **argv) {
   info->add_option("scene", scene_file, "scene file (TOML)")->required();
   info->add_option("--set", sets, "override a scene key: key.path=value (repeatable)");
 
-  narrows::engine::BenchOptions bench_opt;
+  narrows::mpcd::BenchOptions bench_opt;
   auto *bench = app.add_subcommand("bench", "throughput of the hot kernels on this machine");
   bench->add_flag("--json", bench_opt.json, "print JSON");
   double kmc_sites = 0.0;
@@ -136,13 +136,13 @@ int main_inner(int argc, char **argv) {
     return 0;
   }
   if (*bench && lgca_sites > 0) {
-    narrows::lattice::run_bench(std::cout, lgca_sites, static_cast<int>(bench_opt.steps),
-                                bench_opt.json, MPI_COMM_WORLD);
+    narrows::lgca::run_bench(std::cout, lgca_sites, static_cast<int>(bench_opt.steps),
+                             bench_opt.json, MPI_COMM_WORLD);
     return 0;
   }
   if (*bench) {
     if (root)
-      narrows::engine::run_bench(bench_opt, std::cout);
+      narrows::mpcd::run_bench(bench_opt, std::cout);
     return 0;
   }
   const auto scene = (*run && scene_file.empty())
@@ -155,21 +155,21 @@ int main_inner(int argc, char **argv) {
     return narrows::continuum::command(scene, static_cast<bool>(*check), static_cast<bool>(*info),
                                        run_opt, MPI_COMM_WORLD);
   if (scene.run.engine == narrows::scene::Engine::lgca)
-    return narrows::lattice::command(scene, static_cast<bool>(*check), static_cast<bool>(*info),
-                                     run_opt, MPI_COMM_WORLD);
+    return narrows::lgca::command(scene, static_cast<bool>(*check), static_cast<bool>(*info),
+                                  run_opt, MPI_COMM_WORLD);
   if (*check || *info) {
-    narrows::engine::check_colloid_placement(scene);
+    narrows::mpcd::check_colloid_placement(scene);
     if (root) {
       if (*check)
         std::cout << scene_file << ": scene is valid\n";
-      for (const auto &line : narrows::engine::describe_scene(scene, MPI_COMM_WORLD))
+      for (const auto &line : narrows::mpcd::describe_scene(scene, MPI_COMM_WORLD))
         std::cout << line << '\n';
-      for (const auto &w : narrows::engine::regime_warnings(scene))
+      for (const auto &w : narrows::mpcd::regime_warnings(scene))
         std::cout << "warning: " << w << '\n';
     }
     return 0;
   }
-  narrows::engine::run_scene(scene, run_opt, MPI_COMM_WORLD);
+  narrows::mpcd::run_scene(scene, run_opt, MPI_COMM_WORLD);
   return 0;
 }
 

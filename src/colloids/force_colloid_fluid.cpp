@@ -2,7 +2,7 @@
 #include "narrows/colloids/force_terms.hpp"
 #include "narrows/colloids/pair_geometry.hpp"
 #include "narrows/colloids/potentials.hpp"
-#include "narrows/mpcd/cell_grid.hpp"
+#include "narrows/engines/mpcd/kernels/cell_grid.hpp"
 
 #include <algorithm>
 #include <cmath>

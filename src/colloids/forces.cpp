@@ -1,7 +1,7 @@
 // The colloid forces as the sum of their terms, in fixed point.
 #include "narrows/colloids/forces.hpp"
 #include "narrows/colloids/ghosts.hpp"
-#include "narrows/mpcd/cell_grid.hpp"
+#include "narrows/engines/mpcd/kernels/cell_grid.hpp"
 
 #include "narrows/colloids/force_terms.hpp"
 #include "narrows/colloids/pair_geometry.hpp"

@@ -2,7 +2,7 @@
 #include "narrows/colloids/hard_spheres.hpp"
 
 #include "narrows/colloids/pair_geometry.hpp"
-#include "narrows/mpcd/streaming.hpp"
+#include "narrows/engines/mpcd/kernels/streaming.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -9,7 +9,7 @@
 #include "narrows/core/error.hpp"
 #include "narrows/core/fixed_point.hpp"
 #include "narrows/core/rng.hpp"
-#include "narrows/mpcd/streaming.hpp"
+#include "narrows/engines/mpcd/kernels/streaming.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -3,7 +3,7 @@
 
 #include "narrows/colloids/pair_geometry.hpp"
 #include "narrows/core/error.hpp"
-#include "narrows/mpcd/streaming.hpp"
+#include "narrows/engines/mpcd/kernels/streaming.hpp"
 
 #include <cmath>
 #include <sstream>

@@ -5,8 +5,8 @@
 #include "parse_kmc.hpp"
 #include "section_checker.hpp"
 
-#include "narrows/kmc/preset.hpp"
-#include "narrows/kmc/rates.hpp"
+#include "narrows/models/three_state/preset.hpp"
+#include "narrows/models/three_state/rates.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -97,16 +97,17 @@ void parse_lattice_gas(const Checker &c, const toml::value *sec, Continuum &out)
     m.preset = KmcPreset::family2;
     m.c = 0.0;
     if (rates == nullptr)
-      m.rates[kmc::pair_code(1, 0) * 9 + kmc::pair_code(0, 1)] = 1.0;
+      m.rates[three_state::pair_code(1, 0) * 9 + three_state::pair_code(0, 1)] = 1.0;
     else
       parse_bulk_rates(c, *rates, m, "continuum.rates");
     for (int from = 0; from < 9; ++from)
       for (int to = 0; to < 9; ++to) {
-        const bool hop = (from == kmc::pair_code(1, 0) && to == kmc::pair_code(0, 1)) ||
-                         (from == kmc::pair_code(0, 1) && to == kmc::pair_code(1, 0));
+        const bool hop =
+            (from == three_state::pair_code(1, 0) && to == three_state::pair_code(0, 1)) ||
+            (from == three_state::pair_code(0, 1) && to == three_state::pair_code(1, 0));
         if (m.rates[from * 9 + to] > 0.0 && !hop)
           c.fail("continuum.rates",
-                 "continuum.rates gives " + kmc::pair_name(from, to) +
+                 "continuum.rates gives " + three_state::pair_name(from, to) +
                      ", which is not a hop of TASEP/ASEP; allowed with continuum.flux = "
                      "\"tasep\": \"10->01\" (right, default 1) and \"01->10\" (left)");
       }

@@ -3,8 +3,8 @@
 #include "parse_kmc.hpp"
 #include "section_checker.hpp"
 
-#include "narrows/kmc/preset.hpp"
-#include "narrows/kmc/rates.hpp"
+#include "narrows/models/three_state/preset.hpp"
+#include "narrows/models/three_state/rates.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -32,14 +32,15 @@ void parse_bulk_rates(const Checker &c, const toml::value &v, Kmc &out, const st
   std::map<int, std::string> seen;
   for (const auto &[k, x] : sorted(v)) {
     const std::string key = name + ".\"" + k + "\"";
-    const auto t = kmc::parse_pair_key(k);
+    const auto t = three_state::parse_pair_key(k);
     if (!t)
       c.fail(key, "unknown transition " + key + "; allowed: " + allowed_keys);
     const int idx = t->first * 9 + t->second;
     if (seen.count(idx))
       c.fail(key, key + " names the same transition as " + name + ".\"" + seen[idx] + "\" (" +
-                      kmc::pair_name(t->first, t->second) + " = " +
-                      kmc::seed_label(t->first, t->second) + "); allowed: each transition once");
+                      three_state::pair_name(t->first, t->second) + " = " +
+                      three_state::seed_label(t->first, t->second) +
+                      "); allowed: each transition once");
     seen[idx] = k;
     out.rates[idx] = c.number(*x, key, rate_allowed, [](double r) { return r >= 0.0; });
   }
@@ -59,7 +60,7 @@ void parse_site_rates(const Checker &c, const toml::value &v, bool left, Kmc &ou
   std::map<int, std::string> seen;
   for (const auto &[k, x] : sorted(v)) {
     const std::string key = name + ".\"" + k + "\"";
-    const auto t = kmc::parse_site_key(k, left);
+    const auto t = three_state::parse_site_key(k, left);
     if (!t)
       c.fail(key, "unknown transition " + key + "; allowed: " + allowed_keys);
     const int idx = t->first * 3 + t->second;
@@ -191,7 +192,7 @@ void parse_family2(const Checker &c, const toml::value &v, Kmc &out, const std::
   }
   if (!has_c)
     c.fail(name + ".c", "missing required key '" + name + ".c'; allowed: a number > 0 (eq 2.81)");
-  out.rates = kmc::family2_rates(h, r, out.c);
+  out.rates = three_state::family2_rates(h, r, out.c);
 }
 
 // Family 1 allows only the ten transitions of eq 2.5 (those keeping n_k + n_(k+1)).
@@ -200,8 +201,8 @@ void check_family1_rates(const Checker &c, const Kmc &out, const std::string &na
   for (int from = 0; from < 9; ++from)
     for (int to = 0; to < 9; ++to)
       if (out.rates[from * 9 + to] > 0.0 && from / 3 + from % 3 != to / 3 + to % 3)
-        c.fail(name, name + " gives " + kmc::pair_name(from, to) + " (" +
-                         kmc::seed_label(from, to) +
+        c.fail(name, name + " gives " + three_state::pair_name(from, to) + " (" +
+                         three_state::seed_label(from, to) +
                          "), which is not a transition of family 1; allowed with " + with +
                          ": w24, w42, w37, w73, w86, w68, w35, w53, w57, w75 (eq 2.5)");
 }
@@ -375,7 +376,7 @@ Kmc parse_kmc(const toml::value *sec, const KmcFail &fail) {
           c.integer(v->as_array()[s], "kmc.charge[" + std::to_string(s) + "]", allowed,
                     [](std::int64_t n) { return n >= -1000 && n <= 1000; }));
   }
-  kmc::apply_preset(out, keep_charge, initial_given);
+  three_state::apply_preset(out, keep_charge, initial_given);
 
   // The work of one replica: a Poisson number of tries at rate slots x R_max over the simulated
   // time (kmc/lattice.cpp), R_max the largest total rate out of one bond or boundary state.

@@ -2,7 +2,7 @@
 // (x.., v..) indexed by particle id, gathered on rank 0 of comm.
 #pragma once
 
-#include "narrows/mpcd/fluid.hpp"
+#include "narrows/engines/mpcd/kernels/fluid.hpp"
 
 #include <gtest/gtest.h>
 #include <mpi.h>

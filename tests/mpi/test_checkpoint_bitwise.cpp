@@ -1,8 +1,8 @@
 // Checkpoint/restart continues bitwise: N steps straight equal N/2 steps, a checkpoint, a
 // restart and N/2 more, on 2 ranks, on 1 rank (MPI_COMM_SELF on rank 0), written on 2 ranks
 // and continued on 1, and written on 1 and continued on 2. All particles compared by id.
-#include "narrows/engine/fluid_checkpoint.hpp"
-#include "narrows/engine/mpcd_simulation.hpp"
+#include "narrows/engines/mpcd/fluid_checkpoint.hpp"
+#include "narrows/engines/mpcd/simulation.hpp"
 
 #include "../common/state_by_id.hpp"
 
@@ -70,15 +70,15 @@ std::string shared_tmpdir() {
 
 // Runs `steps` steps straight on comm and returns the state on its rank 0.
 std::vector<double> straight(const scene::Scene &s, MPI_Comm comm) {
-  engine::MpcdSimulation sim(s, comm);
+  mpcd::MpcdSimulation sim(s, comm);
   for (int i = 0; i < steps; ++i)
     sim.advance();
-  return state_by_id(sim.fluid(), engine::particle_count(s), comm);
+  return state_by_id(sim.fluid(), mpcd::particle_count(s), comm);
 }
 
 // Runs half the steps on comm and writes a checkpoint.
 void first_half(const scene::Scene &s, MPI_Comm comm, const std::string &path) {
-  engine::MpcdSimulation sim(s, comm);
+  mpcd::MpcdSimulation sim(s, comm);
   for (int i = 0; i < steps / 2; ++i)
     sim.advance();
   io::CheckpointInfo info;
@@ -88,21 +88,21 @@ void first_half(const scene::Scene &s, MPI_Comm comm, const std::string &path) {
   info.seed = s.run.seed;
   info.dimensions = sim.box().dim;
   info.box = sim.box().length;
-  io::write_checkpoint(path, info, {engine::fluid_fields(sim.fluid())}, comm);
+  io::write_checkpoint(path, info, {mpcd::fluid_fields(sim.fluid())}, comm);
 }
 
 // Reads the checkpoint on comm, runs the second half, returns the state on its rank 0.
 std::vector<double> second_half(const scene::Scene &s, MPI_Comm comm, const std::string &path) {
   const auto info = io::read_checkpoint_info(path, comm);
   EXPECT_EQ(info.step, steps / 2);
-  EXPECT_EQ(info.fluid_particles, engine::particle_count(s));
+  EXPECT_EQ(info.fluid_particles, mpcd::particle_count(s));
   EXPECT_EQ(info.scene_text, s.text);
-  engine::MpcdSimulation sim(s, comm, false);
-  sim.restore(engine::read_fluid(path, info, comm), info.step);
+  mpcd::MpcdSimulation sim(s, comm, false);
+  sim.restore(mpcd::read_fluid(path, info, comm), info.step);
   for (int i = steps / 2; i < steps; ++i)
     sim.advance();
   EXPECT_EQ(sim.step(), steps);
-  return state_by_id(sim.fluid(), engine::particle_count(s), comm);
+  return state_by_id(sim.fluid(), mpcd::particle_count(s), comm);
 }
 
 std::size_t count_differences(const std::vector<double> &a, const std::vector<double> &b) {

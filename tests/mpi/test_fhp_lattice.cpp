@@ -1,9 +1,9 @@
 // The FHP lattice on one rank (each rank of the MPI test runs it on MPI_COMM_SELF): the two
 // kernels agree bit for bit, propagation follows the neighbour table, mass and momentum are
 // conserved, walls bounce back, the force pushes.
-#include "narrows/lattice/fhp_lattice.hpp"
-#include "narrows/lattice/fhp_observables.hpp"
-#include "narrows/lattice/fhp_update.hpp"
+#include "narrows/engines/lgca/fhp_lattice.hpp"
+#include "narrows/engines/lgca/fhp_observables.hpp"
+#include "narrows/engines/lgca/fhp_update.hpp"
 
 #include <gtest/gtest.h>
 #include <mpi.h>
@@ -12,7 +12,7 @@
 #include <random>
 #include <vector>
 
-using namespace narrows::lattice;
+using namespace narrows::lgca;
 
 namespace {
 

@@ -2,7 +2,7 @@
 // cell columns (none has to move before the first step, and the first step moves no more than
 // the thin band at the slab edges that every step moves), and the state is bitwise the same on
 // any number of ranks. Run on 2 ranks and on 3 (uneven slabs: 25 and 13 columns).
-#include "narrows/engine/mpcd_simulation.hpp"
+#include "narrows/engines/mpcd/simulation.hpp"
 
 #include "../common/state_by_id.hpp"
 
@@ -61,7 +61,7 @@ class InitialState : public ::testing::TestWithParam<Case> {};
 TEST_P(InitialState, IsCreatedOnTheRankOwningItsCell) {
   const Case c = GetParam();
   const scene::Scene s = make_scene(c);
-  engine::MpcdSimulation sim(s, MPI_COMM_WORLD);
+  mpcd::MpcdSimulation sim(s, MPI_COMM_WORLD);
   const auto &f = sim.fluid();
   const auto &slabs = sim.slabs();
   std::uint64_t outside = 0;
@@ -71,7 +71,7 @@ TEST_P(InitialState, IsCreatedOnTheRankOwningItsCell) {
         column < slabs.first_column() || column >= slabs.first_column() + slabs.local_columns();
   }
   const std::uint64_t n = sum(f.size()), columns = sim.box().cells[0];
-  EXPECT_EQ(n, engine::particle_count(s));
+  EXPECT_EQ(n, mpcd::particle_count(s));
   // Before the first step, nothing is on a rank that does not own its cell.
   const std::uint64_t created_outside = sum(outside);
   EXPECT_EQ(created_outside, 0u) << "particles created outside their rank's slab";
@@ -96,8 +96,8 @@ TEST_P(InitialState, IsCreatedOnTheRankOwningItsCell) {
 TEST_P(InitialState, IsTheSameOnAnyNumberOfRanks) {
   const Case c = GetParam();
   const scene::Scene s = make_scene(c);
-  const auto total = engine::particle_count(s);
-  engine::MpcdSimulation par(s, MPI_COMM_WORLD);
+  const auto total = mpcd::particle_count(s);
+  mpcd::MpcdSimulation par(s, MPI_COMM_WORLD);
   const auto many = narrows::testing::state_by_id(par.fluid(), total, MPI_COMM_WORLD);
   // Each rank creates only the colloids of its own slab (nothing to migrate at the start).
   const auto &own = par.colloids();
@@ -111,7 +111,7 @@ TEST_P(InitialState, IsTheSameOnAnyNumberOfRanks) {
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   if (rank != 0)
     return;
-  engine::MpcdSimulation ser(s, MPI_COMM_SELF);
+  mpcd::MpcdSimulation ser(s, MPI_COMM_SELF);
   const auto one = narrows::testing::state_by_id(ser.fluid(), total, MPI_COMM_SELF);
   ASSERT_EQ(one.size(), many.size());
   std::size_t differ = 0;

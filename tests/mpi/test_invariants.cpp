@@ -5,8 +5,8 @@
 // saying another rank found it. (The lost-particle branch: test_reductions.cpp; exit code 3
 // from the command line: tests/cli/invariants.sh.)
 #include "narrows/core/error.hpp"
-#include "narrows/engine/invariants.hpp"
-#include "narrows/engine/mpcd_simulation.hpp"
+#include "narrows/engines/mpcd/invariants.hpp"
+#include "narrows/engines/mpcd/simulation.hpp"
 
 #include "../common/world.hpp"
 
@@ -53,8 +53,8 @@ struct Outcome {
 
 // Runs steps_before steps, lets `inject` change the fluid of the last rank, and checks.
 Outcome inject_and_check(const scene::Scene &s, const std::function<void(mpcd::Fluid &)> &inject) {
-  engine::MpcdSimulation sim(s, MPI_COMM_WORLD);
-  const engine::InvariantCheck check(sim);
+  mpcd::MpcdSimulation sim(s, MPI_COMM_WORLD);
+  const mpcd::InvariantCheck check(sim);
   for (int i = 0; i < steps_before; ++i)
     sim.advance();
   EXPECT_NO_THROW(check.check(sim)) << "the unbroken run must pass";
@@ -105,7 +105,7 @@ TEST(Invariants, NanPositionIsCaught) {
 
 TEST(Invariants, RunawaySpeedIsCaught) {
   const auto o = inject_and_check(periodic_scene(),
-                                  [](mpcd::Fluid &f) { f.v[0][0] = -1.5 * engine::max_speed; });
+                                  [](mpcd::Fluid &f) { f.v[0][0] = -1.5 * mpcd::max_speed; });
   expect_caught(o, "velocity -15000 along axis 0 (allowed: finite, |v| <= 10000)");
 }
 

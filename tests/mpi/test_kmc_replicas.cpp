@@ -1,7 +1,7 @@
 // kmc replicas over 2, 3 or 4 ranks give bitwise the numbers of 1 rank: replica r is seeded from
 // (seed, r) wherever it runs, and rank 0 reduces in replica order.
-#include "narrows/kmc/driver.hpp"
-#include "narrows/kmc/rates.hpp"
+#include "narrows/engines/kmc/driver.hpp"
+#include "narrows/models/three_state/rates.hpp"
 
 #include <gtest/gtest.h>
 #include <mpi.h>
@@ -11,7 +11,7 @@ using namespace narrows;
 TEST(KmcReplicas, RanksEqualOneRankBitwise) {
   scene::Kmc m;
   m.length = 40;
-  using kmc::pair_code;
+  using three_state::pair_code;
   m.rates[pair_code(1, 0) * 9 + pair_code(0, 1)] = 1.0;
   m.rates[pair_code(2, 0) * 9 + pair_code(0, 2)] = 0.7;
   m.rates[pair_code(1, 1) * 9 + pair_code(0, 2)] = 0.3;

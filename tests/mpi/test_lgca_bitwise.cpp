@@ -3,10 +3,10 @@
 // moment-propagation VACF is bitwise the one on 1 rank, and so are the lattice and the
 // Ladd-Frenkel colloid (held across the slab edge, moving across it). 203 columns: uneven slabs
 // on 2, 3 and 4 ranks.
-#include "narrows/lattice/fhp_checkpoint.hpp"
-#include "narrows/lattice/fhp_colloid.hpp"
-#include "narrows/lattice/fhp_lattice.hpp"
-#include "narrows/lattice/fhp_tagged.hpp"
+#include "narrows/engines/lgca/fhp_checkpoint.hpp"
+#include "narrows/engines/lgca/fhp_colloid.hpp"
+#include "narrows/engines/lgca/fhp_lattice.hpp"
+#include "narrows/engines/lgca/fhp_tagged.hpp"
 
 #include <gtest/gtest.h>
 #include <mpi.h>
@@ -16,7 +16,7 @@
 #include <filesystem>
 #include <vector>
 
-using namespace narrows::lattice;
+using namespace narrows::lgca;
 
 namespace {
 

@@ -3,8 +3,8 @@
 // periodic edge x = 0, one touching it), in a channel under a pressure drive, 10^5 steps on 2
 // ranks: the run's invariants every 100 steps, every colloid owned by exactly one rank, no
 // overlap; the final state bitwise equal to one rank's.
-#include "narrows/engine/invariants.hpp"
-#include "narrows/engine/mpcd_simulation.hpp"
+#include "narrows/engines/mpcd/invariants.hpp"
+#include "narrows/engines/mpcd/simulation.hpp"
 
 #include "../common/state_by_id.hpp"
 #include "../common/world.hpp"
@@ -40,8 +40,8 @@ TEST(NoSlipHardCase, ColloidsSpanningTheSlabEdgesAtTheStart) {
   s.colloids = c;
   const char *env = std::getenv("NARROWS_EDGE_STEPS");
   const int steps = env ? std::atoi(env) : 100000;
-  engine::MpcdSimulation par(s, MPI_COMM_WORLD);
-  const engine::InvariantCheck invariants(par);
+  mpcd::MpcdSimulation par(s, MPI_COMM_WORLD);
+  const mpcd::InvariantCheck invariants(par);
   for (int i = 1; i <= steps; ++i) {
     par.advance();
     if (i % 100 != 0)
@@ -58,12 +58,12 @@ TEST(NoSlipHardCase, ColloidsSpanningTheSlabEdgesAtTheStart) {
       }
     ASSERT_GT(gap, -1e-9) << "colloids overlap at step " << i;
   }
-  const auto total = engine::particle_count(s);
+  const auto total = mpcd::particle_count(s);
   const auto mine = narrows::testing::state_by_id(par.fluid(), total, MPI_COMM_WORLD);
   const auto gathered = par.gather_colloids();
   if (narrows::testing::world_rank() != 0)
     return;
-  engine::MpcdSimulation one(s, MPI_COMM_SELF);
+  mpcd::MpcdSimulation one(s, MPI_COMM_SELF);
   for (int i = 0; i < steps; ++i)
     one.advance();
   const auto ref = narrows::testing::state_by_id(one.fluid(), total, MPI_COMM_SELF);

@@ -2,9 +2,9 @@
 // of the reductions behind observables and invariant checks.
 #include "narrows/analysis/fluid_observables.hpp"
 #include "narrows/core/error.hpp"
-#include "narrows/engine/invariants.hpp"
-#include "narrows/engine/mpcd_simulation.hpp"
-#include "narrows/mpcd/cell_grid.hpp"
+#include "narrows/engines/mpcd/invariants.hpp"
+#include "narrows/engines/mpcd/kernels/cell_grid.hpp"
+#include "narrows/engines/mpcd/simulation.hpp"
 
 #include "../common/world.hpp"
 
@@ -78,7 +78,7 @@ TEST(AnyRanks, GridShiftAgreesWithoutMessages) {
 
 TEST(AnyRanks, MomentumSumIsBitwiseRankIndependent) {
   for (int dim : {2, 3}) {
-    engine::MpcdSimulation serial(small_scene(dim), MPI_COMM_SELF);
+    mpcd::MpcdSimulation serial(small_scene(dim), MPI_COMM_SELF);
     for (int i = 0; i < 5; ++i)
       serial.advance();
     const auto p1 = analysis::total_momentum(serial.fluid(), MPI_COMM_SELF);
@@ -95,10 +95,10 @@ TEST(AnyRanks, MomentumSumIsBitwiseRankIndependent) {
 }
 
 TEST(AnyRanks, InvariantCheckSeesAParticleLostOnOneRank) {
-  engine::MpcdSimulation sim(small_scene(2), MPI_COMM_WORLD);
+  mpcd::MpcdSimulation sim(small_scene(2), MPI_COMM_WORLD);
   // Each rank keeps its share: together they hold the whole fluid once.
   keep_share(sim.fluid());
-  const engine::InvariantCheck check(sim);
+  const mpcd::InvariantCheck check(sim);
   EXPECT_NO_THROW(check.check(sim));
   if (rank() == 1) { // lose one particle on rank 1 only
     auto &f = sim.fluid();

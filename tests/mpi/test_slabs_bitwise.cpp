@@ -3,7 +3,7 @@
 // each owned by the rank of its slab, with ghost copies on the others). The box is 25 (2D) or
 // 13 (3D) cells long, so the slabs are uneven on 2, 3 and 4 ranks; on 3 or more ranks each
 // slab has two distinct neighbours.
-#include "narrows/engine/mpcd_simulation.hpp"
+#include "narrows/engines/mpcd/simulation.hpp"
 
 #include "../common/state_by_id.hpp"
 #include "../common/world.hpp"
@@ -109,7 +109,7 @@ TEST_P(Bitwise, RanksEqualOneRank) {
   const int quarter = world_size() > 2 ? 4 : 1;
   // (no-slip cases: 1000 steps on any number of ranks, 1-3 s: enough contacts to compare)
   const int steps = env ? std::atoi(env) : c.no_slip ? 1000 : (c.colloids ? 1000 : 2000) / quarter;
-  engine::MpcdSimulation par(s, MPI_COMM_WORLD);
+  mpcd::MpcdSimulation par(s, MPI_COMM_WORLD);
   // Colloid cases must move colloids from slab to slab, else the comparison is empty for them;
   // the moves are counted both ways (to the right and to the left neighbour's slab).
   std::vector<int> slab_of;
@@ -146,12 +146,12 @@ TEST_P(Bitwise, RanksEqualOneRank) {
     }
   }
   EXPECT_EQ(misplaced, 0u) << "colloids held by a rank whose slab does not hold their centre";
-  const auto total = engine::particle_count(s);
+  const auto total = mpcd::particle_count(s);
   const auto two = state_by_id(par.fluid(), total, MPI_COMM_WORLD);
   const auto gathered = par.gather_colloids();
   if (world_rank() != 0)
     return;
-  engine::MpcdSimulation ser(s, MPI_COMM_SELF);
+  mpcd::MpcdSimulation ser(s, MPI_COMM_SELF);
   for (int i = 0; i < steps; ++i)
     ser.advance();
   const auto one = state_by_id(ser.fluid(), total, MPI_COMM_SELF);

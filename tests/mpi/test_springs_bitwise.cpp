@@ -6,9 +6,9 @@
 // across a slab edge that lasted 1500 steps and more (from when the plug has settled). A checkpoint
 // written on 2 ranks mid-contact continues on 1 rank bitwise; a damaged contact history in a
 // checkpoint is refused with one line.
-#include "narrows/engine/colloid_checkpoint.hpp"
-#include "narrows/engine/fluid_checkpoint.hpp"
-#include "narrows/engine/mpcd_simulation.hpp"
+#include "narrows/engines/mpcd/colloid_checkpoint.hpp"
+#include "narrows/engines/mpcd/fluid_checkpoint.hpp"
+#include "narrows/engines/mpcd/simulation.hpp"
 
 #include "narrows/core/error.hpp"
 
@@ -120,7 +120,7 @@ std::string shared_tmpdir() {
   return buf;
 }
 
-void write(const std::string &path, engine::MpcdSimulation &sim, colloids::ContactHistory contacts,
+void write(const std::string &path, mpcd::MpcdSimulation &sim, colloids::ContactHistory contacts,
            MPI_Comm comm) {
   io::CheckpointInfo info;
   info.scene_text = sim.scene().text;
@@ -133,8 +133,8 @@ void write(const std::string &path, engine::MpcdSimulation &sim, colloids::Conta
   colloids::Colloids all = sim.gather_colloids(), none;
   colloids::ContactHistory no_contacts;
   io::write_checkpoint(path, info,
-                       {engine::fluid_fields(sim.fluid()), engine::colloid_fields(all, none, comm),
-                        engine::contact_fields(contacts, no_contacts, comm)},
+                       {mpcd::fluid_fields(sim.fluid()), mpcd::colloid_fields(all, none, comm),
+                        mpcd::contact_fields(contacts, no_contacts, comm)},
                        comm);
 }
 
@@ -144,7 +144,7 @@ TEST(SpringBitwise, PlugAcrossSlabEdgesEqualsOneRank) {
   const scene::Scene s = plug_scene();
   const int steps =
       std::getenv("NARROWS_BITWISE_STEPS") ? std::atoi(std::getenv("NARROWS_BITWISE_STEPS")) : 2000;
-  engine::MpcdSimulation par(s, MPI_COMM_WORLD);
+  mpcd::MpcdSimulation par(s, MPI_COMM_WORLD);
   // How long each contact has lasted, and whether it ever joined colloids of two slabs.
   std::map<std::pair<std::uint64_t, std::uint64_t>, int> age;
   std::map<std::pair<std::uint64_t, std::uint64_t>, bool> straddled;
@@ -170,7 +170,7 @@ TEST(SpringBitwise, PlugAcrossSlabEdgesEqualsOneRank) {
   }
   const auto par_colloids = par.gather_colloids();
   const auto par_contacts = par.gather_contacts();
-  const auto total = engine::particle_count(s);
+  const auto total = mpcd::particle_count(s);
   const auto par_fluid = state_by_id(par.fluid(), total, MPI_COMM_WORLD);
   if (world_rank() != 0)
     return;
@@ -180,7 +180,7 @@ TEST(SpringBitwise, PlugAcrossSlabEdgesEqualsOneRank) {
   if (world_size() > 1) {
     EXPECT_GE(longest_straddling, steps / 2) << "no contact across a slab edge lasted";
   }
-  engine::MpcdSimulation ser(s, MPI_COMM_SELF);
+  mpcd::MpcdSimulation ser(s, MPI_COMM_SELF);
   for (int i = 0; i < steps; ++i)
     ser.advance();
   EXPECT_EQ(colloid_differences(par_colloids, ser.gather_colloids()), 0u);
@@ -199,7 +199,7 @@ TEST(SpringBitwise, RestartMidContactOnOneRankContinuesBitwise) {
   ASSERT_FALSE(dir.empty());
   const std::string path = dir + "/springs.h5";
   // Straight, 2 half-runs on WORLD.
-  engine::MpcdSimulation straight(s, MPI_COMM_WORLD);
+  mpcd::MpcdSimulation straight(s, MPI_COMM_WORLD);
   for (int i = 0; i < half; ++i)
     straight.advance();
   const auto at_checkpoint = straight.gather_contacts();
@@ -208,7 +208,7 @@ TEST(SpringBitwise, RestartMidContactOnOneRankContinuesBitwise) {
     straight.advance();
   const auto ref_colloids = straight.gather_colloids();
   const auto ref_contacts = straight.gather_contacts();
-  const auto total = engine::particle_count(s);
+  const auto total = mpcd::particle_count(s);
   const auto ref_fluid = state_by_id(straight.fluid(), total, MPI_COMM_WORLD);
   if (world_rank() == 0) {
     std::size_t pairs = 0;
@@ -217,11 +217,11 @@ TEST(SpringBitwise, RestartMidContactOnOneRankContinuesBitwise) {
     EXPECT_GT(pairs, 5u) << "the checkpoint should be mid-contact";
     // Continued on one rank from the checkpoint of WORLD.
     const auto info = io::read_checkpoint_info(path, MPI_COMM_SELF);
-    engine::MpcdSimulation sim(s, MPI_COMM_SELF, false);
-    sim.restore(engine::read_fluid(path, info, MPI_COMM_SELF), info.step);
+    mpcd::MpcdSimulation sim(s, MPI_COMM_SELF, false);
+    sim.restore(mpcd::read_fluid(path, info, MPI_COMM_SELF), info.step);
     sim.restore_colloids(
-        engine::read_colloids(path, *s.colloids, 2, s.fluid.density, s.run.seed, MPI_COMM_SELF));
-    sim.restore_contacts(engine::read_contacts(path, s.colloids->count, 2, true, MPI_COMM_SELF));
+        mpcd::read_colloids(path, *s.colloids, 2, s.fluid.density, s.run.seed, MPI_COMM_SELF));
+    sim.restore_contacts(mpcd::read_contacts(path, s.colloids->count, 2, true, MPI_COMM_SELF));
     EXPECT_EQ(contact_differences(sim.gather_contacts(), at_checkpoint), 0u);
     for (int i = 0; i < half; ++i)
       sim.advance();
@@ -256,7 +256,7 @@ TEST(SpringBitwise, RestartMidContactOnOneRankContinuesBitwise) {
       const std::string damaged = dir + "/damaged.h5";
       write(damaged, sim, bad, MPI_COMM_SELF);
       try {
-        engine::read_contacts(damaged, s.colloids->count, 2, true, MPI_COMM_SELF);
+        mpcd::read_contacts(damaged, s.colloids->count, 2, true, MPI_COMM_SELF);
         ADD_FAILURE() << d.what << ": not refused";
       } catch (const Error &e) {
         EXPECT_EQ(e.code(), ExitCode::bad_input);

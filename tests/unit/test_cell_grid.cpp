@@ -2,9 +2,9 @@
 // computation with fixed-point cell sums, and the stable counting sort by cell.
 #include "narrows/core/error.hpp"
 #include "narrows/core/fixed_point.hpp"
-#include "narrows/mpcd/cell_grid.hpp"
-#include "narrows/mpcd/cell_sort.hpp"
-#include "narrows/mpcd/fluid.hpp"
+#include "narrows/engines/mpcd/kernels/cell_grid.hpp"
+#include "narrows/engines/mpcd/kernels/cell_sort.hpp"
+#include "narrows/engines/mpcd/kernels/fluid.hpp"
 
 #include <gtest/gtest.h>
 
@@ -202,8 +202,8 @@ TEST(GridBin, UlpBelowCellBoundary) {
     bin_particles(f, g);
     for (std::size_t i = 0; i < f.size(); ++i)
       EXPECT_EQ(f.cell[i], ref_cell(f, g, i))
-          << "LIBRARY BUG (src/mpcd/cell_grid.cpp, cell_coordinate): x = " << std::setprecision(17)
-          << f.x[0][i] << " (one ulp below the boundary), shift " << s
+          << "LIBRARY BUG (src/engines/mpcd/kernels/cell_grid.cpp, cell_coordinate): x = "
+          << std::setprecision(17) << f.x[0][i] << " (one ulp below the boundary), shift " << s
           << ": floor(x - s) = " << std::floor(f.x[0][i] - s) << " (exact), but bin_particles "
           << "gives column " << f.cell[i] % 8
           << " because (int)(x - s + 1.0) - 1 rounds x - s + 1.0 up to the next integer";

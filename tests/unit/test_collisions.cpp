@@ -8,9 +8,9 @@
 // what multiplies them (|u|, |v|, |omega|), plus double rounding of O(eps |v|) per particle.
 #include "narrows/core/fixed_point.hpp"
 #include "narrows/core/rng.hpp"
-#include "narrows/mpcd/cell_grid.hpp"
-#include "narrows/mpcd/collision.hpp"
-#include "narrows/mpcd/fluid.hpp"
+#include "narrows/engines/mpcd/kernels/cell_grid.hpp"
+#include "narrows/engines/mpcd/kernels/collision.hpp"
+#include "narrows/engines/mpcd/kernels/fluid.hpp"
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
@@ -314,15 +314,16 @@ void run_conservation(Rule rule, int dim) {
   for (std::uint64_t seed : {1ull, 2ull, 3ull, 4ull, 5ull})
     check_conservation(rule, dim, seed, rep, cells_of_kind);
   // Known failure (at+a, 3D, cells with 1 or 2 particles or collinear ones): LIBRARY BUG in
-  // src/mpcd/collision_at.cpp, at_a_kernel<3>: (1) the pseudo-inverse cut 1e-10 max|lambda| has
-  // no absolute floor, so the O(q) rounding noise of I along its null direction is inverted
-  // (spurious |omega| up to ~1e5); (2) computeDirect loses about half the digits for the
+  // src/engines/mpcd/kernels/collision_at.cpp, at_a_kernel<3>: (1) the pseudo-inverse cut 1e-10
+  // max|lambda| has no absolute floor, so the O(q) rounding noise of I along its null direction is
+  // inverted (spurious |omega| up to ~1e5); (2) computeDirect loses about half the digits for the
   // double eigenvalue of I (I w - dL ~ 1e-8 |dL|). compute() plus an absolute floor passes.
-  const char *hint = rule == Rule::at_a && dim == 3
-                         ? " [LIBRARY BUG src/mpcd/collision_at.cpp at_a_kernel<3>: relative-only "
-                           "pseudo-inverse cut inverts fixed-point noise; computeDirect inaccurate "
-                           "for the double eigenvalue of I]"
-                         : "";
+  const char *hint =
+      rule == Rule::at_a && dim == 3
+          ? " [LIBRARY BUG src/engines/mpcd/kernels/collision_at.cpp at_a_kernel<3>: relative-only "
+            "pseudo-inverse cut inverts fixed-point noise; computeDirect inaccurate "
+            "for the double eigenvalue of I]"
+          : "";
   for (const auto &[key, w] : rep)
     EXPECT_LE(w.ratio, 1.0) << key << " not conserved; worst: " << w.what << hint;
   // The scenes did contain the small cells the brief is about.
@@ -536,7 +537,7 @@ TEST(CollisionAtA, SingleParticleCellsKeepVelocity) {
           worst_i = i;
         }
       }
-    EXPECT_LE(worst, 1.0) << (dim == 3 ? "LIBRARY BUG (src/mpcd/collision_at.cpp "
+    EXPECT_LE(worst, 1.0) << (dim == 3 ? "LIBRARY BUG (src/engines/mpcd/kernels/collision_at.cpp "
                                          "at_a_kernel<3>: the pseudo-inverse cut is relative "
                                          "only, so the pure rounding noise of I is inverted): "
                                        : "")

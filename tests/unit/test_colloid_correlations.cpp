@@ -3,7 +3,7 @@
 // the situation of a held colloid whose fluid + colloid momentum (hence centre-of-mass
 // velocity V) is conserved but not zero. Z(t) = phi^t and, per component,
 // msd(t) = s2 [t (1 + phi) / (1 - phi) - 2 phi (1 - phi^t) / (1 - phi)^2].
-#include "narrows/lattice/colloid_correlations.hpp"
+#include "narrows/engines/lgca/colloid_correlations.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include <random>
 #include <vector>
 
-using namespace narrows::lattice;
+using namespace narrows::lgca;
 
 namespace {
 

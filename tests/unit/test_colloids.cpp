@@ -8,7 +8,7 @@
 #include "narrows/colloids/potentials.hpp"
 #include "narrows/core/error.hpp"
 #include "narrows/core/fixed_point.hpp"
-#include "narrows/mpcd/streaming.hpp"
+#include "narrows/engines/mpcd/kernels/streaming.hpp"
 
 #include <gtest/gtest.h>
 #include <mpi.h>

@@ -1,7 +1,7 @@
 // 1D d'Humieres lattice gas: the enumerated collision table conserves mass and momentum and is
 // symmetric, collide/propagate conserve them on a lattice, draws are pure functions of
 // (seed, step, site), and the initial ensembles hold what they promise.
-#include "narrows/lattice/dhumieres_1d.hpp"
+#include "narrows/engines/lgca/dhumieres_1d.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +14,7 @@
 
 namespace {
 
-using namespace narrows::lattice;
+using namespace narrows::lgca;
 using dhumieres::mass;
 using dhumieres::momentum;
 

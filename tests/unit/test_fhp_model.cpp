@@ -1,12 +1,12 @@
 // FHP collision tables generated from the rules: conservation, semi-detailed balance, the
 // rules of each model, and the Boltzmann viscosity of the table against PHYSICS.md.
-#include "narrows/lattice/fhp_model.hpp"
+#include "narrows/engines/lgca/fhp_model.hpp"
 
 #include <gtest/gtest.h>
 
 #include <array>
 
-using namespace narrows::lattice;
+using namespace narrows::lgca;
 
 namespace {
 

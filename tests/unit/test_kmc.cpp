@@ -1,9 +1,9 @@
 // kmc engine: transition names, [kmc] scene validation, conservation, and exactness of the
 // continuous-time dynamics against the stationary state of the master equation (small L).
 #include "narrows/core/error.hpp"
-#include "narrows/kmc/lattice.hpp"
-#include "narrows/kmc/rates.hpp"
-#include "narrows/kmc/theory.hpp"
+#include "narrows/engines/kmc/lattice.hpp"
+#include "narrows/models/three_state/rates.hpp"
+#include "narrows/models/three_state/theory.hpp"
 #include "narrows/scene/parse.hpp"
 
 #include <gtest/gtest.h>
@@ -17,21 +17,21 @@
 namespace {
 
 using namespace narrows;
-using kmc::pair_code;
+using three_state::pair_code;
 
 // ---- names ------------------------------------------------------------------------------------
 
 TEST(KmcRates, PairKeysAndSeedLabelsAgree) {
   // w_24: target label 2 = (0,1), initial label 4 = (1,0): the hop 10 -> 01 (eq 2.5).
-  const auto a = kmc::parse_pair_key("10->01");
-  const auto b = kmc::parse_pair_key("w24");
-  const auto c = kmc::parse_pair_key("w_24");
+  const auto a = three_state::parse_pair_key("10->01");
+  const auto b = three_state::parse_pair_key("w24");
+  const auto c = three_state::parse_pair_key("w_24");
   ASSERT_TRUE(a && b && c);
   EXPECT_EQ(*a, (std::pair{pair_code(1, 0), pair_code(0, 1)}));
   EXPECT_EQ(*a, *b);
   EXPECT_EQ(*a, *c);
-  EXPECT_EQ(kmc::pair_name(a->first, a->second), "10->01");
-  EXPECT_EQ(kmc::seed_label(a->first, a->second), "w24");
+  EXPECT_EQ(three_state::pair_name(a->first, a->second), "10->01");
+  EXPECT_EQ(three_state::seed_label(a->first, a->second), "w24");
   // every one of the 72 transitions round-trips through both names
   int n = 0;
   for (int from = 0; from < 9; ++from)
@@ -39,27 +39,29 @@ TEST(KmcRates, PairKeysAndSeedLabelsAgree) {
       if (from == to)
         continue;
       ++n;
-      EXPECT_EQ(kmc::parse_pair_key(kmc::pair_name(from, to)), (std::pair{from, to}));
-      EXPECT_EQ(kmc::parse_pair_key(kmc::seed_label(from, to)), (std::pair{from, to}));
+      EXPECT_EQ(three_state::parse_pair_key(three_state::pair_name(from, to)),
+                (std::pair{from, to}));
+      EXPECT_EQ(three_state::parse_pair_key(three_state::seed_label(from, to)),
+                (std::pair{from, to}));
     }
   EXPECT_EQ(n, 72);
   // eq 2.5: 20 -> 11 is w57 (target 11 = label 5, initial 20 = label 7)
-  EXPECT_EQ(kmc::parse_pair_key("w57"), (std::pair{pair_code(2, 0), pair_code(1, 1)}));
+  EXPECT_EQ(three_state::parse_pair_key("w57"), (std::pair{pair_code(2, 0), pair_code(1, 1)}));
   for (const char *bad : {"10->10", "w22", "30->01", "w0", "w10", "1->0", "10-01", "w_2"})
-    EXPECT_FALSE(kmc::parse_pair_key(bad)) << bad;
+    EXPECT_FALSE(three_state::parse_pair_key(bad)) << bad;
 }
 
 TEST(KmcRates, BoundaryNames) {
-  EXPECT_EQ(kmc::parse_site_key("0->1", true), (std::pair{0, 1}));
-  EXPECT_EQ(kmc::parse_site_key("alpha1", true), (std::pair{0, 1}));
-  EXPECT_EQ(kmc::parse_site_key("gamma1", true), (std::pair{1, 0}));
-  EXPECT_EQ(kmc::parse_site_key("alpha3", true), (std::pair{1, 2}));
-  EXPECT_EQ(kmc::parse_site_key("gamma2", true), (std::pair{2, 0}));
-  EXPECT_EQ(kmc::parse_site_key("beta1", false), (std::pair{1, 0}));
-  EXPECT_EQ(kmc::parse_site_key("delta2", false), (std::pair{0, 2}));
-  EXPECT_FALSE(kmc::parse_site_key("beta1", true));
-  EXPECT_FALSE(kmc::parse_site_key("alpha1", false));
-  EXPECT_FALSE(kmc::parse_site_key("1->1", true));
+  EXPECT_EQ(three_state::parse_site_key("0->1", true), (std::pair{0, 1}));
+  EXPECT_EQ(three_state::parse_site_key("alpha1", true), (std::pair{0, 1}));
+  EXPECT_EQ(three_state::parse_site_key("gamma1", true), (std::pair{1, 0}));
+  EXPECT_EQ(three_state::parse_site_key("alpha3", true), (std::pair{1, 2}));
+  EXPECT_EQ(three_state::parse_site_key("gamma2", true), (std::pair{2, 0}));
+  EXPECT_EQ(three_state::parse_site_key("beta1", false), (std::pair{1, 0}));
+  EXPECT_EQ(three_state::parse_site_key("delta2", false), (std::pair{0, 2}));
+  EXPECT_FALSE(three_state::parse_site_key("beta1", true));
+  EXPECT_FALSE(three_state::parse_site_key("alpha1", false));
+  EXPECT_FALSE(three_state::parse_site_key("1->1", true));
 }
 
 // ---- scenes -------------------------------------------------------------------------------------
@@ -447,15 +449,15 @@ TEST(KmcLattice, ThreeSitesAllRatesMatchMasterEquation) {
 TEST(KmcTheory, TasepExactCurrent) {
   // alpha = beta = 1: Z_N = Catalan(N + 1), J = (L + 2) / (2 (2L + 1))
   for (int L : {1, 2, 5, 30})
-    EXPECT_NEAR(kmc::theory::tasep_open_current(L, 1.0, 1.0), (L + 2.0) / (2.0 * (2 * L + 1)),
-                1e-12);
+    EXPECT_NEAR(three_state::theory::tasep_open_current(L, 1.0, 1.0),
+                (L + 2.0) / (2.0 * (2 * L + 1)), 1e-12);
   // alpha + beta = 1: product measure, J = alpha beta for every L
   for (int L : {1, 3, 10, 400})
-    EXPECT_NEAR(kmc::theory::tasep_open_current(L, 0.3, 0.7), 0.21, 1e-10) << L;
+    EXPECT_NEAR(three_state::theory::tasep_open_current(L, 0.3, 0.7), 0.21, 1e-10) << L;
   // large L approaches the phase diagram
-  EXPECT_NEAR(kmc::theory::tasep_open_current(2000, 0.2, 0.7), 0.16, 1e-9);
-  EXPECT_NEAR(kmc::theory::tasep_open_current(2000, 0.8, 0.8), 0.25, 5e-4);
-  EXPECT_EQ(kmc::theory::tasep_open_current_limit(0.7, 0.2), 0.7 * 0.0 + 0.2 * 0.8);
+  EXPECT_NEAR(three_state::theory::tasep_open_current(2000, 0.2, 0.7), 0.16, 1e-9);
+  EXPECT_NEAR(three_state::theory::tasep_open_current(2000, 0.8, 0.8), 0.25, 5e-4);
+  EXPECT_EQ(three_state::theory::tasep_open_current_limit(0.7, 0.2), 0.7 * 0.0 + 0.2 * 0.8);
 }
 
 } // namespace

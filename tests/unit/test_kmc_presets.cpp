@@ -1,9 +1,9 @@
 // kmc presets (issue 7, acceptance 4): the seed's derived constants, the residuals of its
 // conditions, warnings when they fail, and the generated boundary rates - checked against the
 // full master equation of a short open chain.
-#include "narrows/kmc/preset.hpp"
-#include "narrows/kmc/rates.hpp"
-#include "narrows/kmc/shock.hpp"
+#include "narrows/models/three_state/preset.hpp"
+#include "narrows/models/three_state/rates.hpp"
+#include "narrows/models/three_state/shock.hpp"
 #include "narrows/scene/parse.hpp"
 
 #include <gtest/gtest.h>
@@ -23,7 +23,7 @@ scene::Kmc family1() {
   m.boundary = scene::KmcBoundary::periodic; // open only where a test gives boundary rates
   m.preset = scene::KmcPreset::family1;
   const auto set = [&m](const char *key, double v) {
-    const auto t = kmc::parse_pair_key(key);
+    const auto t = three_state::parse_pair_key(key);
     m.rates[t->first * 9 + t->second] = v;
   };
   set("w24", 0.2), set("w42", 1.0), set("w37", 0.5), set("w73", 1.7), set("w86", 0.8);
@@ -38,12 +38,12 @@ scene::Kmc family2(double h3 = 0.9) {
   m.boundary = scene::KmcBoundary::periodic;
   m.preset = scene::KmcPreset::family2;
   m.c = 0.5;
-  m.rates = kmc::family2_rates({0.15, 0.1, h3, 0.5, 0.5, 0.8},
-                               {0.1, 0.1, 0.1, 0.2, 0.2, 0.2, 0.1, 0.1, 0.1}, m.c);
+  m.rates = three_state::family2_rates({0.15, 0.1, h3, 0.5, 0.5, 0.8},
+                                       {0.1, 0.1, 0.1, 0.2, 0.2, 0.2, 0.1, 0.1, 0.1}, m.c);
   return m;
 }
 
-bool has_warning(const kmc::PresetReport &rep, const std::string &part) {
+bool has_warning(const three_state::PresetReport &rep, const std::string &part) {
   for (const auto &w : rep.warnings)
     if (w.find(part) != std::string::npos)
       return true;
@@ -104,27 +104,27 @@ double master_equation_defect(const scene::Kmc &m, const std::array<double, 3> &
 
 TEST(KmcPresets, Family1ConstantsMatchTheSeed) {
   const scene::Kmc m = family1();
-  const auto p = kmc::preset_marginal(m.preset, kmc::family1_ratio(m.rates), 0.8);
-  const auto fit = kmc::bulk_fit(m.rates, p, kmc::vacancy_state(m.preset));
+  const auto p = three_state::preset_marginal(m.preset, three_state::family1_ratio(m.rates), 0.8);
+  const auto fit = three_state::bulk_fit(m.rates, p, three_state::vacancy_state(m.preset));
   EXPECT_LT(fit.residual, 1e-14);
-  EXPECT_NEAR(fit.d[0], 0.2 - 1.0, 1e-12);            // F = w24 - w42 (eq 2.33)
-  EXPECT_NEAR(fit.d[2], 0.8 - 0.3, 1e-12);            // F' = w86 - w68 (eq 2.34)
-  EXPECT_DOUBLE_EQ(kmc::family1_ratio(m.rates), 1.0); // (0.4 + 0.6) / (0.5 + 0.5)
+  EXPECT_NEAR(fit.d[0], 0.2 - 1.0, 1e-12);                    // F = w24 - w42 (eq 2.33)
+  EXPECT_NEAR(fit.d[2], 0.8 - 0.3, 1e-12);                    // F' = w86 - w68 (eq 2.34)
+  EXPECT_DOUBLE_EQ(three_state::family1_ratio(m.rates), 1.0); // (0.4 + 0.6) / (0.5 + 0.5)
   // eq 2.47 and 2.48 agree on the manifold
   scene::Kmc mz = m;
   mz.fugacity = {0.8};
-  const auto rep = kmc::analyse(mz);
+  const auto rep = three_state::analyse(mz);
   EXPECT_TRUE(rep.warnings.empty());
   EXPECT_NEAR(rep.branches[0].current, rep.branches[0].current_247, 1e-12);
 }
 
 TEST(KmcPresets, Family2ConstantsMatchTheSeed) {
   const scene::Kmc m = family2();
-  const auto p = kmc::preset_marginal(m.preset, m.c, 0.2);
-  const auto fit = kmc::bulk_fit(m.rates, p, kmc::vacancy_state(m.preset));
+  const auto p = three_state::preset_marginal(m.preset, m.c, 0.2);
+  const auto fit = three_state::bulk_fit(m.rates, p, three_state::vacancy_state(m.preset));
   scene::Kmc mz = m;
   mz.fugacity = {0.2, 1.0};
-  const auto rep = kmc::analyse(mz);
+  const auto rep = three_state::analyse(mz);
   EXPECT_TRUE(rep.warnings.empty()) << rep.warnings.front();
   EXPECT_LT(fit.residual, 1e-14);
   EXPECT_NEAR(fit.d[1], -rep.f, 1e-12);  // d(A) = -E (eq 2.93)
@@ -136,17 +136,17 @@ TEST(KmcPresets, Family2ConstantsMatchTheSeed) {
 
 TEST(KmcPresets, WarnsWithResidualsOffTheManifolds) {
   scene::Kmc m = family1();
-  const auto t = kmc::parse_pair_key("w73");
+  const auto t = three_state::parse_pair_key("w73");
   m.rates[t->first * 9 + t->second] = 1.5; // eq 2.36 now misses by 0.2 (times w35 + w75 = 1)
   m.fugacity = {0.8};
-  const auto rep = kmc::analyse(m);
+  const auto rep = three_state::analyse(m);
   ASSERT_TRUE(has_warning(rep, "eq 2.36")) << rep.warnings.size();
   EXPECT_NEAR(rep.residuals[0].value, -0.2, 1e-12);
   EXPECT_TRUE(has_warning(rep, "stationary in the bulk"));
 
   scene::Kmc m2 = family2(1.0); // h3 + c r4 = 1.1 but h6 + r4 = 1.0: off eq 2.109 by 0.1
   m2.fugacity = {0.2, 1.0};
-  const auto rep2 = kmc::analyse(m2);
+  const auto rep2 = three_state::analyse(m2);
   EXPECT_TRUE(has_warning(rep2, "(eq 2.109) does not hold: residual 0.1"));
   EXPECT_TRUE(has_warning(rep2, "eq 2.111"));
   EXPECT_TRUE(has_warning(rep2, "eq 2.94"));
@@ -156,7 +156,7 @@ TEST(KmcPresets, WarnsWithResidualsOffTheManifolds) {
   m3.boundary = scene::KmcBoundary::open;
   m3.fugacity = {0.8};
   m3.left[0 * 3 + 1] = 1.0;
-  const auto rep3 = kmc::analyse(m3);
+  const auto rep3 = three_state::analyse(m3);
   EXPECT_TRUE(has_warning(rep3, "left boundary rates"));
   EXPECT_TRUE(has_warning(rep3, "right boundary rates"));
 }
@@ -169,8 +169,8 @@ TEST(KmcPresets, GeneratedBoundaryRatesMakeTheProductMeasureExact) {
     m.fugacity = {0.7};
     m.boundary_from_fugacity = true;
     m.boundary_coupling = 0.3;
-    kmc::apply_preset(m, false, false);
-    const auto rep = kmc::analyse(m);
+    three_state::apply_preset(m, false, false);
+    const auto rep = three_state::analyse(m);
     EXPECT_TRUE(rep.warnings.empty()) << rep.warnings.front();
     EXPECT_LT(master_equation_defect(m, m.initial), 1e-15);
     // and the check does detect a wrong boundary
@@ -183,10 +183,10 @@ TEST(KmcPresets, GeneratedBoundaryRatesMakeTheProductMeasureExact) {
 TEST(KmcPresets, ShockPositionEstimator) {
   const std::array<double, 3> left{0.8, 0.1, 0.1}, right{1.0, 0.0, 0.0};
   // right branch all state 0: the shock sits after the last site in another state
-  EXPECT_EQ(kmc::shock_position({1, 0, 2, 0, 0, 0}, left, right), 3);
-  EXPECT_EQ(kmc::shock_position({0, 0, 0}, left, right), 0);
+  EXPECT_EQ(three_state::shock_position({1, 0, 2, 0, 0, 0}, left, right), 3);
+  EXPECT_EQ(three_state::shock_position({0, 0, 0}, left, right), 0);
   const std::array<double, 3> lo{0.9, 0.05, 0.05}, hi{0.1, 0.45, 0.45};
-  EXPECT_EQ(kmc::shock_position({0, 0, 0, 0, 1, 2, 1, 1}, lo, hi), 4);
+  EXPECT_EQ(three_state::shock_position({0, 0, 0, 0, 1, 2, 1, 1}, lo, hi), 4);
 }
 
 TEST(KmcPresets, SceneErrorsNameTheKey) {

@@ -3,9 +3,9 @@
 // theory (eq 18 by enumeration) agrees with eq 19 where eq 19 applies.
 #include "narrows/core/error.hpp"
 #include "narrows/core/rng.hpp"
-#include "narrows/lattice/dhumieres_1d.hpp"
-#include "narrows/lattice/moment_propagation.hpp"
-#include "narrows/lattice/vacf_theory.hpp"
+#include "narrows/engines/lgca/dhumieres_1d.hpp"
+#include "narrows/engines/lgca/moment_propagation.hpp"
+#include "narrows/engines/lgca/vacf_theory.hpp"
 
 #include <gtest/gtest.h>
 
@@ -16,7 +16,7 @@
 namespace {
 
 using namespace narrows;
-using namespace narrows::lattice;
+using namespace narrows::lgca;
 
 // Position of a triangular-lattice site, unwrapped: (x + (y mod 2)/2, y sqrt(3)/2).
 std::array<double, 2> position(std::int64_t nx, std::int64_t site) {

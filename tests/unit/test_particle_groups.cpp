@@ -10,9 +10,9 @@
 // 12 particles, so both runs agree to ~1e-11; 1e-9 leaves room and is far below any error of
 // the algebra (a term of one particle's velocity, O(1)).
 #include "narrows/core/fixed_point.hpp"
-#include "narrows/mpcd/cell_grid.hpp"
-#include "narrows/mpcd/collision.hpp"
-#include "narrows/mpcd/fluid.hpp"
+#include "narrows/engines/mpcd/kernels/cell_grid.hpp"
+#include "narrows/engines/mpcd/kernels/collision.hpp"
+#include "narrows/engines/mpcd/kernels/fluid.hpp"
 
 #include <gtest/gtest.h>
 

@@ -7,8 +7,8 @@
 #include "narrows/colloids/hard_spheres.hpp"
 #include "narrows/colloids/pair_geometry.hpp"
 #include "narrows/colloids/springs.hpp"
-#include "narrows/mpcd/cell_grid.hpp"
-#include "narrows/mpcd/streaming.hpp"
+#include "narrows/engines/mpcd/kernels/cell_grid.hpp"
+#include "narrows/engines/mpcd/kernels/streaming.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // Streaming kernels: free flight and constant force exactly as x + v dt (+ g dt^2/2) with
 // periodic wrapping, and the closed-form Kolmogorov kick against a fine RK4 integration.
-#include "narrows/mpcd/fluid.hpp"
-#include "narrows/mpcd/streaming.hpp"
+#include "narrows/engines/mpcd/kernels/fluid.hpp"
+#include "narrows/engines/mpcd/kernels/streaming.hpp"
 
 #include <gtest/gtest.h>
 

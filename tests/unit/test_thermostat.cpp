@@ -1,8 +1,8 @@
 // Per-layer rescaling thermostat (seed 000 eq 3.53-3.54): cell momenta are kept, and each layer's
 // kinetic energy relative to the cell means becomes (d/2)(N - C) kT.
 #include "narrows/core/fixed_point.hpp"
-#include "narrows/mpcd/cell_grid.hpp"
-#include "narrows/mpcd/thermostat.hpp"
+#include "narrows/engines/mpcd/kernels/cell_grid.hpp"
+#include "narrows/engines/mpcd/kernels/thermostat.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,11 @@
 // Walls: exact hit times, bounce-back and specular streaming (exact single hits, time
 // reversibility, energy, never outside, hard cases), wall rows of the grid, virtual particles.
 #include "narrows/core/fixed_point.hpp"
-#include "narrows/mpcd/cell_grid.hpp"
-#include "narrows/mpcd/collision.hpp"
-#include "narrows/mpcd/fluid.hpp"
-#include "narrows/walls/bounce_back.hpp"
-#include "narrows/walls/virtual_particles.hpp"
+#include "narrows/engines/mpcd/kernels/cell_grid.hpp"
+#include "narrows/engines/mpcd/kernels/collision.hpp"
+#include "narrows/engines/mpcd/kernels/fluid.hpp"
+#include "narrows/engines/mpcd/walls/bounce_back.hpp"
+#include "narrows/engines/mpcd/walls/virtual_particles.hpp"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // accumulated per particle id from minimum-image position changes (|v dt| << L/2).
 #pragma once
 
-#include "narrows/engine/mpcd_simulation.hpp"
+#include "narrows/engines/mpcd/simulation.hpp"
 
 #include <cmath>
 #include <vector>
@@ -19,7 +19,7 @@ struct DiffusionResult {
 // up to the slow hydrodynamic tail).
 inline DiffusionResult measure_diffusion(const scene::Scene &s, int warmup, int origins, int lag_lo,
                                          int lag_hi) {
-  engine::MpcdSimulation sim(s, MPI_COMM_SELF);
+  mpcd::MpcdSimulation sim(s, MPI_COMM_SELF);
   for (int i = 0; i < warmup; ++i)
     sim.advance();
   const int d = s.run.dimensions;

@@ -5,7 +5,7 @@
 
 #include "fluid_scene.hpp"
 #include "narrows/analysis/fluid_observables.hpp"
-#include "narrows/engine/mpcd_simulation.hpp"
+#include "narrows/engines/mpcd/simulation.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -25,7 +25,7 @@ struct KolmogorovResult {
 // must be several relaxation times L^2/(4 pi^2 nu) long to be independent.
 inline KolmogorovResult measure_kolmogorov(const scene::Scene &s, int warmup, int blocks,
                                            int block_steps, int every = 5) {
-  engine::MpcdSimulation sim(s, MPI_COMM_SELF);
+  mpcd::MpcdSimulation sim(s, MPI_COMM_SELF);
   for (int i = 0; i < warmup; ++i)
     sim.advance();
   const double k = 2.0 * std::numbers::pi / s.domain.size[1];

@@ -5,7 +5,7 @@
 #include "fluid_scene.hpp"
 #include "narrows/analysis/fluid_observables.hpp"
 #include "narrows/analysis/poiseuille.hpp"
-#include "narrows/engine/mpcd_simulation.hpp"
+#include "narrows/engines/mpcd/simulation.hpp"
 
 #include <cmath>
 #include <vector>
@@ -41,7 +41,7 @@ inline double standard_error(const std::vector<double> &a) {
 // profile of each of `blocks` blocks of `block_steps` steps (sampled every `every` steps).
 inline PoiseuilleResult measure_poiseuille(const scene::Scene &s, int warmup, int blocks,
                                            int block_steps, int every = 2) {
-  engine::MpcdSimulation sim(s, MPI_COMM_SELF);
+  mpcd::MpcdSimulation sim(s, MPI_COMM_SELF);
   for (int i = 0; i < warmup; ++i)
     sim.advance();
   const double g = s.body_force->value[0];

@@ -7,7 +7,7 @@
 // so a wrong mass or a mixed-up kind fails: the two kinds differ by a factor 2.8).
 #include "narrows/analysis/colloid_time_correlations.hpp"
 #include "narrows/analysis/fluid_observables.hpp"
-#include "narrows/engine/mpcd_simulation.hpp"
+#include "narrows/engines/mpcd/simulation.hpp"
 
 #include "colloid_scene.hpp"
 
@@ -26,7 +26,7 @@ TEST(ColloidKinds, EachKindHasItsEquipartitionVelocity) {
   c.radius = 2.5;
   c.placement = scene::ColloidPlacement::random;
   const scene::Scene s = narrows::testing::srd_colloid_scene(32.0, 32.0, false, 9, c);
-  engine::MpcdSimulation sim(s, MPI_COMM_WORLD);
+  mpcd::MpcdSimulation sim(s, MPI_COMM_WORLD);
   const int warmup = 500, steps = 6000, every = 2;
   std::vector<std::size_t> kind(11);
   for (std::uint64_t id = 0; id < 11; ++id)

@@ -10,8 +10,8 @@
 // k = 5, 2.3e-5 at k = 15 (the default), 8.3e-6 at k = 30. Asserted: below 1e-4 at k = 15
 // (4 x the table, for other seeds and initial states), and above 1e-3 at k = 2, so the bound
 // separates a usable MD step from a too-long one and the test can fail.
-#include "narrows/engine/mpcd_simulation.hpp"
-#include "narrows/engine/totals.hpp"
+#include "narrows/engines/mpcd/simulation.hpp"
+#include "narrows/engines/mpcd/totals.hpp"
 
 #include "colloid_scene.hpp"
 
@@ -40,15 +40,15 @@ constexpr double energy_drift_bound = 1e-4; // at the default k = 15; see the to
 TEST(ColloidConservation, TotalMomentumAndEnergyOverTenThousandSteps) {
   const scene::Scene s = conservation_scene(15);
   ASSERT_EQ(s.colloids->md_substeps, scene::Colloids{}.md_substeps); // the default
-  engine::MpcdSimulation sim(s, MPI_COMM_WORLD);
-  const auto p0 = engine::total_momentum(sim);
-  const double e0 = engine::total_energy(sim);
+  mpcd::MpcdSimulation sim(s, MPI_COMM_WORLD);
+  const auto p0 = mpcd::total_momentum(sim);
+  const double e0 = mpcd::total_energy(sim);
   const int steps = 10000;
   double max_dp = 0.0, max_colloid_p = 0.0;
   for (int i = 1; i <= steps; ++i) {
     sim.advance();
     if (i % 50 == 0) {
-      const auto p = engine::total_momentum(sim);
+      const auto p = mpcd::total_momentum(sim);
       for (int k = 0; k < 2; ++k) {
         max_dp = std::max(max_dp, std::abs(p[k] - p0[k]));
         double pc = 0.0;
@@ -58,8 +58,8 @@ TEST(ColloidConservation, TotalMomentumAndEnergyOverTenThousandSteps) {
       }
     }
   }
-  const double e1 = engine::total_energy(sim);
-  const double n = static_cast<double>(engine::particle_count(s));
+  const double e1 = mpcd::total_energy(sim);
+  const double n = static_cast<double>(mpcd::particle_count(s));
   // Round-off bound: the SRD cell sums are fixed point, so each collision step may move the total
   // by up to N 2^-41 per component (the invariant check allows twice N 2^-40, as here); the MD
   // pair forces are exactly antisymmetric in fixed point, so the kicks add only the rounding of
@@ -78,11 +78,11 @@ TEST(ColloidConservation, TotalMomentumAndEnergyOverTenThousandSteps) {
 
 // Two MD sub-steps (tau_MD = 0.05) drift by 3.3e-2 in the README's table: far beyond the bound.
 TEST(ColloidConservation, TooFewMdSubstepsBreakTheEnergyBound) {
-  engine::MpcdSimulation sim(conservation_scene(2), MPI_COMM_WORLD);
-  const double e0 = engine::total_energy(sim);
+  mpcd::MpcdSimulation sim(conservation_scene(2), MPI_COMM_WORLD);
+  const double e0 = mpcd::total_energy(sim);
   for (int i = 0; i < 10000; ++i)
     sim.advance();
-  const double drift = (engine::total_energy(sim) - e0) / e0;
+  const double drift = (mpcd::total_energy(sim) - e0) / e0;
   std::printf("k = 2 MD sub-steps: relative energy drift %.3g over 10^4 steps\n", drift);
   EXPECT_GT(std::abs(drift), 10.0 * energy_drift_bound);
 }

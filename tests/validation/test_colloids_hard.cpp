@@ -19,8 +19,8 @@
 // Single file: the same start under the seed's g_c = 0.1 without thermostat: the cyclic order of
 // the colloids along x is kept for 10^4 steps (with sigma_w = 2 r_c two colloids side by side would
 // need centres within 2 of the walls, where the wall potential is > 50 kT).
-#include "narrows/engine/invariants.hpp"
-#include "narrows/engine/mpcd_simulation.hpp"
+#include "narrows/engines/mpcd/invariants.hpp"
+#include "narrows/engines/mpcd/simulation.hpp"
 
 #include "colloid_scene.hpp"
 
@@ -50,8 +50,8 @@ HardRun touching_start(double g, bool thermostat) {
   scene::Scene s = narrows::testing::srd_colloid_scene(40.0, 10.0, true, 7, c);
   if (thermostat)
     s.thermostat = scene::Thermostat{scene::ThermostatKind::layers, 0.1};
-  engine::MpcdSimulation sim(s, MPI_COMM_WORLD);
-  const engine::InvariantCheck invariants(sim);
+  mpcd::MpcdSimulation sim(s, MPI_COMM_WORLD);
+  const mpcd::InvariantCheck invariants(sim);
   const double L = 40.0, sigma = c.radius;
   const auto &col = sim.colloids();
   std::vector<double> unwrapped(col.x[0]), last(col.x[0]);

@@ -17,10 +17,10 @@
 // 1e-6, far above a stationary remnant of ~1e-14 seen in mode 8 of the jammed state (its size
 // changes with dt: a numerical floor). A mode is followed while it stays within e^+-8 of its
 // size at t0.
-#include "narrows/continuum/jamming_model.hpp"
-#include "narrows/continuum/jamming_plan.hpp"
-#include "narrows/continuum/jamming_solver.hpp"
-#include "narrows/continuum/jamming_stability.hpp"
+#include "narrows/engines/continuum/jamming_model.hpp"
+#include "narrows/engines/continuum/jamming_plan.hpp"
+#include "narrows/engines/continuum/jamming_solver.hpp"
+#include "narrows/engines/continuum/jamming_stability.hpp"
 #include "narrows/scene/parse.hpp"
 
 #include <gtest/gtest.h>

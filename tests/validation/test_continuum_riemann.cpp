@@ -4,11 +4,11 @@
 // rarefaction fans against the self-similar solution within 1 % in L1), and the order of
 // convergence on a smooth solution before the shock forms (L1 against the characteristic
 // solution; a second-order scheme must reach 2). Each run takes a fraction of a second.
-#include "narrows/continuum/exact.hpp"
-#include "narrows/continuum/flux.hpp"
-#include "narrows/continuum/plan.hpp"
-#include "narrows/continuum/scheme.hpp"
-#include "narrows/continuum/shock.hpp"
+#include "narrows/engines/continuum/exact.hpp"
+#include "narrows/engines/continuum/flux.hpp"
+#include "narrows/engines/continuum/plan.hpp"
+#include "narrows/engines/continuum/scheme.hpp"
+#include "narrows/engines/continuum/shock.hpp"
 #include "narrows/scene/parse.hpp"
 
 #include <gtest/gtest.h>

@@ -20,10 +20,10 @@
 // either shear rate): its
 // largest deviation from the shooting profile falls by the second-order factor (>= 3 for a
 // halved cell) from 20 to 40 cells, and each kind's total is kept to rounding.
-#include "narrows/continuum/segregation_model.hpp"
-#include "narrows/continuum/segregation_plan.hpp"
-#include "narrows/continuum/segregation_solver.hpp"
-#include "narrows/continuum/segregation_steady.hpp"
+#include "narrows/engines/continuum/segregation_model.hpp"
+#include "narrows/engines/continuum/segregation_plan.hpp"
+#include "narrows/engines/continuum/segregation_solver.hpp"
+#include "narrows/engines/continuum/segregation_steady.hpp"
 #include "narrows/scene/parse.hpp"
 
 #include <gtest/gtest.h>

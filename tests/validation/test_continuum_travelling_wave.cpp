@@ -10,10 +10,10 @@
 //   the PDE started from it travels at c and keeps its shape;
 // - a pulse grown in the PDE from a small perturbation is a travelling wave of eq 6.13-6.14 at
 //   its measured (c, q), next to the homoclinic loop of the jammed saddle.
-#include "narrows/continuum/jamming_model.hpp"
-#include "narrows/continuum/jamming_solver.hpp"
-#include "narrows/continuum/jamming_stability.hpp"
-#include "narrows/continuum/travelling_wave.hpp"
+#include "narrows/engines/continuum/jamming_model.hpp"
+#include "narrows/engines/continuum/jamming_solver.hpp"
+#include "narrows/engines/continuum/jamming_stability.hpp"
+#include "narrows/engines/continuum/travelling_wave.hpp"
 
 #include <gtest/gtest.h>
 

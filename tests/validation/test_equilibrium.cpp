@@ -1,6 +1,6 @@
 // Equilibrium of the periodic MPCD fluid: Maxwell-Boltzmann velocities and kT.
 #include "narrows/analysis/fluid_observables.hpp"
-#include "narrows/engine/mpcd_simulation.hpp"
+#include "narrows/engines/mpcd/simulation.hpp"
 
 #include <gtest/gtest.h>
 
@@ -53,7 +53,7 @@ class Equilibrium : public ::testing::TestWithParam<std::tuple<int, scene::Colli
 
 TEST_P(Equilibrium, MaxwellBoltzmannAndTemperature) {
   const auto [dim, rule] = GetParam();
-  engine::MpcdSimulation sim(box_scene(dim, rule), MPI_COMM_SELF);
+  mpcd::MpcdSimulation sim(box_scene(dim, rule), MPI_COMM_SELF);
   auto &f = sim.fluid();
   ASSERT_EQ(f.size() % 8, 0u); // bit k of i sums to zero over the ids for k < 3
   for (int k = 0; k < dim; ++k)

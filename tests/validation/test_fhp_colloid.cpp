@@ -2,10 +2,10 @@
 // moving: total momentum of fluid + colloid conserved exactly, the moving-boundary rule handing
 // the colloid's momentum to the fluid, the moving disc's geometry and drift.
 #include "narrows/core/error.hpp"
-#include "narrows/lattice/colloid_correlations.hpp"
-#include "narrows/lattice/fhp_colloid.hpp"
-#include "narrows/lattice/fhp_lattice.hpp"
-#include "narrows/lattice/fhp_observables.hpp"
+#include "narrows/engines/lgca/colloid_correlations.hpp"
+#include "narrows/engines/lgca/fhp_colloid.hpp"
+#include "narrows/engines/lgca/fhp_lattice.hpp"
+#include "narrows/engines/lgca/fhp_observables.hpp"
 
 #include <gtest/gtest.h>
 #include <mpi.h>
@@ -15,7 +15,7 @@
 #include <cstdio>
 #include <vector>
 
-using namespace narrows::lattice;
+using namespace narrows::lgca;
 
 namespace {
 

@@ -1,10 +1,10 @@
 // Tagged-particle VACF of the FHP models by moment propagation on the lattice slabs (seed 002
 // §3; issue 6 point 3): the slab implementation against the library kernel, the one-step VACF
 // against eq 19 with collisions on, and the 2D long-time tail t^-1.
-#include "narrows/lattice/fhp_lattice.hpp"
-#include "narrows/lattice/fhp_tagged.hpp"
-#include "narrows/lattice/moment_propagation.hpp"
-#include "narrows/lattice/vacf_theory.hpp"
+#include "narrows/engines/lgca/fhp_lattice.hpp"
+#include "narrows/engines/lgca/fhp_tagged.hpp"
+#include "narrows/engines/lgca/moment_propagation.hpp"
+#include "narrows/engines/lgca/vacf_theory.hpp"
 
 #include <gtest/gtest.h>
 #include <mpi.h>
@@ -13,7 +13,7 @@
 #include <cstdio>
 #include <vector>
 
-using namespace narrows::lattice;
+using namespace narrows::lgca;
 
 namespace {
 

@@ -18,8 +18,8 @@
 //   with size_y); an independent numpy implementation of FHP-II gives the same +11 %:
 //   correlations the Boltzmann approximation leaves out. The half-filling values are checked
 //   here against the measured values with other seeds, not against the formulas.
-#include "narrows/lattice/fhp_lattice.hpp"
-#include "narrows/lattice/fhp_observables.hpp"
+#include "narrows/engines/lgca/fhp_lattice.hpp"
+#include "narrows/engines/lgca/fhp_observables.hpp"
 
 #include <gtest/gtest.h>
 #include <mpi.h>
@@ -29,7 +29,7 @@
 #include <cstdlib>
 #include <vector>
 
-using namespace narrows::lattice;
+using namespace narrows::lgca;
 
 namespace {
 

@@ -13,8 +13,8 @@
 //     M_ii M_jj + M_ij^2, in units of kT^2).
 // A mean off by the rigid-body part, a factor missing in the Cholesky factor, or shared normals
 // between eta and xi fail these. ~0.5 s.
-#include "narrows/colloids/no_slip.hpp"
-#include "narrows/mpcd/cell_grid.hpp"
+#include "narrows/engines/mpcd/coupling/no_slip.hpp"
+#include "narrows/engines/mpcd/kernels/cell_grid.hpp"
 #include "narrows/parallel/slabs.hpp"
 
 #include <Eigen/Dense>
@@ -31,12 +31,12 @@ void check_ghost_sums(int dim) {
   const int L = dim == 2 ? 16 : 10;
   const mpcd::Box box = mpcd::make_periodic_box(dim, {L, L, dim == 3 ? L : 1});
   const double kT = 1.3;
-  colloids::NoSlipParams params;
+  coupling::NoSlipParams params;
   params.kT = kT;
   params.density = dim == 2 ? 10.5 : 6.0; // a fractional density: the extra try too
   params.seed = 77;
   const parallel::Slabs slabs(MPI_COMM_SELF, L);
-  colloids::NoSlipCoupling coupling(params, box, slabs);
+  coupling::NoSlipCoupling coupling(params, box, slabs);
   colloids::Colloids c;
   c.dim = dim;
   c.resize(1);

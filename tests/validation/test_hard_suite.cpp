@@ -4,9 +4,9 @@
 //   regime_warnings, per rule and at two temperatures;
 // - 10^5 steps of every MPCD scene class of run/ at reduced size, with the run's invariant
 //   check (count, ids, no NaN or runaway speed, momentum where conserved) every 100 steps.
-#include "narrows/engine/info.hpp"
-#include "narrows/engine/invariants.hpp"
-#include "narrows/engine/mpcd_simulation.hpp"
+#include "narrows/engines/mpcd/info.hpp"
+#include "narrows/engines/mpcd/invariants.hpp"
+#include "narrows/engines/mpcd/simulation.hpp"
 #include "narrows/scene/parse.hpp"
 
 #include <gtest/gtest.h>
@@ -23,7 +23,7 @@ namespace {
 using namespace narrows;
 
 bool warns_about_mean_free_path(const scene::Scene &s) {
-  for (const auto &w : engine::regime_warnings(s))
+  for (const auto &w : mpcd::regime_warnings(s))
     if (w.find("mean free path") != std::string::npos)
       return true;
   return false;
@@ -83,8 +83,8 @@ TEST_P(HardCaseLongRun, InvariantsHoldEvery100StepsFor1e5Steps) {
   const SceneClass c = GetParam();
   const scene::Scene s =
       scene::load_scene(std::string(NARROWS_SOURCE_DIR) + "/run/" + c.file, c.reduce);
-  engine::MpcdSimulation sim(s, MPI_COMM_SELF);
-  const engine::InvariantCheck invariants(sim);
+  mpcd::MpcdSimulation sim(s, MPI_COMM_SELF);
+  const mpcd::InvariantCheck invariants(sim);
   const auto start = std::chrono::steady_clock::now();
   constexpr int steps = 100000;
   for (int step = 1; step <= steps; ++step) {
@@ -104,8 +104,8 @@ const std::vector<std::string> tiny2d{"domain.size=[8.0, 6.0]", "fluid.density=3
 INSTANTIATE_TEST_SUITE_P(
     RunScenes, HardCaseLongRun,
     ::testing::Values(
-        SceneClass{"quickstart.toml", tiny2d},     // SRD channel, body force, virtual particles
-        SceneClass{"strong_scaling.toml", tiny2d}, // periodic SRD box
+        SceneClass{"quickstart.toml", tiny2d},        // SRD channel, body force, virtual particles
+        SceneClass{"strong_scaling.toml", tiny2d},    // periodic SRD box
         SceneClass{"poiseuille_fig3_7.toml", tiny2d}, // SRD channel of seed 000 ch.3
         SceneClass{"ata_fluid_table5_1_2d.toml", tiny2d}, // MPC-AT+a channel
         SceneClass{"ata_fluid_table5_1_3d.toml",

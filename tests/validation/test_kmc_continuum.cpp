@@ -1,7 +1,8 @@
 // The kmc engine against the continuum engine (issue 22, acceptance 2): an OPEN three-state
 // lattice gas of L = 1000 sites (family 1 and family 2 presets, boundary rates fitted to the
 // two fugacities) and the conservation law rho_t + J(rho)_x = 0 with the same flux (the preset's
-// eq 2.60 / 2.126, kmc::hydrodynamic_flux) and the same boundary densities held as reservoirs.
+// eq 2.60 / 2.126, three_state::hydrodynamic_flux) and the same boundary densities held as
+// reservoirs.
 //
 // - Mean density profile: the kmc chain starts with a shock in the middle, runs until the shock
 //   has left (warm-up), then the time-averaged charge profile is compared, in blocks of 50 sites
@@ -15,13 +16,13 @@
 // Errors are standard errors over independent replicas; each block or time is within 3.5 of
 // them (16 blocks or 10 times per comparison: a family-wise false alarm rate below 1 %), the
 // mean shock speed (slope of the displacement) within 3.
-#include "narrows/continuum/flux.hpp"
-#include "narrows/continuum/plan.hpp"
-#include "narrows/continuum/scheme.hpp"
-#include "narrows/continuum/shock.hpp"
-#include "narrows/kmc/lattice.hpp"
-#include "narrows/kmc/preset.hpp"
-#include "narrows/kmc/shock.hpp"
+#include "narrows/engines/continuum/flux.hpp"
+#include "narrows/engines/continuum/plan.hpp"
+#include "narrows/engines/continuum/scheme.hpp"
+#include "narrows/engines/continuum/shock.hpp"
+#include "narrows/engines/kmc/lattice.hpp"
+#include "narrows/models/three_state/preset.hpp"
+#include "narrows/models/three_state/shock.hpp"
 #include "narrows/scene/parse.hpp"
 
 #include <gtest/gtest.h>
@@ -42,7 +43,7 @@ scene::Kmc load(const char *name, const std::vector<std::string> &sets) {
 
 // The conserved density of a branch: the charge sigma (family 1) or the particle density
 // (family 2), what the preset's flux takes.
-double density_of(const scene::Kmc &m, const kmc::Branch &b) {
+double density_of(const scene::Kmc &m, const three_state::Branch &b) {
   return m.preset == scene::KmcPreset::family1 ? b.sigma : b.rho;
 }
 
@@ -116,7 +117,7 @@ MeanError over_replicas(const std::vector<std::vector<double>> &rows) {
 
 // The steady-state comparison for one model (shock at the middle initially).
 void steady_profile(const scene::Kmc &m, std::uint64_t seed) {
-  const auto rep = kmc::analyse(m);
+  const auto rep = three_state::analyse(m);
   ASSERT_EQ(rep.branches.size(), 2u);
   const double left = density_of(m, rep.branches[0]), right = density_of(m, rep.branches[1]);
   const auto L = static_cast<std::size_t>(m.length);
@@ -167,7 +168,7 @@ void steady_profile(const scene::Kmc &m, std::uint64_t seed) {
 
 // The mean shock position against time for a shock preset.
 void shock_against_time(const scene::Kmc &m, std::uint64_t seed) {
-  const auto rep = kmc::analyse(m);
+  const auto rep = three_state::analyse(m);
   const double left = density_of(m, rep.branches[0]), right = density_of(m, rep.branches[1]);
   const auto samples = static_cast<std::size_t>(m.samples);
   std::vector<std::vector<double>> rows;
@@ -176,8 +177,8 @@ void shock_against_time(const scene::Kmc &m, std::uint64_t seed) {
     std::vector<double> x;
     for (std::size_t i = 0; i <= samples; ++i) {
       lat.run_until(m.time * static_cast<double>(i) / static_cast<double>(samples));
-      x.push_back(
-          static_cast<double>(kmc::shock_position(lat.state(), m.initial, m.initial_right)));
+      x.push_back(static_cast<double>(
+          three_state::shock_position(lat.state(), m.initial, m.initial_right)));
     }
     for (std::size_t i = samples; i > 0; --i)
       x[i] -= x[0]; // the displacement: the estimator's offset at a sharp shock drops out

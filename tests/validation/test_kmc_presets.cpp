@@ -3,9 +3,9 @@
 // the vanishing nearest-neighbour correlations; on the shock manifold the shock drift and
 // diffusion. Errors are standard errors over independent replicas; each comparison is within
 // 3 of them, or 4 where nine correlated comparisons are made at once.
-#include "narrows/kmc/driver.hpp"
-#include "narrows/kmc/lattice.hpp"
-#include "narrows/kmc/preset.hpp"
+#include "narrows/engines/kmc/driver.hpp"
+#include "narrows/engines/kmc/lattice.hpp"
+#include "narrows/models/three_state/preset.hpp"
 #include "narrows/scene/parse.hpp"
 
 #include <gtest/gtest.h>
@@ -85,9 +85,9 @@ std::vector<std::vector<double>> replica_averages(const scene::Kmc &m, std::uint
 // ends are made to fit the fugacity, so the stationary state is the product measure exactly.
 TEST(KmcFamily1, ProductMeasureCurrentDensityRelationAndNoCorrelations) {
   const scene::Kmc m = load("kmc_family1_product.toml");
-  const auto rep = kmc::analyse(m);
+  const auto rep = three_state::analyse(m);
   ASSERT_TRUE(rep.warnings.empty()) << rep.warnings[0];
-  const kmc::Branch &b = rep.branches.at(0);
+  const three_state::Branch &b = rep.branches.at(0);
   const auto reps = replica_averages(m, 21, 10);
 
   const Estimate j = jackknife(reps, [](const std::vector<double> &v) { return v[12]; });
@@ -124,9 +124,9 @@ TEST(KmcFamily2, ProductMeasureCurrent) {
         load("kmc_family2_shock.toml",
              {std::string("kmc.fugacity=") + z, "kmc.initial={kind=\"product\"}", "kmc.samples=0",
               "kmc.length=200", "kmc.time=2000.0", "kmc.warmup=50.0", "kmc.replicas=16"});
-    const auto rep = kmc::analyse(m);
+    const auto rep = three_state::analyse(m);
     ASSERT_TRUE(rep.warnings.empty()) << rep.warnings[0];
-    const kmc::Branch &b = rep.branches.at(0);
+    const three_state::Branch &b = rep.branches.at(0);
     const auto s = kmc::run_replicas(m, 5, MPI_COMM_WORLD);
     // eq 2.128 with p = 1, q = 0.2 (the scene's shock manifold)
     const double j128 = (1.0 - 0.2) * b.rho * (1.0 - b.rho);
@@ -143,7 +143,7 @@ namespace {
 // errors are those of the mean and of the variance over replicas.
 void expect_shock(const char *scene_name, std::uint64_t seed, std::int64_t replicas) {
   const scene::Kmc m = load(scene_name, {"kmc.replicas=" + std::to_string(replicas)});
-  const auto rep = kmc::analyse(m);
+  const auto rep = three_state::analyse(m);
   ASSERT_TRUE(rep.warnings.empty()) << rep.warnings[0];
   ASSERT_TRUE(rep.shock);
   const auto s = kmc::run_replicas(m, seed, MPI_COMM_WORLD);
@@ -170,7 +170,7 @@ TEST(KmcFamily2, ShockDriftAndDiffusion) { expect_shock("kmc_family2_shock.toml"
 // Acceptance 3: family 1 with w24 = 0 (eq 2.72-2.76): v_s = 2 D_s = w42 rho_1^A.
 TEST(KmcFamily1, SpecialCaseShockMovesLeftWithVEqualTwoD) {
   const scene::Kmc m = load("kmc_family1_shock.toml");
-  const auto rep = kmc::analyse(m);
+  const auto rep = three_state::analyse(m);
   EXPECT_NEAR(rep.v_s, 2.0 * rep.d_s, 1e-12);
   EXPECT_NEAR(rep.v_s, 1.0 * rep.branches.at(0).rho_a, 1e-12); // w42 = 1
   expect_shock("kmc_family1_shock.toml", 9, 800);

@@ -1,9 +1,9 @@
 // Open TASEP as a special case of the kmc engine (issue 7, acceptance 1): currents against
 // the exact finite-L result (Derrida et al. 1993) and the phase diagram alpha(1 - alpha),
 // beta(1 - beta), 1/4, within 3 standard errors over independent replicas.
-#include "narrows/kmc/driver.hpp"
-#include "narrows/kmc/rates.hpp"
-#include "narrows/kmc/theory.hpp"
+#include "narrows/engines/kmc/driver.hpp"
+#include "narrows/models/three_state/rates.hpp"
+#include "narrows/models/three_state/theory.hpp"
 
 #include <gtest/gtest.h>
 #include <mpi.h>
@@ -18,7 +18,7 @@ namespace {
 scene::Kmc tasep(int L, double alpha, double beta, double time, double warmup, int replicas) {
   scene::Kmc m;
   m.length = L;
-  m.rates[kmc::pair_code(1, 0) * 9 + kmc::pair_code(0, 1)] = 1.0;
+  m.rates[three_state::pair_code(1, 0) * 9 + three_state::pair_code(0, 1)] = 1.0;
   m.left[0 * 3 + 1] = alpha;
   m.right[1 * 3 + 0] = beta;
   // start near the bulk density of the phase, so the warm-up only has to remove the
@@ -60,7 +60,7 @@ TEST(KmcTasep, AlphaPlusBetaOneIsExactForSmallL) {
 TEST(KmcTasep, SmallLMatchesMatrixProductCurrent) {
   const auto m = tasep(10, 0.6, 0.8, 2.0e6, 100.0, 8);
   const auto s = run_model(m, 102);
-  const double exact = kmc::theory::tasep_open_current(10, 0.6, 0.8);
+  const double exact = three_state::theory::tasep_open_current(10, 0.6, 0.8);
   EXPECT_NEAR(s.mean_current, exact, 3.0 * s.mean_current_error) << "exact " << exact;
 }
 
@@ -80,8 +80,8 @@ TEST_P(KmcTasepPhases, CurrentMatchesPhaseDiagram) {
   const int L = 500;
   const auto m = tasep(L, p.alpha, p.beta, 1.0e5, 4.0e3, 8);
   const auto s = run_model(m, 200 + static_cast<std::uint64_t>(p.alpha * 100));
-  const double exact = kmc::theory::tasep_open_current(L, p.alpha, p.beta);
-  const double limit = kmc::theory::tasep_open_current_limit(p.alpha, p.beta);
+  const double exact = three_state::theory::tasep_open_current(L, p.alpha, p.beta);
+  const double limit = three_state::theory::tasep_open_current_limit(p.alpha, p.beta);
   std::printf("  %s: exact J_L = %.6f, limit %.6f\n", p.name, exact, limit);
   EXPECT_NEAR(s.mean_current, exact, 3.0 * s.mean_current_error);
   EXPECT_NEAR(s.mean_current, limit, 3.0 * s.mean_current_error + std::abs(exact - limit));

@@ -17,9 +17,9 @@
 //
 // With NARROWS_VACF_OUT=DIR set, the tests run longer curves (lags to ~1500) and write
 // DIR/vacf_L<L>.h5 for tools/lgca_vacf_plot.py.
+#include "narrows/engines/lgca/dhumieres_vacf.hpp"
+#include "narrows/engines/lgca/vacf_theory.hpp"
 #include "narrows/io/hdf5.hpp"
-#include "narrows/lattice/dhumieres_vacf.hpp"
-#include "narrows/lattice/vacf_theory.hpp"
 
 #include <gtest/gtest.h>
 
@@ -31,7 +31,7 @@
 #include <vector>
 
 using namespace narrows;
-using namespace narrows::lattice;
+using namespace narrows::lgca;
 
 namespace {
 

@@ -8,7 +8,7 @@
 //
 // Both use MPC-AT+a (the seed's rule; SRD and AT-a do not conserve angular momentum, which
 // changes the torque on a rotating body: Götze, Noguchi, Gompper, PRE 76, 046705 (2007)).
-#include "narrows/engine/mpcd_simulation.hpp"
+#include "narrows/engines/mpcd/simulation.hpp"
 
 #include "fluid_scene.hpp"
 
@@ -101,7 +101,7 @@ TEST(NoSlipColloid, FixedDiscInPoiseuilleFlowHasZeroFluidVelocityAtItsSurface) {
   c.positions = {{Lx / 2, Ly / 2, 0.0}};
   c.count = 1;
   s.colloids = c;
-  engine::MpcdSimulation sim(s, MPI_COMM_SELF);
+  mpcd::MpcdSimulation sim(s, MPI_COMM_SELF);
   const double xc = Lx / 2, yc = Ly / 2;
   const int warmup = 2000, blocks = 10, block_steps = 1000, every = 2;
   const double bin = 0.25, reach = 2.0, wedge = std::tan(20.0 * std::numbers::pi / 180.0);
@@ -269,7 +269,7 @@ SpinResult spin_in_kolmogorov_flow(int blocks) {
   c.positions = {{Lx / 2, Ly / 2, 0.0}};
   c.count = 1;
   s.colloids = c;
-  engine::MpcdSimulation sim(s, MPI_COMM_SELF);
+  mpcd::MpcdSimulation sim(s, MPI_COMM_SELF);
   const double k = 2.0 * std::numbers::pi / Ly;
   const double disc_average = 2.0 * std::cyl_bessel_j(1.0, k * a) / (k * a);
   const int warmup = 2000, block_steps = 2000, every_u = 10;

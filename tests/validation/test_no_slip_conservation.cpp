@@ -7,11 +7,11 @@
 // method, only of its collision.) The energy of hard-sphere collision sequences without fluid is
 // tested in tests/unit/test_hard_spheres.cpp.
 #include "narrows/colloids/hard_spheres.hpp"
-#include "narrows/colloids/no_slip.hpp"
 #include "narrows/colloids/placement.hpp"
-#include "narrows/engine/mpcd_simulation.hpp"
-#include "narrows/engine/totals.hpp"
-#include "narrows/mpcd/collision.hpp"
+#include "narrows/engines/mpcd/coupling/no_slip.hpp"
+#include "narrows/engines/mpcd/kernels/collision.hpp"
+#include "narrows/engines/mpcd/simulation.hpp"
+#include "narrows/engines/mpcd/totals.hpp"
 
 #include "colloid_scene.hpp"
 
@@ -44,14 +44,14 @@ class NoSlipMomentum : public ::testing::TestWithParam<scene::Collision> {};
 // 10^4 steps of 5300 particles and 3 colloids (about 4 s each).
 TEST_P(NoSlipMomentum, TotalMomentumOverTenThousandSteps) {
   const scene::Scene s = no_slip_scene(GetParam());
-  engine::MpcdSimulation sim(s, MPI_COMM_WORLD);
-  const auto p0 = engine::total_momentum(sim);
+  mpcd::MpcdSimulation sim(s, MPI_COMM_WORLD);
+  const auto p0 = mpcd::total_momentum(sim);
   const int steps = 10000;
   double max_dp = 0.0, max_colloid_p = 0.0;
   for (int i = 1; i <= steps; ++i) {
     sim.advance();
     if (i % 50 == 0) {
-      const auto p = engine::total_momentum(sim);
+      const auto p = mpcd::total_momentum(sim);
       const auto c = sim.gather_colloids();
       for (int k = 0; k < 2; ++k) {
         max_dp = std::max(max_dp, std::abs(p[k] - p0[k]));
@@ -60,7 +60,7 @@ TEST_P(NoSlipMomentum, TotalMomentumOverTenThousandSteps) {
       }
     }
   }
-  const double n = static_cast<double>(engine::particle_count(s));
+  const double n = static_cast<double>(mpcd::particle_count(s));
   // Round-off: the cell sums are fixed point (each collision may move the total by N 2^-41 per
   // component; the invariant check allows twice N 2^-40 per step, as here); the impulses on the
   // colloids are fixed-point sums of the doubles the fluid particles change by, which differ by
@@ -119,17 +119,17 @@ TEST(NoSlipAngularMomentum, AtaCollisionWithGhostsConservesTheTotal) {
   spec.coupling = scene::ColloidCoupling::no_slip;
   scene::Scene s = narrows::testing::srd_colloid_scene(24.0, 18.0, false, 5, spec);
   s.fluid.collision = scene::Collision::at_a;
-  engine::MpcdSimulation sim(s, MPI_COMM_SELF);
+  mpcd::MpcdSimulation sim(s, MPI_COMM_SELF);
   auto &c = sim.colloids();
   c.v[0] = {0.04, -0.03};
   c.v[1] = {-0.02, 0.05};
   c.omega[2] = {0.2, -0.15}; // a spin far above thermal (sqrt(kT / I) = 0.02)
-  colloids::NoSlipParams params;
+  coupling::NoSlipParams params;
   params.dt = 1e-9; // the colloids barely move: only the collision is examined
   params.density = s.fluid.density;
   params.seed = 5;
   const parallel::Slabs slabs(MPI_COMM_SELF, 24);
-  colloids::NoSlipCoupling coupling(params, sim.box(), slabs);
+  coupling::NoSlipCoupling coupling(params, sim.box(), slabs);
   mpcd::Fluid fluid = sim.fluid();
   coupling.move_colloids(fluid, c);
   mpcd::CellGrid grid(sim.box());

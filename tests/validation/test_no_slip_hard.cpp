@@ -12,11 +12,11 @@
 // - three disks touching each other and the lower wall at the start, pressed down by gravity
 //   and pushed along by the flow.
 // (The colloid spanning a slab edge at the start runs on 2 ranks: tests/mpi.)
-#include "narrows/colloids/no_slip.hpp"
 #include "narrows/core/error.hpp"
-#include "narrows/engine/invariants.hpp"
-#include "narrows/engine/mpcd_simulation.hpp"
-#include "narrows/engine/totals.hpp"
+#include "narrows/engines/mpcd/coupling/no_slip.hpp"
+#include "narrows/engines/mpcd/invariants.hpp"
+#include "narrows/engines/mpcd/simulation.hpp"
+#include "narrows/engines/mpcd/totals.hpp"
 #include "narrows/parallel/slabs.hpp"
 
 #include "colloid_scene.hpp"
@@ -44,7 +44,7 @@ struct Worst {
 };
 
 // The geometric checks of a sample (all colloids on this rank: one rank).
-void sample(const engine::MpcdSimulation &sim, Worst &w) {
+void sample(const mpcd::MpcdSimulation &sim, Worst &w) {
   const auto &c = sim.colloids();
   const auto &box = sim.box();
   const double L = box.length[0];
@@ -69,8 +69,8 @@ void sample(const engine::MpcdSimulation &sim, Worst &w) {
 }
 
 Worst long_run(const scene::Scene &s, const char *name, int steps) {
-  engine::MpcdSimulation sim(s, MPI_COMM_WORLD);
-  const engine::InvariantCheck invariants(sim);
+  mpcd::MpcdSimulation sim(s, MPI_COMM_WORLD);
+  const mpcd::InvariantCheck invariants(sim);
   const std::size_t count = sim.colloids().size();
   Worst w;
   for (int step = 1; step <= steps; ++step) {
@@ -113,9 +113,9 @@ Worst long_run(const scene::Scene &s, const char *name, int steps) {
 TEST(NoSlipHardCase, FluidLeftInsideAColloidIsAnInvariantError) {
   const mpcd::Box box = mpcd::make_periodic_box(2, {20, 20, 1});
   const parallel::Slabs slabs(MPI_COMM_SELF, 20);
-  colloids::NoSlipParams params;
+  coupling::NoSlipParams params;
   params.dt = 0.1;
-  colloids::NoSlipCoupling coupling(params, box, slabs);
+  coupling::NoSlipCoupling coupling(params, box, slabs);
   colloids::Colloids c;
   c.dim = 2;
   c.resize(2);

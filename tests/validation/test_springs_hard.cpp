@@ -10,10 +10,10 @@
 // asked. The pyramid does not stay jammed at kT = 1: those kicks open a contact now and then, which
 // drops its tangential spring (the history lasts as long as the contact), and the disks creep
 // apart over the run.
-#include "narrows/colloids/no_slip.hpp"
-#include "narrows/engine/invariants.hpp"
-#include "narrows/engine/mpcd_simulation.hpp"
-#include "narrows/engine/totals.hpp"
+#include "narrows/engines/mpcd/coupling/no_slip.hpp"
+#include "narrows/engines/mpcd/invariants.hpp"
+#include "narrows/engines/mpcd/simulation.hpp"
+#include "narrows/engines/mpcd/totals.hpp"
 #include "narrows/scene/parse.hpp"
 
 #include "colloid_scene.hpp"
@@ -31,7 +31,7 @@ using namespace narrows;
 namespace {
 
 // The deepest overlap of the colloids with each other and with the walls (all pairs).
-double deepest_overlap(const engine::MpcdSimulation &sim) {
+double deepest_overlap(const mpcd::MpcdSimulation &sim) {
   const auto &col = sim.colloids();
   const double L = sim.box().length[0];
   double worst = 0.0;
@@ -72,8 +72,8 @@ TEST(SpringHardCase, DiskWedgedBetweenTwoOthersAndAWall) {
   s.body_force = scene::BodyForce{scene::ForceKind::constant, {0.005, 0.0, 0.0}, 0.0};
   const int steps = 100000;
 
-  engine::MpcdSimulation sim(s, MPI_COMM_WORLD);
-  const engine::InvariantCheck invariants(sim);
+  mpcd::MpcdSimulation sim(s, MPI_COMM_WORLD);
+  const mpcd::InvariantCheck invariants(sim);
   double deepest = 0.0, inside = 1e9;
   std::size_t most_contacts = 0, fewest_contacts = 100;
   for (int step = 1; step <= steps; ++step) {
@@ -162,8 +162,8 @@ count = 1
                                             "dense_packing.toml");
   const int steps = 100000;
 
-  engine::MpcdSimulation sim(s, MPI_COMM_WORLD);
-  const engine::InvariantCheck invariants(sim);
+  mpcd::MpcdSimulation sim(s, MPI_COMM_WORLD);
+  const mpcd::InvariantCheck invariants(sim);
   const std::size_t n = sim.colloids().size();
   ASSERT_EQ(n, 200u);
   const double r_small = 2.1;
@@ -232,19 +232,19 @@ TEST(SpringConservation, TotalMomentumWithContacts) {
   c.placement = scene::ColloidPlacement::random;
   scene::Scene s = narrows::testing::srd_colloid_scene(24.0, 24.0, false, 12, c);
   s.fluid.collision = scene::Collision::at_a;
-  engine::MpcdSimulation sim(s, MPI_COMM_WORLD);
-  const auto p0 = engine::total_momentum(sim);
+  mpcd::MpcdSimulation sim(s, MPI_COMM_WORLD);
+  const auto p0 = mpcd::total_momentum(sim);
   const int steps = 3000;
   double max_dp = 0.0;
   for (int i = 1; i <= steps; ++i) {
     sim.advance();
     if (i % 50 == 0) {
-      const auto p = engine::total_momentum(sim);
+      const auto p = mpcd::total_momentum(sim);
       for (int k = 0; k < 2; ++k)
         max_dp = std::max(max_dp, std::abs(p[k] - p0[k]));
     }
   }
-  const double n = static_cast<double>(engine::particle_count(s));
+  const double n = static_cast<double>(mpcd::particle_count(s));
   const double bound = 2.0 * n * 0x1p-40 * (steps + 1.0);
   const auto *springs = sim.no_slip()->springs();
   std::printf("max |P - P0| = %.3g over %d steps (round-off bound %.3g); %llu contact updates, "

@@ -3,9 +3,9 @@
 // rest, some moving out). The run's own invariant check (no particle outside the channel, no
 // NaN, count and id set) must hold at every check, and the flow must really reach Ma ~ 0.5.
 #include "narrows/analysis/fluid_observables.hpp"
-#include "narrows/engine/invariants.hpp"
-#include "narrows/engine/mpcd_simulation.hpp"
-#include "narrows/mpcd/transport_theory.hpp"
+#include "narrows/engines/mpcd/invariants.hpp"
+#include "narrows/engines/mpcd/kernels/transport_theory.hpp"
+#include "narrows/engines/mpcd/simulation.hpp"
 
 #include <gtest/gtest.h>
 
@@ -50,7 +50,7 @@ TEST_P(WallsHard, StrongForceAndParticlesOnTheWalls) {
   const double g = 8.0 * nu->total() * 0.5 * cs / (L * L);
   s.body_force = scene::BodyForce{scene::ForceKind::constant, {g, 0.0, 0.0}, 0.0};
 
-  engine::MpcdSimulation sim(s, MPI_COMM_SELF);
+  mpcd::MpcdSimulation sim(s, MPI_COMM_SELF);
   auto &f = sim.fluid();
   for (std::size_t i = 0; i < f.size(); i += 10) {
     const bool top = (i / 10) % 2 == 1;
@@ -60,7 +60,7 @@ TEST_P(WallsHard, StrongForceAndParticlesOnTheWalls) {
     else
       f.v[1][i] = top ? std::abs(f.v[1][i]) : -std::abs(f.v[1][i]); // moving out
   }
-  const engine::InvariantCheck invariants(sim);
+  const mpcd::InvariantCheck invariants(sim);
   double centre_sum = 0.0;
   long centre_count = 0;
   for (int step = 1; step <= 10000; ++step) {

@@ -2,7 +2,7 @@
 // Reductions run over all ranks of the communicator.
 #pragma once
 
-#include "narrows/mpcd/fluid.hpp"
+#include "narrows/engines/mpcd/kernels/fluid.hpp"
 
 #include <mpi.h>
 

@@ -4,7 +4,7 @@
 
 #include "narrows/colloids/colloids.hpp"
 #include "narrows/colloids/forces.hpp"
-#include "narrows/mpcd/cell_grid.hpp"
+#include "narrows/engines/mpcd/kernels/cell_grid.hpp"
 
 #include <cstdint>
 #include <vector>

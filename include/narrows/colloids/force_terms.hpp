@@ -4,7 +4,7 @@
 
 #include "narrows/colloids/colloids.hpp"
 #include "narrows/colloids/forces.hpp"
-#include "narrows/mpcd/fluid.hpp"
+#include "narrows/engines/mpcd/kernels/fluid.hpp"
 
 #include <cstdint>
 #include <vector>

@@ -18,7 +18,7 @@
 #pragma once
 
 #include "narrows/colloids/colloids.hpp"
-#include "narrows/mpcd/fluid.hpp"
+#include "narrows/engines/mpcd/kernels/fluid.hpp"
 
 #include <mpi.h>
 

@@ -20,7 +20,7 @@
 #pragma once
 
 #include "narrows/colloids/colloids.hpp"
-#include "narrows/mpcd/fluid.hpp"
+#include "narrows/engines/mpcd/kernels/fluid.hpp"
 #include "narrows/parallel/exchange.hpp"
 #include "narrows/parallel/slabs.hpp"
 

@@ -13,7 +13,7 @@
 #pragma once
 
 #include "narrows/colloids/colloids.hpp"
-#include "narrows/mpcd/fluid.hpp"
+#include "narrows/engines/mpcd/kernels/fluid.hpp"
 
 #include <cstdint>
 #include <vector>

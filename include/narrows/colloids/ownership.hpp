@@ -5,7 +5,7 @@
 #pragma once
 
 #include "narrows/colloids/colloids.hpp"
-#include "narrows/mpcd/cell_grid.hpp"
+#include "narrows/engines/mpcd/kernels/cell_grid.hpp"
 #include "narrows/parallel/exchange.hpp"
 #include "narrows/parallel/slabs.hpp"
 

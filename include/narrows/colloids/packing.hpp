@@ -13,7 +13,7 @@
 #pragma once
 
 #include "narrows/colloids/colloids.hpp"
-#include "narrows/mpcd/cell_grid.hpp"
+#include "narrows/engines/mpcd/kernels/cell_grid.hpp"
 
 #include <cstdint>
 #include <string>

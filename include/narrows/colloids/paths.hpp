@@ -3,7 +3,7 @@
 #pragma once
 
 #include "narrows/colloids/colloids.hpp"
-#include "narrows/mpcd/fluid.hpp"
+#include "narrows/engines/mpcd/kernels/fluid.hpp"
 
 #include <array>
 #include <cstddef>

@@ -4,7 +4,7 @@
 
 #include "narrows/colloids/colloids.hpp"
 #include "narrows/colloids/packing.hpp"
-#include "narrows/mpcd/fluid.hpp"
+#include "narrows/engines/mpcd/kernels/fluid.hpp"
 #include "narrows/scene/scene.hpp"
 
 #include <array>

@@ -1,0 +1,78 @@
+// Which colloid, if any, holds a point: a grid of cells (half a unit wide in 2D, where the
+// finer grid halves the fluid near a surface that needs a distance test; a unit in 3D) over this
+// rank's region of x columns (its slab widened by the ghost extent; the whole box on one rank) and
+// all of y and z, each cell listing the colloids whose disc or sphere reaches into it, with their
+// centre and squared radius at build time (one cache line an entry). Used by the no-slip coupling
+// to find the fluid particles that streamed into a colloid; the colloids must not move after
+// build() while it is asked.
+#pragma once
+
+#include "narrows/colloids/colloids.hpp"
+#include "narrows/engines/mpcd/kernels/fluid.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+namespace narrows::coupling {
+
+class ColloidLookup {
+public:
+  // Lists the rows of c (owned and ghosts) over the columns [first - extent, end + extent).
+  void build(const colloids::Colloids &c, const mpcd::Box &box, int first_column, int columns,
+             double extent);
+  // The row of the colloid whose interior holds p (the lowest id if several), or -1. Inline:
+  // every fluid particle asks once a step, and most cells list no colloid.
+  long inside(const colloids::Colloids &c, const double *p) const {
+    const int cell = cell_of(p);
+    if (cell < 0 || head_[static_cast<std::size_t>(cell)] < 0)
+      return -1;
+    return inside_listed(c, p, cell);
+  }
+
+  // Of the points (x[j], y[j], z[j]) for j < m (z null in 2D), the offsets j of those whose cell
+  // lists a colloid, in order, into `found`; returns how many. (The points elsewhere are inside
+  // none.) The cells first, in a loop the compiler vectorises, then a pass without branches.
+  std::size_t listed_block(const double *x, const double *y, const double *z, std::size_t m,
+                           std::uint32_t *found) const;
+  static constexpr std::size_t block = 512; // the largest m
+
+  // Whether the cell of p lists a colloid (a point elsewhere is inside none); branch-free, for
+  // a first pass over many points.
+  bool listed(const double *p) const {
+    const int cell = cell_of(p);
+    return (cell >= 0) & (listed_[static_cast<std::size_t>(cell < 0 ? 0 : cell)] != 0);
+  }
+
+private:
+  // The cell of p, -1 outside the region. Positions lie in [0, L) along periodic axes and in
+  // [0, L_y] between walls (streamed and wrapped): truncation is the floor, and one addition
+  // wraps the column into the region.
+  int cell_of(const double *p) const {
+    int ix = std::min(static_cast<int>(p[0] * per_unit_), lx_ - 1) - lo_;
+    ix += ix < 0 ? lx_ : 0;
+    if (ix >= nx_)
+      return -1;
+    const int iy = std::clamp(static_cast<int>(p[1] * per_unit_), 0, ny_ - 1); // y = L_y: wall
+    const int iz = box_.dim == 3 ? std::clamp(static_cast<int>(p[2] * per_unit_), 0, nz_ - 1) : 0;
+    return ix + nx_ * (iy + ny_ * iz);
+  }
+  long inside_listed(const colloids::Colloids &c, const double *p, int cell) const;
+  struct Entry {
+    int row;  // the colloid's row in c
+    int next; // the cell's next entry, -1 at the end
+  };
+  struct Disc {
+    double x[3], r2; // a colloid's centre and squared radius at build time
+  };
+  mpcd::Box box_;
+  double per_unit_ = 1.0;                 // lookup cells per unit length
+  int lx_ = 1;                            // lookup columns of the whole box
+  int lo_ = 0, nx_ = 1, ny_ = 1, nz_ = 1; // region: columns lo_ .. lo_ + nx_ - 1 (wrapped)
+  std::vector<int> head_;
+  std::vector<std::uint8_t> listed_; // head_ >= 0, a quarter of the bytes for the first pass
+  std::vector<Entry> entries_;
+  std::vector<Disc> discs_; // per row of c
+};
+
+} // namespace narrows::coupling

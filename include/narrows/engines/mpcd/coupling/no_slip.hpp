@@ -1,0 +1,161 @@
+// No-slip colloids in the MPCD fluid (seed 001 §4.2.1): rigid disks (2D) and spheres (3D) that
+// move by their own velocity U and spin Omega, bounce fluid particles back at their surface
+// with the rigid-body velocity there, and fill the cells they cut with ghost particles that
+// take part in the collision. Every momentum and angular momentum the fluid loses goes to the
+// colloids (summed in fixed point, so the result does not depend on the order of particles or
+// on the number of ranks). The MPCD step calls, in order:
+//   move_colloids          orientation turned by Omega dt (the step's starting spin); gravity
+//                          kick U += g dt (springs: the force M g in each sub-step, so that a
+//                          colloid resting on others does not bounce each step); ghosts for the
+//                          step; every colloid moves
+//                          U dt (contacts = "none"), by event-driven rough hard spheres
+//                          (contacts = "hard", hard_spheres.hpp) or in velocity-Verlet
+//                          sub-steps under linear springs with Coulomb friction (contacts =
+//                          "spring", springs.hpp; the ghosts follow their owners each sub-step)
+//   (the engine streams all fluid the whole step with the kernel its plan chose)
+//   bounce_back            every fluid particle that ended inside a colloid: back half the
+//                          interval, onto the surface, v' = 2 (U + Omega x r) - v (eq 4.15),
+//                          forward half the interval; again with halved intervals while it
+//                          ends inside one (Padding et al.); the impulses go to the colloids
+//                          (eq 4.16-4.17 with the sign that conserves momentum)
+//   (the engine shifts the grid and bins the fluid)
+//   add_ghost_particles    in each cell cut by a colloid's surface, at the fluid density, at
+//                          random points inside the colloid, velocity U + Omega x r + a
+//                          Maxwell-Boltzmann draw at kT (eq 4.18); each (colloid, cell) pair's
+//                          ghosts enter the collision as one group of sums (grid.groups, see
+//                          ghost_particles.cpp), exact in distribution
+//   (the engine collides)
+//   take_back_ghost_particles  their momentum and angular momentum change to the colloids;
+//                          they leave the cell sums
+//   hand_over              ghost colloids go; colloids that left the slab change owner (with
+//                          the contact history they own)
+// All calls are collective over the slabs' communicator.
+#pragma once
+
+#include "narrows/colloids/colloids.hpp"
+#include "narrows/colloids/contact_history.hpp"
+#include "narrows/colloids/ghosts.hpp"
+#include "narrows/colloids/hard_spheres.hpp"
+#include "narrows/colloids/springs.hpp"
+#include "narrows/core/rng.hpp"
+#include "narrows/engines/mpcd/coupling/colloid_lookup.hpp"
+#include "narrows/engines/mpcd/coupling/md_integrator.hpp"
+#include "narrows/engines/mpcd/kernels/cell_grid.hpp"
+#include "narrows/engines/mpcd/kernels/collision.hpp"
+#include "narrows/engines/mpcd/kernels/fluid.hpp"
+#include "narrows/parallel/exchange.hpp"
+#include "narrows/parallel/slabs.hpp"
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace narrows::coupling {
+
+struct NoSlipParams {
+  double dt = 0.1, kT = 1.0, density = 10.0;
+  std::uint64_t seed = 0;
+  std::array<double, 3> gravity{0.0, 0.0, 0.0};     // acceleration of the colloids
+  std::array<double, 3> fluid_accel{0.0, 0.0, 0.0}; // constant body force on the fluid
+  double sine_amplitude = 0.0; // Kolmogorov force on the fluid, a_x = A sin(2 pi y / L_y)
+  bool hard_contacts = false;
+  bool spring_contacts = false; // springs with friction (then `spring` holds their constants)
+  colloids::SpringParams spring;
+};
+
+// Turns colloid a's orientation by its angular velocity over time dt.
+void rotate(colloids::Colloids &c, std::size_t a, double dt);
+
+struct BounceStats {
+  std::uint64_t particles = 0; // fluid particles bounced this step
+  int deepest = 0;             // most halvings any one needed
+};
+
+class NoSlipCoupling {
+public:
+  NoSlipCoupling(const NoSlipParams &params, const mpcd::Box &box, const parallel::Slabs &slabs);
+
+  // fluid_v2_max: the largest |v|^2 of the fluid if known (the last collision found it), or
+  // negative (a pass over the fluid finds it, on more than one rank).
+  void move_colloids(const mpcd::Fluid &fluid, colloids::Colloids &c, double fluid_v2_max = -1.0);
+  BounceStats bounce_back(mpcd::Fluid &fluid, colloids::Colloids &c, const FluidStream &stream);
+  void add_ghost_particles(mpcd::CellGrid &grid, const colloids::Colloids &c, std::uint64_t step);
+  void take_back_ghost_particles(mpcd::CellGrid &grid, const mpcd::CollisionScratch &collision,
+                                 colloids::Colloids &c);
+  void hand_over(colloids::Colloids &c);
+
+  // Bytes this rank sent for colloids (ghosts, reverse sums, migration) since the start.
+  std::uint64_t bytes_sent() const { return ghosts_.bytes_sent() + migration_.bytes_sent(); }
+  // Seconds this rank spent in the calls above since the start (the ghost particles' share of
+  // the collision itself is not included).
+  double seconds() const { return seconds_; }
+  // Of those, the seconds in colloid messages (ghost colloids, impulse sums, migration, the
+  // reductions), waiting for the other ranks included: there the imbalance of the fluid's work
+  // since the last message shows.
+  double message_seconds() const { return message_seconds_; }
+  // Hard-sphere collisions this rank resolved since the start (ghost rows included).
+  const colloids::HardSphereStats &contacts() const { return contacts_; }
+  // The spring contacts (nullptr unless contacts = "spring") and the contact history this rank
+  // owns (the contacts of its colloids with larger ids and with the walls).
+  const colloids::SpringContacts *springs() const { return springs_ ? &*springs_ : nullptr; }
+  colloids::ContactHistory &contact_history() { return history_; }
+  const colloids::ContactHistory &contact_history() const { return history_; }
+  // Ghost particles added in the last step on this rank.
+  std::size_t ghost_particles() const { return ghost_count_; }
+
+private:
+  // Spring contacts: moves the surface point s of colloid a (relative to its centre) out of the
+  // colloids and walls a overlaps, onto the rim where the surfaces meet: 0 if it was outside
+  // them, 1 if it moved, -1 if it could not (the rim inside a third).
+  int leave_overlaps(const colloids::Colloids &c, std::size_t a, double *s) const;
+  // Adds the impulse dp (on the colloid, at offset r from its centre) to row a's sums, and
+  // the angular impulse `more` (1 or 3 components) if given.
+  void add_impulse(std::size_t a, const double *r, const double *dp, const double *more = nullptr);
+  // Sends the ghost rows' sums to their owners, which change U and Omega; zeroes the sums;
+  // with `refresh` the ghosts get the new U and Omega.
+  void apply_impulses(colloids::Colloids &c, bool refresh);
+
+  NoSlipParams params_;
+  mpcd::Box box_;
+  int dim_;
+  parallel::Slabs slabs_;
+  colloids::ColloidGhosts ghosts_;
+  parallel::Exchange migration_;
+  ColloidLookup lookup_;
+  std::vector<double> margin_;
+  std::array<std::vector<double>, 3> start_; // owned colloid positions at the start of the step
+  std::vector<std::uint8_t> trusted_;        // per row, for the hard contacts
+  std::vector<std::size_t> active_, still_;  // bounce-back: batch rows still inside, per level
+  mpcd::Fluid level_;                        // their copy while they fly
+  std::vector<std::int64_t> impulse_; // per row: momentum (dim) and angular momentum (1 or 3)
+  int stride_ = 3;
+  // Bounce-back scratch: the particles being bounced, their fluid rows and colloid rows.
+  mpcd::Fluid batch_;
+  std::vector<std::size_t> batch_index_, candidates_;
+  std::vector<long> batch_hit_;
+  // Ghost particles of this step, one group per (colloid, cut cell) pair (grid.groups): the
+  // colloid row, the cell's corner from the colloid's centre, the pair's key of draws.
+  std::size_t ghost_count_ = 0;
+  std::vector<std::uint32_t> group_row_;
+  std::vector<std::array<double, 3>> group_corner_;
+  std::vector<std::uint64_t> group_key_;
+  struct CutCell {
+    std::uint32_t row, cell;      // colloid row, local cell
+    std::uint64_t key;            // the pair's key of draws (try 0)
+    std::array<double, 3> corner; // the cell's corner from the colloid's centre
+  };
+  std::vector<CutCell> cut_;                                 // this step's cut cells
+  std::array<std::vector<std::uint32_t>, 4> position_words_; // their ghost position draws
+  std::vector<double> group_normals_;                        // the groups' Gaussian draws
+  colloids::HardSphereStats contacts_;
+  std::optional<colloids::SpringContacts> springs_;
+  colloids::ContactHistory history_;
+  parallel::Exchange contact_migration_;
+  colloids::SpringHooks spring_hooks_;
+  std::vector<double> weight_; // M g of each owned colloid, a force in the spring sub-steps
+  double seconds_ = 0.0;
+  double message_seconds_ = 0.0;
+};
+
+} // namespace narrows::coupling

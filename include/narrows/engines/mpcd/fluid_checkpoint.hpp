@@ -1,0 +1,22 @@
+// The MPCD fluid in a checkpoint: the species "fluid" of io/checkpoint.hpp (position, velocity,
+// id), and the fluid of a checkpoint read back.
+#pragma once
+
+#include "narrows/engines/mpcd/kernels/fluid.hpp"
+#include "narrows/io/checkpoint.hpp"
+
+#include <mpi.h>
+
+#include <string>
+
+namespace narrows::mpcd {
+
+// The fluid as a species: position, velocity, id.
+io::SpeciesFields fluid_fields(mpcd::Fluid &fluid);
+
+// The fluid of a checkpoint: this rank's block of rows, cell indices zero (recomputed by the
+// next step). input_error if an id is out of range (thrown after the collective reads, so it
+// can be agreed on with run::collectively).
+mpcd::Fluid read_fluid(const std::string &path, const io::CheckpointInfo &info, MPI_Comm comm);
+
+} // namespace narrows::mpcd

@@ -1,0 +1,73 @@
+// Trajectory output of the mpcd engine: frames of the fluid (every particle, or those whose id
+// is a multiple of a subsample stride) in an H5MD file, plus an XDMF description of the same
+// file for ParaView.
+//
+// Layout of DIR/trajectory.h5 (H5MD 1.1 style):
+//   /h5md                               attribute version = [1, 1]; group creator
+//   /particles/fluid/box                attributes dimension, boundary; dataset edges [d]
+//   /particles/fluid/position/{value [T][M][d], step [T], time [T]}
+//   /particles/fluid/velocity/{value [T][M][d], step [T], time [T]}
+//   /particles/fluid/id                 [M]: row j holds the particle with id j * subsample
+//   /particles/colloids/...             with colloids: every colloid, the same box, position and
+//                                       velocity series, id [N_c] and radius [N_c], and
+//                                       angular_velocity/{value [T][N_c][3], step, time},
+//                                       orientation/{value [T][N_c][4] (w, x, y, z), step, time}
+//   /parameters/{scene, subsample}
+// Rows are ordered by id, so a row is the same particle in every frame, on any rank count.
+// The XDMF has a temporal grid per species (colloids with their radius, for glyphs).
+#pragma once
+
+#include "narrows/colloids/colloids.hpp"
+#include "narrows/engines/mpcd/kernels/fluid.hpp"
+#include "narrows/io/hdf5.hpp"
+
+#include <mpi.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace narrows::mpcd {
+
+class TrajectoryWriter {
+public:
+  // Collective. Rank 0 creates `h5_path` (truncating) and writes the header; the XDMF file is
+  // h5_path with .h5 replaced by .xdmf. The fluid has ids 0 .. total - 1. With `colloids`
+  // (all of them on every rank: MpcdSimulation::gather_colloids), their frames go to
+  // /particles/colloids.
+  TrajectoryWriter(const std::string &h5_path, const std::string &scene_text, const mpcd::Box &box,
+                   std::uint64_t total, std::uint64_t subsample, MPI_Comm comm,
+                   const colloids::Colloids *colloids = nullptr);
+
+  // Collective: gathers the tracked particles on rank 0, which appends one frame (with the
+  // colloids, if given to the constructor: pass the same species), flushes the file and
+  // rewrites the XDMF. Throws narrows::Error if a tracked id is missing or repeated.
+  void write_frame(std::int64_t step, double time, const mpcd::Fluid &fluid,
+                   const colloids::Colloids *colloids = nullptr);
+
+  std::uint64_t tracked() const { return rows_; }
+
+private:
+  void write_xdmf() const;
+  void write_colloid_frame(std::int64_t step, double time, const colloids::Colloids &c);
+
+  std::string path_, xdmf_path_;
+  MPI_Comm comm_;
+  int rank_ = 0, dim_ = 2;
+  std::uint64_t subsample_ = 1, rows_ = 0;
+  io::h5::File file_;
+  io::h5::Dataset step_[2], time_[2], value_[2]; // position, velocity
+  std::size_t colloid_rows_ = 0;                 // 0: no colloid species
+  io::h5::Dataset colloid_step_[2], colloid_time_[2], colloid_value_[2];
+  // A colloid series beside position and velocity: /particles/colloids/<name>/{step,time,value}.
+  struct ColloidSeries {
+    std::string name;
+    io::h5::Dataset step, time, value;
+  };
+  ColloidSeries spin_, turn_; // angular velocity [T][N_c][3], orientation [T][N_c][4]
+  std::vector<double> frame_times_;
+  std::vector<std::uint64_t> send_rows_, recv_rows_;
+  std::vector<double> send_values_, recv_values_, position_, velocity_;
+};
+
+} // namespace narrows::mpcd

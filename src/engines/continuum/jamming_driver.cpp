@@ -1,0 +1,150 @@
+// Engine "continuum", model "jamming" (see continuum/jamming_driver.hpp).
+#include "narrows/engines/continuum/jamming_driver.hpp"
+
+#include "narrows/core/error.hpp"
+#include "narrows/engines/continuum/field_run.hpp"
+#include "narrows/engines/continuum/jamming_model.hpp"
+#include "narrows/engines/continuum/jamming_plan.hpp"
+#include "narrows/engines/continuum/jamming_solver.hpp"
+#include "narrows/engines/continuum/jamming_stability.hpp"
+#include "narrows/io/checkpoint.hpp"
+#include "narrows/io/observables_writer.hpp"
+#include "narrows/run/collective.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <numbers>
+
+namespace narrows::continuum {
+
+namespace {
+
+double mean_of(const std::vector<double> &x) {
+  double s = 0.0;
+  for (double y : x)
+    s += y;
+  return s / static_cast<double>(x.size());
+}
+
+} // namespace
+
+std::vector<std::string> describe_jamming(const scene::Scene &scene) {
+  const scene::Continuum &m = *scene.continuum;
+  const JammingModel model(m);
+  const JammingPlan p = plan_of(scene, make_jamming_plan);
+  std::vector<std::string> out;
+  out.push_back("engine continuum: jamming model phi_t + (phi v)_x = D phi_xx, v_t + v v_x = "
+                "sigma - xi(phi) v (seed 001 eq 6.2-6.6), D = " +
+                format("%g, sigma = %g", m.diffusion, m.drive));
+  out.push_back("friction: " + model.describe());
+  out.push_back("grid: " + std::to_string(m.cells) + " points x_i = i dx, dx = " +
+                format("%g", p.dx) + " on [0, " + format("%g", m.length) + "), periodic");
+  switch (m.initial) {
+  case scene::ContinuumInitial::sine:
+    out.push_back("initial: phi = " +
+                  format("%g + %g sin(2 pi %g x / %g)", m.mean, m.amplitude,
+                         static_cast<double>(m.mode), m.length) +
+                  ", v = v_ss(phi)");
+    break;
+  case scene::ContinuumInitial::random:
+    out.push_back("initial: phi = " +
+                  format("%g + %g u_i, u_i uniform in (-1, 1), seed ", m.mean, m.amplitude) +
+                  std::to_string(m.seed) + ", v = v_ss(phi)");
+    break;
+  default:
+    out.push_back(std::string("initial: the given phi") +
+                  (m.velocity.empty() ? ", v = v_ss(phi)" : " and v"));
+    break;
+  }
+  std::vector<double> phi, v;
+  jamming_initial(m, phi, v);
+  const double phi0 = mean_of(phi);
+  const double dk = 2.0 * std::numbers::pi / m.length;
+  const double k_edge = unstable_band_edge(model, phi0, 200.0 * dk + 20.0);
+  if (k_edge > 0.0) {
+    double best = 0.0, best_k = 0.0;
+    for (int i = 1; i <= 1000; ++i) {
+      const double k = k_edge * i / 1000.0;
+      const double g = growth_rate(model, phi0, k).real();
+      if (g > best) {
+        best = g;
+        best_k = k;
+      }
+    }
+    out.push_back("stability (eq 6.11) of phi = " +
+                  format("%g, v = %g: unstable band 0 < k < %.6g", phi0, model.vss(phi0), k_edge) +
+                  format(" (modes n < %.4g of 2 pi n / length); fastest k = %.4g grows at %.4g",
+                         k_edge / dk, best_k, best));
+  } else {
+    out.push_back("stability (eq 6.11) of phi = " +
+                  format("%g, v = %g: homogeneous flow is linearly stable", phi0, model.vss(phi0)));
+  }
+  if (phi0 >= model.fit().phi_q)
+    out.push_back(
+        "warning: the mean phi = " +
+        format("%g is at or beyond phi_q = %g, where the fit's v_ss (eq 6.4) reaches 0 and "
+               "rises again: outside the range of the seed's data (fig 6.8)",
+               phi0, model.fit().phi_q));
+  out.push_back("stability boundary in the (phi, drive) plane: flow at phi = " +
+                format("%g is unstable to long waves for drive < %.6g (phi^2 v_ss'^2 v_ss / D)",
+                       phi0, critical_drive(model, phi0)));
+  out.push_back("scheme: pseudo-spectral (FFTW), 2/3 rule (modes |n| < " +
+                std::to_string((m.cells + 2) / 3) +
+                "), Strang splitting: exact friction relaxation, IF-RK4 transport with exact "
+                "diffusion (second order in time)");
+  out.push_back("time step: dt = " + format("%.6g (CFL %g: speed bound %.6g; Courant number %.4g)",
+                                            p.dt, m.cfl, p.speed_bound, p.courant));
+  out.push_back("time: " + format("%g", m.time) + " in " + std::to_string(p.steps) + " steps; " +
+                std::to_string(m.samples) + " samples (every " + std::to_string(p.per_sample) +
+                " steps) and t = 0");
+  out.push_back("ranks: every rank advances the same points (no decomposition); memory about " +
+                format("%.3g MiB", 40.0 * 8.0 * static_cast<double>(m.cells) / 1048576.0));
+  return out;
+}
+
+void run_jamming(const scene::Scene &scene, const run::Options &options, MPI_Comm comm) {
+  const scene::Continuum &m = *scene.continuum;
+  const JammingPlan p = plan_of(scene, make_jamming_plan);
+  const JammingModel jamming(m);
+  const std::size_t n = static_cast<std::size_t>(m.cells);
+  std::vector<double> phi, v;
+  jamming_initial(m, phi, v);
+  JammingSolver solver(jamming, n, m.length);
+  const std::vector<double> bins = jamming_points(p);
+
+  FieldModel model;
+  model.dt = p.dt;
+  model.steps = p.steps;
+  model.per_sample = p.per_sample;
+  model.points = n;
+  model.point = "point";
+  model.lines = describe_jamming(scene);
+  model.fields = {{"density", &phi}, {"velocity", &v}};
+  model.step = [&](double dt) { solver.step(phi, v, dt); };
+  model.check = [&](std::int64_t step) {
+    for (std::size_t i = 0; i < n; ++i)
+      if (!std::isfinite(phi[i]) || !std::isfinite(v[i]) || std::abs(v[i]) * p.dt > p.dx)
+        throw invariant_error(scene.file + ": phi or v at point " + std::to_string(i) +
+                              " is not finite or beyond the Courant limit at step " +
+                              std::to_string(step) + format(" (phi = %g, v = %g)", phi[i], v[i]) +
+                              "; allowed: a smaller continuum.cfl or more continuum.cells");
+  };
+  model.sample = [&](io::ObservablesWriter *writer, std::int64_t s, double t) {
+    if (writer == nullptr)
+      return;
+    if (wants(scene, "density"))
+      writer->append_profile("density", s, t, bins, phi, 1);
+    if (wants(scene, "velocity"))
+      writer->append_profile("velocity", s, t, bins, v, 1);
+  };
+  model.summary = [&](run::Log &log, std::int64_t step) {
+    const auto [lo, hi] = std::minmax_element(phi.begin(), phi.end());
+    log.line(format("phi at t = %.6g: mean %.12g (mass / length), min %.6g, max %.6g",
+                    static_cast<double>(step) * p.dt, mean_of(phi), *lo, *hi));
+  };
+  run_fields(scene, options, comm, model);
+}
+
+} // namespace narrows::continuum

@@ -1,0 +1,72 @@
+// Time step and initial fields of a jamming scene (see continuum/jamming_plan.hpp).
+#include "narrows/engines/continuum/jamming_plan.hpp"
+
+#include "narrows/core/error.hpp"
+#include "narrows/core/rng.hpp"
+#include "narrows/engines/continuum/jamming_model.hpp"
+#include "narrows/engines/continuum/plan.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace narrows::continuum {
+
+void jamming_initial(const scene::Continuum &m, std::vector<double> &phi, std::vector<double> &v) {
+  const std::size_t n = static_cast<std::size_t>(m.cells);
+  const double dx = m.length / static_cast<double>(m.cells);
+  phi.assign(n, m.mean);
+  switch (m.initial) {
+  case scene::ContinuumInitial::sine: {
+    const double k = 2.0 * std::numbers::pi * static_cast<double>(m.mode) / m.length;
+    for (std::size_t i = 0; i < n; ++i)
+      phi[i] = m.mean + m.amplitude * std::sin(k * static_cast<double>(i) * dx);
+    break;
+  }
+  case scene::ContinuumInitial::random:
+    for (std::size_t i = 0; i < n; ++i) {
+      const rng::Block b = rng::draw(m.seed, rng::Purpose::continuum_initial, 0, i);
+      phi[i] = m.mean + m.amplitude * (2.0 * rng::uniform53(b[0], b[1]) - 1.0);
+    }
+    break;
+  default: // cells
+    phi = m.profile;
+    break;
+  }
+  const JammingModel model(m);
+  if (!m.velocity.empty()) {
+    v = m.velocity;
+    return;
+  }
+  v.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    v[i] = model.vss(phi[i]);
+}
+
+std::vector<double> jamming_points(const JammingPlan &plan) {
+  std::vector<double> x(static_cast<std::size_t>(plan.points));
+  for (std::size_t i = 0; i < x.size(); ++i)
+    x[i] = static_cast<double>(i) * plan.dx;
+  return x;
+}
+
+JammingPlan make_jamming_plan(const scene::Continuum &m) {
+  JammingPlan p;
+  p.points = m.cells;
+  p.dx = m.length / static_cast<double>(m.cells);
+  std::vector<double> phi, v;
+  jamming_initial(m, phi, v);
+  const JammingModel model(m);
+  p.speed_bound = std::max(model.vss(0.0), model.vss(1.0));
+  for (double x : v)
+    p.speed_bound = std::max(p.speed_bound, std::abs(x));
+  const double dt_max = m.cfl * p.dx / p.speed_bound;
+  const SampleSteps steps = sample_steps(m.time, m.samples, dt_max);
+  p.per_sample = steps.per_sample;
+  p.steps = steps.steps;
+  p.dt = steps.dt;
+  p.courant = p.speed_bound * p.dt / p.dx;
+  return p;
+}
+
+} // namespace narrows::continuum

@@ -1,0 +1,345 @@
+// Ghost particles inside no-slip colloids for the collision step (seed 001 §4.2.1, eq 4.18).
+#include "narrows/colloids/hard_spheres.hpp"
+#include "narrows/colloids/pair_geometry.hpp"
+#include "narrows/core/error.hpp"
+#include "narrows/core/fixed_point.hpp"
+#include "narrows/core/rng.hpp"
+#include "narrows/core/rng_batch.hpp"
+#include "narrows/core/timer.hpp"
+#include "narrows/engines/mpcd/coupling/no_slip.hpp"
+#include "narrows/engines/mpcd/kernels/streaming.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace narrows::coupling {
+
+using namespace narrows::colloids;
+
+namespace {
+
+// The key of a ghost particle's draws: colloid id, global cell, try (255: the fractional try).
+std::uint64_t ghost_key(std::uint64_t colloid, std::uint64_t cell, std::uint64_t t) {
+  return (colloid << 40) | (cell << 8) | t;
+}
+
+// Cholesky factor L (lower, row-major m x m) of the positive semi-definite moment matrix M of
+// a group, M = sum (1, r)(1, r)^T. A pivot that vanishes to round-off against its diagonal
+// (one ghost, or ghosts on a line) leaves its column zero: for a semi-definite M the column
+// below it vanishes too, so L L^T = M still and L z has covariance M.
+template <int m> void cholesky(const double (&M)[m][m], double (&L)[m][m]) {
+  for (int j = 0; j < m; ++j) {
+    double d = M[j][j];
+    for (int k = 0; k < j; ++k)
+      d -= L[j][k] * L[j][k];
+    for (int i = 0; i < m; ++i)
+      if (i >= j)
+        L[i][j] = 0.0;
+    if (!(d > 1e-10 * M[j][j]))
+      continue;
+    const double root = std::sqrt(d);
+    L[j][j] = root;
+    for (int i = j + 1; i < m; ++i) {
+      double t = M[i][j];
+      for (int k = 0; k < j; ++k)
+        t -= L[i][k] * L[j][k];
+      L[i][j] = t / root;
+    }
+  }
+}
+
+// The Gaussian sums of a group's eta and xi at kT = sigma^2: for each component b, sigma L z
+// with z m standard normals from `normals` (eta's m D first, then xi's from the next block).
+template <int m>
+void noise_sums(const mpcd::ParticleGroup &g, double sigma, const double *normals,
+                double (&eta)[3][4], double (&xi)[3][4]) {
+  constexpr int D = m - 1, set = (m * D + 3) / 4 * 4; // normals of one set, block-rounded
+  double M[m][m], L[m][m];
+  M[0][0] = g.n;
+  for (int i = 0; i < D; ++i) {
+    M[0][1 + i] = M[1 + i][0] = g.r[i];
+    for (int j = 0; j < D; ++j)
+      M[1 + i][1 + j] = g.rr[3 * i + j];
+  }
+  cholesky<m>(M, L);
+  for (int b = 0; b < D; ++b)
+    for (int i = 0; i < m; ++i) {
+      double e = 0.0, x = 0.0;
+      for (int k = 0; k <= i; ++k) {
+        e += L[i][k] * normals[b * m + k];
+        x += L[i][k] * normals[set + b * m + k];
+      }
+      eta[b][i] = sigma * e;
+      xi[b][i] = sigma * x;
+    }
+}
+
+} // namespace
+
+// Why sums suffice, and why they are exact in distribution. A ghost g of colloid (X, U, Omega)
+// in a cut cell sits at r_g (offset from the cell's corner c, so r' = c - X + r_g from the
+// centre) with v_g = U + Omega x r' + eta_g, eta_g Gaussian at kT; the MPC-AT rules also give it
+// a Gaussian xi_g at kT. Every rule's v' is affine in (v, xi, r) within a cell, so the
+// collision needs of a colloid's ghosts in a cell only N, sum r, sum r r^T, sum v, sum r v^T,
+// sum xi, sum r xi^T, and gives back sum (v' - v), sum r (v' - v)^T: the impulse and, about X,
+// the angular impulse. Given the positions, each component b of (sum eta, sum r eta^T) is
+// Gaussian with covariance kT M, M = sum (1, r)(1, r)^T, independent across b; so is that of
+// xi. One Cholesky factor of M per pair, and (1 + D) D standard normals each for eta and xi,
+// give exactly the distribution of the per-ghost draws. The positions keep their tries (n a
+// cell, uniform, kept inside the colloid and the channel), so N and the moments are those of
+// particles placed one by one.
+void NoSlipCoupling::add_ghost_particles(mpcd::CellGrid &grid, const Colloids &c,
+                                         std::uint64_t step) {
+  const ScopedSeconds timed(seconds_);
+  grid.groups.clear();
+  group_row_.clear();
+  group_corner_.clear();
+  group_key_.clear();
+  cut_.clear();
+  ghost_count_ = 0;
+  const double n = params_.density;
+  const int whole = static_cast<int>(std::floor(n));
+  const double fraction = n - whole;
+  const int NX = grid.global_columns, nx = grid.cells[0], ny = grid.cells[1], nz = grid.cells[2];
+  const bool walls = grid.walls_y;
+  const double *sh = grid.shift.data();
+  const int per_block = dim_ == 2 ? 2 : 1;
+  // 1. The cut cells: (colloid row, local cell, global cell, corner from the centre).
+  for (std::size_t a = 0; a < c.size(); ++a) {
+    const double R = c.radius[a], R2 = R * R;
+    const double X[3] = {c.x[0][a], c.x[1][a], dim_ == 3 ? c.x[2][a] : 0.0};
+    // Cells of the shifted grid that the colloid's bounding box touches, as unwrapped indices:
+    // along x and z (and y without walls) cell i covers [i + s, i + 1 + s); with walls row j
+    // covers [j - 1 + s, j + s).
+    int lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    for (int k = 0; k < dim_; ++k) {
+      const double s = sh[k];
+      lo[k] = static_cast<int>(std::floor(X[k] - R - s));
+      hi[k] = static_cast<int>(std::floor(X[k] + R - s));
+      if (k == 1 && walls) {
+        lo[k] = std::max(lo[k] + 1, 0);
+        hi[k] = std::min(hi[k] + 1, ny - 1);
+      }
+    }
+    for (int i = lo[0]; i <= hi[0]; ++i) {
+      const int column = wrap_index(i, NX);
+      const int ix = column - grid.first_column;
+      if (ix < 0 || ix >= nx)
+        continue;
+      for (int j = lo[1]; j <= hi[1]; ++j) {
+        const int row = walls ? j : wrap_index(j, ny);
+        for (int l = lo[2]; l <= hi[2]; ++l) {
+          const int layer = dim_ == 3 ? wrap_index(l, nz) : 0;
+          // The cell's lower corner relative to the centre (unwrapped), and its classification:
+          // outside the colloid, wholly inside (no fluid can be there), or cut by the surface.
+          const double corner[3] = {i + sh[0] - X[0], (walls ? j - 1 : j) + sh[1] - X[1],
+                                    dim_ == 3 ? l + sh[2] - X[2] : 0.0};
+          double near2 = 0.0, far2 = 0.0;
+          for (int k = 0; k < dim_; ++k) {
+            const double q = std::clamp(0.0, corner[k], corner[k] + 1.0);
+            near2 += q * q;
+            far2 += std::max(corner[k] * corner[k], (corner[k] + 1.0) * (corner[k] + 1.0));
+          }
+          if (near2 >= R2 || far2 <= R2)
+            continue;
+          const std::size_t cell =
+              ix + static_cast<std::size_t>(nx) * (row + static_cast<std::size_t>(ny) * layer);
+          cut_.push_back({static_cast<std::uint32_t>(a),
+                          static_cast<std::uint32_t>(cell),
+                          ghost_key(c.id[a], grid.global_id(cell), 0),
+                          {corner[0], corner[1], corner[2]}});
+        }
+      }
+    }
+  }
+  // 2. Their position draws, all in full batches: per cell the blocks of its tries (one block
+  // places two tries in 2D, words 0-1 and 2-3, one in 3D; keyed by the first try of the block)
+  // and, last, that of the fractional try (255); bitwise rng::draw's.
+  const int blocks = (whole + 1 + per_block - 1) / per_block, per_cell = blocks + 1;
+  const std::size_t draws = cut_.size() * static_cast<std::size_t>(per_cell);
+  for (int k = 0; k < 4; ++k)
+    position_words_[k].resize(draws);
+  {
+    std::uint64_t ids[rng::batch];
+    std::uint32_t w[4][rng::batch];
+    std::size_t cell = 0, b = 0; // the pair and block of the next key (no division)
+    for (std::size_t b0 = 0; b0 < draws; b0 += rng::batch) {
+      const std::size_t m = std::min(rng::batch, draws - b0);
+      for (std::size_t j = 0; j < rng::batch; ++j) {
+        if (j >= m) {
+          ids[j] = 0;
+          continue;
+        }
+        ids[j] =
+            cut_[cell].key + (b + 1 == static_cast<std::size_t>(per_cell) ? 255 : b * per_block);
+        if (++b == static_cast<std::size_t>(per_cell)) {
+          b = 0;
+          ++cell;
+        }
+      }
+      rng::draw_batch(params_.seed, rng::Purpose::ghost_position, step, ids, w);
+      for (int k = 0; k < 4; ++k)
+        std::copy(w[k], w[k] + m, position_words_[k].begin() + static_cast<std::ptrdiff_t>(b0));
+    }
+  }
+  // 3. The kept tries' moments per cell: count, sum r, sum r r^T (r from the cell's corner), a
+  // try kept if inside the colloid (and the channel); summed without branches (half the tries
+  // are dropped, at random).
+  const double Ly = walls ? box_.length[1] : 0.0;
+  for (const CutCell &cut : cut_) {
+    const std::size_t first = static_cast<std::size_t>(&cut - cut_.data()) * per_cell;
+    const std::size_t a = cut.row;
+    const double R = c.radius[a], R2 = R * R, Y = c.x[1][a];
+    const double *corner = cut.corner.data();
+    int tries = whole;
+    if (fraction > 0.0 && rng::open01(position_words_[0][first + blocks]) < fraction)
+      ++tries;
+    double kept = 0.0, s1[3] = {0.0, 0.0, 0.0}, s2[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    if (dim_ == 2) { // block b: tries 2b (words 0, 1) and 2b + 1 (words 2, 3)
+      const std::uint32_t *w[4] = {&position_words_[0][first], &position_words_[1][first],
+                                   &position_words_[2][first], &position_words_[3][first]};
+      const auto take = [&](bool valid, double qx, double qy) {
+        const double rx = corner[0] + qx, ry = corner[1] + qy, y = Y + ry;
+        // bitwise &, not &&: no branch on the random outcome
+        const bool in = valid & (rx * rx + ry * ry < R2) & ((!walls) | ((y >= 0.0) & (y <= Ly)));
+        const double m = static_cast<double>(in);
+        kept += m;
+        s1[0] += m * qx;
+        s1[1] += m * qy;
+        s2[0] += m * qx * qx;
+        s2[1] += m * qx * qy;
+        s2[3] += m * qy * qy;
+      };
+      for (int b = 0; 2 * b < tries; ++b) {
+        take(true, rng::open01(w[0][b]), rng::open01(w[1][b]));
+        take(2 * b + 1 < tries, rng::open01(w[2][b]), rng::open01(w[3][b]));
+      }
+    } else {
+      for (int t = 0; t < tries; ++t) {
+        const std::size_t d = first + static_cast<std::size_t>(t);
+        const double q[3] = {rng::open01(position_words_[0][d]), rng::open01(position_words_[1][d]),
+                             rng::open01(position_words_[2][d])};
+        const double r[3] = {corner[0] + q[0], corner[1] + q[1], corner[2] + q[2]};
+        const double y = Y + r[1];
+        const bool in =
+            r[0] * r[0] + r[1] * r[1] + r[2] * r[2] < R2 && (!walls || (y >= 0.0 && y <= Ly));
+        const double m = in ? 1.0 : 0.0;
+        kept += m;
+        for (int k = 0; k < 3; ++k)
+          s1[k] += m * q[k];
+        s2[0] += m * q[0] * q[0];
+        s2[1] += m * q[0] * q[1];
+        s2[2] += m * q[0] * q[2];
+        s2[3] += m * q[1] * q[1];
+        s2[4] += m * q[1] * q[2];
+        s2[5] += m * q[2] * q[2];
+      }
+    }
+    if (kept == 0.0)
+      continue;
+    mpcd::ParticleGroup g;
+    g.cell = cut.cell;
+    g.n = static_cast<std::uint32_t>(kept);
+    const int upper[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
+    for (int k = 0; k < dim_; ++k) {
+      g.r[k] = s1[k];
+      for (int m = 0; m < dim_; ++m)
+        g.rr[3 * k + m] = s2[upper[k][m]];
+    }
+    grid.groups.push_back(g);
+    group_row_.push_back(cut.row);
+    group_corner_.push_back(cut.corner);
+    group_key_.push_back(cut.key);
+    ghost_count_ += g.n;
+  }
+  // The groups' Gaussians: (1 + D) D for the thermal velocities eta and as many for the MPC-AT
+  // draws xi, four a Philox block, keyed by (colloid id, global cell, block): tries 0-2 for
+  // eta, 128-130 for xi; a batch of keys at a time (the last batch padded).
+  const int rows = dim_ + 1, per_set = (rows * dim_ + 3) / 4, per_group = 2 * per_set;
+  const std::size_t groups = grid.groups.size(), keys = groups * per_group;
+  group_normals_.resize(keys * 4);
+  std::uint64_t ids[rng::batch];
+  double z[4][rng::batch];
+  for (std::size_t b0 = 0; b0 < keys; b0 += rng::batch) {
+    const std::size_t m = std::min(rng::batch, keys - b0);
+    for (std::size_t j = 0; j < rng::batch; ++j) {
+      const std::size_t key = b0 + j, block = key % per_group;
+      ids[j] =
+          j >= m ? 0
+                 : group_key_[key / per_group] +
+                       (block < static_cast<std::size_t>(per_set) ? block : 128 + block - per_set);
+    }
+    rng::gaussian_batch(params_.seed, rng::Purpose::ghost_velocity, step, ids, 4, z);
+    for (std::size_t j = 0; j < m; ++j)
+      for (int k = 0; k < 4; ++k)
+        group_normals_[(b0 + j) * 4 + k] = z[k][j];
+  }
+  const double sigma = std::sqrt(params_.kT);
+  for (std::size_t q = 0; q < groups; ++q) {
+    mpcd::ParticleGroup &g = grid.groups[q];
+    const std::size_t a = group_row_[q];
+    const double *corner = group_corner_[q].data();
+    const double *normals = &group_normals_[q * per_group * 4];
+    double eta[3][4] = {}, xi[3][4] = {}; // [b][0]: sum, [b][1 + a]: sum r_a, of component b
+    if (dim_ == 2)
+      noise_sums<3>(g, sigma, normals, eta, xi);
+    else
+      noise_sums<4>(g, sigma, normals, eta, xi);
+    const double U[3] = {c.v[0][a], c.v[1][a], dim_ == 3 ? c.v[2][a] : 0.0};
+    const double W[3] = {c.omega[0][a], c.omega[1][a], c.omega[2][a]};
+    // sum r' = N c' + sum r with c' the corner from the centre; v = U + W x r' + eta.
+    double first[3];
+    for (int k = 0; k < 3; ++k)
+      first[k] = g.n * corner[k] + g.r[k];
+    for (int b = 0; b < dim_; ++b) {
+      const int b1 = (b + 1) % 3, b2 = (b + 2) % 3; // (W x y)_b = W_b1 y_b2 - W_b2 y_b1
+      g.v[b] = g.n * U[b] + W[b1] * first[b2] - W[b2] * first[b1] + eta[b][0];
+      g.xi[b] = xi[b][0];
+      const double spin_corner = W[b1] * corner[b2] - W[b2] * corner[b1];
+      for (int k = 0; k < dim_; ++k) {
+        g.rv[3 * k + b] = g.r[k] * (U[b] + spin_corner) + W[b1] * g.rr[3 * k + b2] -
+                          W[b2] * g.rr[3 * k + b1] + eta[b][1 + k];
+        g.rxi[3 * k + b] = xi[b][1 + k];
+      }
+    }
+    // Into the cell's sums as binning would put the ghosts (taken out again after the
+    // collision by the same fixed-point values).
+    mpcd::CellSums &sum = grid.sums[g.cell];
+    sum.n += g.n;
+    for (int k = 0; k < dim_; ++k)
+      sum.p[k] += fixed::from_double(g.v[k]);
+  }
+}
+
+void NoSlipCoupling::take_back_ghost_particles(mpcd::CellGrid &grid,
+                                               const mpcd::CollisionScratch &collision,
+                                               Colloids &c) {
+  const ScopedSeconds timed(seconds_);
+  const std::size_t groups = grid.groups.size();
+  if (collision.group_change.size() != groups)
+    throw invariant_error("the collision left the ghost particles' groups without their change");
+  for (std::size_t q = 0; q < groups; ++q) {
+    const mpcd::ParticleGroup &g = grid.groups[q];
+    const mpcd::GroupChange &d = collision.group_change[q];
+    const double *r = group_corner_[q].data();
+    mpcd::CellSums &sum = grid.sums[g.cell];
+    sum.n -= g.n; // out of the cell sums again, exactly as they went in
+    for (int k = 0; k < dim_; ++k)
+      sum.p[k] -= fixed::from_double(g.v[k]);
+    // The angular impulse about the centre: sum (c' + r) x dv = c' x dP + sum r x dv.
+    double l[3];
+    if (dim_ == 2) {
+      l[0] = d.rv[1] - d.rv[3];
+    } else {
+      l[0] = d.rv[5] - d.rv[7];
+      l[1] = d.rv[6] - d.rv[2];
+      l[2] = d.rv[1] - d.rv[3];
+    }
+    add_impulse(group_row_[q], r, d.v.data(), l);
+  }
+  grid.groups.clear();
+  apply_impulses(c, false);
+}
+
+} // namespace narrows::coupling

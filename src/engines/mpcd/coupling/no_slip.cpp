@@ -1,0 +1,208 @@
+// No-slip colloids: their motion over a step, the impulses they collect, the hand-over.
+#include "narrows/engines/mpcd/coupling/no_slip.hpp"
+
+#include "narrows/colloids/hard_spheres.hpp"
+#include "narrows/colloids/ownership.hpp"
+#include "narrows/colloids/pair_geometry.hpp"
+#include "narrows/colloids/paths.hpp"
+#include "narrows/core/error.hpp"
+#include "narrows/core/fixed_point.hpp"
+#include "narrows/core/timer.hpp"
+#include "narrows/engines/mpcd/coupling/near_fluid.hpp"
+#include "narrows/engines/mpcd/kernels/streaming.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace narrows::coupling {
+
+using namespace narrows::colloids;
+
+namespace {
+
+// Added to each colloid's path over a step when choosing ghost colloids (hard contacts change
+// velocities within the step).
+constexpr double path_allowance = 0.25;
+
+} // namespace
+
+void rotate(Colloids &c, std::size_t a, double dt) {
+  // q <- exp(Omega dt / 2) q: the rotation by |Omega| dt about Omega (space frame), exact for an
+  // angular velocity constant over dt; renormalised against the drift of round-off.
+  const double w[3] = {c.omega[0][a], c.omega[1][a], c.omega[2][a]};
+  const double rate = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+  if (rate == 0.0)
+    return;
+  const double half = 0.5 * rate * dt, s = std::sin(half) / rate;
+  const double d[4] = {std::cos(half), w[0] * s, w[1] * s, w[2] * s};
+  const double q[4] = {c.q[0][a], c.q[1][a], c.q[2][a], c.q[3][a]};
+  double r[4] = {d[0] * q[0] - d[1] * q[1] - d[2] * q[2] - d[3] * q[3],
+                 d[0] * q[1] + d[1] * q[0] + d[2] * q[3] - d[3] * q[2],
+                 d[0] * q[2] - d[1] * q[3] + d[2] * q[0] + d[3] * q[1],
+                 d[0] * q[3] + d[1] * q[2] - d[2] * q[1] + d[3] * q[0]};
+  const double norm = 1.0 / std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + r[3] * r[3]);
+  for (int k = 0; k < 4; ++k)
+    c.q[k][a] = r[k] * norm;
+}
+
+NoSlipCoupling::NoSlipCoupling(const NoSlipParams &params, const mpcd::Box &box,
+                               const parallel::Slabs &slabs)
+    : params_(params), box_(box), dim_(box.dim), slabs_(slabs), ghosts_(slabs, box),
+      migration_(slabs.comm()), stride_(box.dim == 2 ? 3 : 6), contact_migration_(slabs.comm()) {
+  history_.dim = dim_;
+  if (params_.spring_contacts) {
+    springs_.emplace(params_.spring, box_);
+    // Ghosts follow their owners after each drift; their forces go back to the owners.
+    spring_hooks_.refresh = [this](Colloids &c) {
+      const ScopedSeconds talk(message_seconds_);
+      ghosts_.refresh_state(c);
+    };
+    spring_hooks_.reverse = [this](std::vector<std::int64_t> &sums, int k) {
+      const ScopedSeconds talk(message_seconds_);
+      ghosts_.reverse(sums, k);
+    };
+  }
+}
+
+void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c, double fluid_v2_max) {
+  const ScopedSeconds timed(seconds_);
+  const double dt = params_.dt;
+  const std::size_t owned = c.size();
+  for (std::size_t a = 0; a < owned; ++a) { // gravity: a kick of the whole step
+    if (!params_.spring_contacts) // (springs: a force in each sub-step, balanced by contacts)
+      for (int k = 0; k < dim_; ++k)
+        c.v[k][a] += params_.gravity[k] * dt;
+    rotate(c, a, dt);
+  }
+  // Each colloid's path this step: its speed, or with contacts up to twice the fastest speed
+  // more (a collision can pass on the speed of the partner).
+  const bool contacts = params_.hard_contacts || params_.spring_contacts;
+  double fastest = 0.0, v_max = 0.0;
+  margin_.resize(owned);
+  for (std::size_t a = 0; a < owned; ++a) {
+    double v2 = 0.0;
+    for (int k = 0; k < dim_; ++k)
+      v2 += c.v[k][a] * c.v[k][a];
+    margin_[a] = std::sqrt(v2);
+    fastest = std::max(fastest, margin_[a]);
+  }
+  {
+    const ScopedSeconds talk(message_seconds_);
+    MPI_Allreduce(&fastest, &v_max, 1, MPI_DOUBLE, MPI_MAX, slabs_.comm());
+  }
+  for (std::size_t a = 0; a < owned; ++a)
+    margin_[a] = contacts ? (margin_[a] + 2.0 * v_max) * dt + path_allowance
+                          : margin_[a] * dt * (1.0 + 1e-12) + 1e-12;
+  const double r_max = ghosts_.largest_radius(c);
+  // The fluid's reach sizes the regions of other ranks (a pass over the fluid): not needed on
+  // one rank, where every colloid is owned and nothing is copied.
+  const double accel = std::sqrt(params_.fluid_accel[0] * params_.fluid_accel[0] +
+                                 params_.fluid_accel[1] * params_.fluid_accel[1] +
+                                 params_.fluid_accel[2] * params_.fluid_accel[2]) +
+                       std::abs(params_.sine_amplitude);
+  const double reach = ghosts_.active() ? fluid_reach(fluid, dt, accel, fluid_v2_max) : 0.0;
+  // With contacts the region reaches four collision distances further, so that the ghosts an
+  // owned colloid can meet in a chain of up to three contacts within the step are all here and
+  // trusted (trusted_rows; a longer chain is refused).
+  double m_max = 0.0, m_own = 0.0;
+  for (std::size_t a = 0; a < owned; ++a)
+    m_own = std::max(m_own, margin_[a]);
+  {
+    const ScopedSeconds talk(message_seconds_);
+    MPI_Allreduce(&m_own, &m_max, 1, MPI_DOUBLE, MPI_MAX, slabs_.comm());
+  }
+  const double contact = 2.0 * r_max + 2.0 * m_max;
+  {
+    const ScopedSeconds talk(message_seconds_);
+    ghosts_.add_for_step(c, margin_, reach, params_.hard_contacts ? 4.0 * contact : 0.0);
+  }
+  for (int k = 0; k < dim_; ++k)
+    start_[k].assign(c.x[k].begin(), c.x[k].begin() + static_cast<std::ptrdiff_t>(owned));
+  if (params_.hard_contacts) {
+    ghosts_.trusted_rows(c, contact, trusted_);
+    const HardSphereStats e = advance_hard_spheres(c, box_, dt, &trusted_);
+    contacts_.pair_collisions += e.pair_collisions;
+    contacts_.wall_collisions += e.wall_collisions;
+    for (std::size_t a = 0; a < owned; ++a)
+      if (!trusted_[a]) {
+        std::ostringstream os;
+        os << "colloid id " << c.id[a]
+           << " took part in a chain of contacts reaching beyond the ghost colloids of this "
+              "rank within one step (allowed: fewer ranks, or a smaller fluid.dt)";
+        throw invariant_error(os.str());
+      }
+    const ScopedSeconds talk(message_seconds_);
+    ghosts_.refresh_positions(c); // the owners' paths (a ghost may have missed a partner)
+    ghosts_.refresh_motion(c);
+  } else if (springs_) { // every pair once, on the owner of its smaller id; ghosts follow
+    const bool falling = params_.gravity != std::array<double, 3>{0.0, 0.0, 0.0};
+    weight_.resize(owned * static_cast<std::size_t>(dim_));
+    for (std::size_t a = 0; a < owned; ++a)
+      for (int k = 0; k < dim_; ++k)
+        weight_[a * static_cast<std::size_t>(dim_) + k] = c.mass[a] * params_.gravity[k];
+    springs_->advance(c, owned, history_, dt, ghosts_.active() ? &spring_hooks_ : nullptr,
+                      falling ? &weight_ : nullptr);
+    const ScopedSeconds talk(message_seconds_);
+    ghosts_.refresh_motion(c); // the last half kick
+  } else {
+    move_ballistic(c, c.size(), box_, dt); // owned and ghost rows alike: the same bits
+  }
+  check_paths(c, owned, start_, margin_, box_, 0.0,
+              "its speed and those of the others allowed (allowed: a smaller fluid.dt)");
+  lookup_.build(c, box_, slabs_.first_column(), slabs_.local_columns(), ghosts_.extent());
+  impulse_.assign(c.size() * static_cast<std::size_t>(stride_), 0);
+}
+
+void NoSlipCoupling::add_impulse(std::size_t a, const double *r, const double *dp,
+                                 const double *more) {
+  std::int64_t *s = &impulse_[a * static_cast<std::size_t>(stride_)];
+  for (int k = 0; k < dim_; ++k)
+    s[k] += fixed::from_double(dp[k]);
+  const double zero[3] = {0.0, 0.0, 0.0};
+  const double *m = more ? more : zero;
+  if (dim_ == 2) {
+    s[2] += fixed::from_double(r[0] * dp[1] - r[1] * dp[0] + m[0]);
+  } else {
+    s[3] += fixed::from_double(r[1] * dp[2] - r[2] * dp[1] + m[0]);
+    s[4] += fixed::from_double(r[2] * dp[0] - r[0] * dp[2] + m[1]);
+    s[5] += fixed::from_double(r[0] * dp[1] - r[1] * dp[0] + m[2]);
+  }
+}
+
+void NoSlipCoupling::apply_impulses(Colloids &c, bool refresh) {
+  {
+    const ScopedSeconds talk(message_seconds_);
+    ghosts_.reverse(impulse_, stride_);
+  }
+  for (std::size_t a = 0; a < ghosts_.owned(); ++a) {
+    const std::int64_t *s = &impulse_[a * static_cast<std::size_t>(stride_)];
+    const double m = c.mass[a];
+    const double inertia = moment_of_inertia(c, a);
+    for (int k = 0; k < dim_; ++k)
+      c.v[k][a] += fixed::to_double(s[k]) / m;
+    if (dim_ == 2)
+      c.omega[2][a] += fixed::to_double(s[2]) / inertia;
+    else
+      for (int k = 0; k < 3; ++k)
+        c.omega[k][a] += fixed::to_double(s[3 + k]) / inertia;
+  }
+  std::fill(impulse_.begin(), impulse_.end(), 0);
+  if (refresh) {
+    const ScopedSeconds talk(message_seconds_);
+    ghosts_.refresh_motion(c);
+  }
+}
+
+void NoSlipCoupling::hand_over(Colloids &c) {
+  const ScopedSeconds timed(seconds_);
+  ghosts_.remove(c, &margin_);
+  if (ghosts_.active()) {
+    const ScopedSeconds talk(message_seconds_);
+    if (springs_) // each contact goes where its owner colloid goes
+      migrate_contacts(history_, c, slabs_, contact_migration_);
+    migrate_colloids(c, slabs_, migration_);
+  }
+}
+
+} // namespace narrows::coupling

@@ -1,0 +1,362 @@
+// The run loop: step the pipeline, observe on a schedule, check invariants, report progress.
+#include "narrows/engines/mpcd/driver.hpp"
+
+#include "narrows/analysis/fluid_observables.hpp"
+#include "narrows/analysis/poiseuille.hpp"
+#include "narrows/colloids/placement.hpp"
+#include "narrows/core/error.hpp"
+#include "narrows/core/timer.hpp"
+#include "narrows/engines/mpcd/colloid_checkpoint.hpp"
+#include "narrows/engines/mpcd/colloid_statistics.hpp"
+#include "narrows/engines/mpcd/fluid_checkpoint.hpp"
+#include "narrows/engines/mpcd/info.hpp"
+#include "narrows/engines/mpcd/invariants.hpp"
+#include "narrows/engines/mpcd/restart_checks.hpp"
+#include "narrows/engines/mpcd/simulation.hpp"
+#include "narrows/engines/mpcd/totals.hpp"
+#include "narrows/engines/mpcd/trajectory_writer.hpp"
+#include "narrows/io/checkpoint.hpp"
+#include "narrows/io/observables_writer.hpp"
+#include "narrows/parallel/slabs.hpp"
+#include "narrows/run/collective.hpp"
+#include "narrows/run/shell.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+
+namespace narrows::mpcd {
+
+namespace {
+
+bool wants(const scene::Scene &s, const std::string &name) {
+  const auto &o = s.output.observables;
+  return std::find(o.begin(), o.end(), name) != o.end();
+}
+
+// Everything written every `output.every` steps.
+class Observer {
+public:
+  Observer(MpcdSimulation &sim, std::unique_ptr<io::ObservablesWriter> writer,
+           ColloidStatistics colloid_stats)
+      : sim_(sim), writer_(std::move(writer)), profiles_(sim.box()),
+        colloid_stats_(std::move(colloid_stats)) {
+    const auto &s = sim.scene();
+    temperature_ = wants(s, "temperature");
+    momentum_ = wants(s, "momentum");
+    velocity_ = wants(s, "velocity_profile");
+    density_ = wants(s, "density_profile");
+    viscosity_ = wants(s, "viscosity");
+    energy_ = wants(s, "energy");
+    settling_ = wants(s, "settling_velocity");
+    positions_ = wants(s, "colloid_positions");
+  }
+  void every_step() {
+    colloid_stats_.after_step(sim_);
+    if (velocity_ || density_ || viscosity_)
+      profiles_.add(sim_.fluid());
+    if (settling_)
+      settling_sum_.add(sim_);
+  }
+  void sample() {
+    const auto step = sim_.step();
+    const double t = sim_.time();
+    const MPI_Comm comm = sim_.comm();
+    colloid_stats_.on_observe(sim_);
+    if (temperature_) {
+      const double kT = analysis::temperature(sim_.fluid(), comm);
+      if (writer_)
+        writer_->append_scalar("temperature", step, t, kT);
+    }
+    if (energy_) {
+      const double e = total_energy(sim_);
+      if (writer_)
+        writer_->append_scalar("energy", step, t, e);
+    }
+    if (settling_) {
+      const auto v = settling_sum_.mean();
+      if (writer_)
+        writer_->append_vector("settling_velocity", step, t, std::span(v.data(), sim_.box().dim));
+      settling_sum_ = SettlingSum{};
+    }
+    if (positions_) {
+      const colloids::Colloids c = sim_.gather_colloids(); // collective
+      const int d = c.dim;
+      std::vector<double> ids(c.size()), x(c.size() * d);
+      for (std::size_t a = 0; a < c.size(); ++a) {
+        ids[a] = static_cast<double>(c.id[a]);
+        for (int k = 0; k < d; ++k)
+          x[a * d + k] = c.x[k][a];
+      }
+      if (writer_)
+        writer_->append_profile("colloid_positions", step, t, ids, x, d);
+    }
+    if (momentum_) {
+      const auto p = total_momentum(sim_);
+      if (writer_)
+        writer_->append_vector("momentum", step, t, std::span(p.data(), sim_.box().dim));
+    }
+    if (velocity_ || density_ || viscosity_) {
+      std::vector<double> v, rho;
+      if (profiles_.finish(comm, v, rho) && writer_) {
+        if (viscosity_) {
+          const auto &sc = sim_.scene();
+          const auto fit = analysis::fit_poiseuille(profiles_.bin_centres(), v, sim_.box().dim,
+                                                    profiles_.bin_width(), sim_.box().length[1],
+                                                    sc.body_force->value[0]);
+          writer_->append_scalar("viscosity", step, t, fit.nu);
+        }
+        if (velocity_)
+          writer_->append_profile("velocity_profile", step, t, profiles_.bin_centres(), v,
+                                  sim_.box().dim);
+        if (density_)
+          writer_->append_profile("density_profile", step, t, profiles_.bin_centres(), rho, 1);
+      }
+    }
+    if (writer_)
+      writer_->flush();
+  }
+  // The colloid statistics' sums for a checkpoint.
+  std::vector<io::CheckpointArray> checkpoint_arrays() const {
+    return colloid_stats_.checkpoint_arrays();
+  }
+  // When the run ends: the results of the whole run (colloid statistics).
+  void finish() {
+    if (writer_ && colloid_stats_.active()) {
+      colloid_stats_.write(*writer_, sim_.step(), sim_.time());
+      writer_->flush();
+    }
+  }
+
+private:
+  MpcdSimulation &sim_;
+  std::unique_ptr<io::ObservablesWriter> writer_;
+  analysis::ProfileAccumulator profiles_;
+  SettlingSum settling_sum_;
+  ColloidStatistics colloid_stats_;
+  bool temperature_ = false, momentum_ = false, velocity_ = false, density_ = false,
+       viscosity_ = false, energy_ = false, settling_ = false, positions_ = false;
+};
+
+} // namespace
+
+// The checkpoint's data must fit the scene: the particle count the scene makes.
+void check_fluid_count(const scene::Scene &scene, const io::CheckpointInfo &info,
+                       const std::string &checkpoint) {
+  std::array<int, 3> cells{1, 1, 1};
+  for (int k = 0; k < scene.run.dimensions; ++k)
+    cells[k] = static_cast<int>(std::lround(scene.domain.size[k]));
+  const mpcd::Box box = mpcd::make_periodic_box(scene.run.dimensions, cells);
+  // The space the colloids take holds no fluid: the count the run made (radii from the seed).
+  const std::uint64_t count =
+      scene.colloids ? colloids::fluid_count_with_colloids(*scene.colloids, box,
+                                                           scene.fluid.density, scene.run.seed)
+                     : mpcd::fluid_particle_count(box, scene.fluid.density);
+  if (count != info.fluid_particles)
+    throw input_error(checkpoint + ": holds " + std::to_string(info.fluid_particles) +
+                      " fluid particles, the scene has " + std::to_string(count) +
+                      "; allowed: a checkpoint of this scene");
+}
+
+void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm comm) {
+  // Refuse a decomposition the box cannot take before anything is written.
+  check_ranks(scene, comm);
+  run::Shell shell(scene, options, comm, {scene.run.steps, "run.steps", {}});
+  const bool restarting = shell.restarting();
+  // A packing is made once, by the simulation below (it takes seconds to minutes).
+  if (!restarting &&
+      !(scene.colloids && scene.colloids->placement == scene::ColloidPlacement::packing))
+    check_colloid_placement(scene);
+
+  // The state, from the scene or the checkpoint (every rank agrees on a refusal) before
+  // anything is written.
+  MpcdSimulation sim(scene, comm, !restarting);
+  if (restarting) {
+    const std::string &file = shell.restart_file();
+    run::collectively(comm, [&] {
+      const io::CheckpointInfo info = io::read_checkpoint_info(file, comm);
+      check_fluid_count(scene, info, file);
+      sim.restore(read_fluid(file, info, comm), info.step);
+    });
+    if (scene.colloids) {
+      run::collectively(comm, [&] {
+        sim.restore_colloids(read_colloids(file, *scene.colloids, scene.run.dimensions,
+                                           scene.fluid.density, scene.run.seed, comm));
+        if (scene.colloids->contacts == scene::ColloidContacts::spring)
+          sim.restore_contacts(read_contacts(file, scene.colloids->count, scene.run.dimensions,
+                                             scene.walls.has_value(), comm));
+      });
+      // Every colloid (gathered from the owners) against this rank's fluid.
+      check_fluid_outside_colloids(sim.fluid(), sim.gather_colloids(), sim.box(),
+                                   scene.colloids->epsilon, scene.fluid.kT, file, comm);
+    }
+  }
+  // The colloid statistics, on a restart with the sums of the run chain so far.
+  ColloidStatistics colloid_stats(sim);
+  if (restarting)
+    run::collectively(comm, [&] { colloid_stats.restore(shell.restart_file(), comm); });
+  run::Log &log = shell.open(restarting ? sim.step() : -1);
+  for (const auto &line : describe_scene(scene, comm))
+    log.line(line);
+  for (const auto &w : regime_warnings(scene))
+    log.warn(w);
+  if (restarting)
+    log.line("restarted from " + shell.restart_file() + " at step " + std::to_string(sim.step()));
+  if (const auto &p = sim.packing()) {
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "packing: %lld colloids at fraction %.4f, deepest overlap %.2e of the smallest "
+                  "radius, %lld growth stages, %lld relaxation steps, %.2f s",
+                  static_cast<long long>(scene.colloids->count), p->fraction, p->max_overlap,
+                  static_cast<long long>(p->stages), static_cast<long long>(p->iterations),
+                  p->seconds);
+    log.line(line);
+  }
+  std::unique_ptr<io::ObservablesWriter> writer;
+  if (shell.rank() == 0)
+    writer = std::make_unique<io::ObservablesWriter>(shell.output_file("observables"), scene.text);
+  Observer observer(sim, std::move(writer), std::move(colloid_stats));
+  std::optional<TrajectoryWriter> trajectory;
+  // The trajectory and checkpoints hold every colloid: gathered from their owners when written.
+  colloids::Colloids all_colloids;
+  const colloids::Colloids *colloids = scene.colloids ? &all_colloids : nullptr;
+  if (colloids)
+    all_colloids = sim.gather_colloids();
+  // The spring contacts' history, gathered in key order for checkpoints.
+  const bool springs = scene.colloids && scene.colloids->contacts == scene::ColloidContacts::spring;
+  colloids::ContactHistory all_contacts;
+  if (scene.output.trajectory_every > 0) {
+    const std::string file = shell.output_file("trajectory");
+    trajectory.emplace(file, scene.text, sim.box(), particle_count(scene),
+                       static_cast<std::uint64_t>(scene.output.trajectory_subsample), comm,
+                       colloids);
+    log.line("trajectory: " + std::to_string(trajectory->tracked()) + " fluid particles" +
+             (colloids ? " and " + std::to_string(colloids->size()) + " colloids" : "") +
+             " every " + std::to_string(scene.output.trajectory_every) + " steps to " + file +
+             " (ParaView: trajectory" + shell.suffix() + ".xdmf)");
+    if (!restarting)
+      trajectory->write_frame(sim.step(), sim.time(), sim.fluid(), colloids);
+  }
+  const InvariantCheck invariants(sim);
+  const auto n_particles = analysis::total_momentum(sim.fluid(), comm).count;
+
+  // Checkpoints: every output.checkpoint_every steps, at the end, and on SIGTERM/SIGUSR1.
+  auto save_checkpoint = [&] {
+    return shell.checkpoint(sim.step(), [&](const std::string &path) {
+      Stopwatch watch;
+      io::CheckpointInfo info = shell.checkpoint_info(sim.step(), sim.time());
+      info.dimensions = sim.box().dim;
+      info.box = sim.box().length;
+      info.walls_y = sim.box().walls_y;
+      std::vector<io::SpeciesFields> species{fluid_fields(sim.fluid())};
+      colloids::Colloids none;
+      colloids::ContactHistory no_contacts;
+      if (colloids) {
+        all_colloids = sim.gather_colloids();
+        species.push_back(colloid_fields(all_colloids, none, comm));
+      }
+      if (springs) { // (none in contact: no species, as a checkpoint without a history)
+        all_contacts = sim.gather_contacts();
+        if (all_contacts.size() > 0)
+          species.push_back(contact_fields(all_contacts, no_contacts, comm));
+      }
+      const double bytes =
+          io::write_checkpoint(path, info, species, comm, observer.checkpoint_arrays());
+      const double s = watch.seconds();
+      char text[200];
+      std::snprintf(text, sizeof text, "%.1f MB of particles in %.3g s (%.1f MB/s)", bytes / 1e6, s,
+                    s > 0 ? bytes / 1e6 / s : 0.0);
+      return std::string(text);
+    });
+  };
+
+  const std::int64_t first = sim.step();
+  shell.start_loop(first);
+  while (sim.step() < scene.run.steps) {
+    sim.advance();
+    observer.every_step();
+    if (shell.observe_due(sim.step())) {
+      invariants.check(sim);
+      observer.sample();
+    }
+    if (trajectory && shell.trajectory_due(sim.step())) {
+      if (colloids)
+        all_colloids = sim.gather_colloids();
+      trajectory->write_frame(sim.step(), sim.time(), sim.fluid(), colloids);
+    }
+    if (shell.stop_requested())
+      break;
+    if (shell.checkpoint_due(sim.step()))
+      save_checkpoint();
+    shell.progress(sim.step(), static_cast<double>(n_particles), "particle-steps/s");
+  }
+  const double seconds = shell.loop_seconds();
+  const auto steps = static_cast<std::uint64_t>(sim.step() - first);
+  // The largest of every rank's figure (on rank 0, which writes the log).
+  const auto busiest = [&](double mine) {
+    double most = 0.0;
+    MPI_Reduce(&mine, &most, 1, MPI_DOUBLE, MPI_MAX, 0, comm);
+    return most;
+  };
+  char text[200];
+  // Bytes per step of a kind of message from the busiest rank, for scaling models of cluster runs.
+  const auto messages = [&](const char *what, std::uint64_t bytes, const char *which) {
+    std::snprintf(text, sizeof text, "%s messages: %.4g bytes per step from the busiest rank (%s)",
+                  what, busiest(static_cast<double>(bytes)) / static_cast<double>(steps), which);
+    log.line(text);
+  };
+  if (sim.slabs().ranks() > 1 && steps > 0)
+    messages("fluid", sim.fluid_bytes_sent(), "particles migrating to the slab of their cell");
+  if (scene.colloids && steps > 0) { // the cost of colloids owned by slabs
+    messages("colloid", sim.colloid_bytes_sent(), "ghosts, their forces, migration");
+    if (const auto *ns = sim.no_slip(); ns && seconds > 0.0) { // the coupling's share
+      const double most = busiest(ns->seconds());
+      std::snprintf(text, sizeof text,
+                    "no-slip coupling: %.4g s of the loop (%.1f %%) on the busiest rank (colloid "
+                    "motion, bounce-back, ghost particles made and taken back)",
+                    most, 100.0 * most / seconds);
+      log.line(text);
+      if (sim.slabs().ranks() > 1) { // how much of it is messages and waiting
+        const double talk = busiest(ns->message_seconds());
+        std::snprintf(text, sizeof text,
+                      "no-slip coupling messages: %.4g s of the loop (%.1f %%) on the busiest "
+                      "rank (ghost colloids, impulse sums, migration; waiting for the other "
+                      "ranks included)",
+                      talk, 100.0 * talk / seconds);
+        log.line(text);
+      }
+    }
+    if (const auto *ns = sim.no_slip();
+        ns && sim.scene().colloids->contacts == scene::ColloidContacts::hard) {
+      // Rank 0's count: every collision of a colloid it owned, and those of its ghosts.
+      std::snprintf(text, sizeof text,
+                    "colloid contacts: %llu colloid-colloid and %llu colloid-wall collisions "
+                    "resolved on rank 0 (ghosts included)",
+                    static_cast<unsigned long long>(ns->contacts().pair_collisions),
+                    static_cast<unsigned long long>(ns->contacts().wall_collisions));
+      log.line(text);
+    }
+    if (const auto *ns = sim.no_slip(); ns && ns->springs()) {
+      const double mine[2] = {static_cast<double>(ns->springs()->contact_updates()),
+                              static_cast<double>(ns->springs()->sliding_updates())};
+      double all[2] = {0.0, 0.0};
+      MPI_Reduce(mine, all, 2, MPI_DOUBLE, MPI_SUM, 0, comm);
+      std::snprintf(text, sizeof text,
+                    "spring contacts: %.4g contact updates (sub-steps times contacts), %.1f %% "
+                    "of them sliding",
+                    all[0], all[0] > 0.0 ? 100.0 * all[1] / all[0] : 0.0);
+      log.line(text);
+    }
+  }
+  observer.finish();
+  const std::string last = save_checkpoint();
+  shell.finish("step " + std::to_string(sim.step()), last);
+  shell.loop_time(seconds, steps, "steps", std::to_string(n_particles) + " particles",
+                  static_cast<double>(steps) * static_cast<double>(n_particles), "particle-steps");
+}
+
+} // namespace narrows::mpcd
