@@ -17,8 +17,8 @@ Engines and their knobs (each a function in ENGINES below):
   kmc     replicas x time: the open TASEP current (alpha = 0.3, beta = 0.7, low-density
           phase) against its exact value alpha (1 - alpha) = 0.21, with its statistical error.
           Cost per current estimate.
-Hook: the continuum engine and the seed 001 colloid models add a function returning rows of
-the same form (see Row) and append it to ENGINES; the plot and the table pick it up.
+Hook: the continuum engine and the colloid models of Kanehl (thesis) add a function returning
+rows of the same form (see Row) and append it to ENGINES; the plot and the table pick it up.
 
 Cost is the CPU time (user + system) of the narrows child process, from getrusage(
 RUSAGE_CHILDREN) before and after each single-rank run, not wall time: this machine is
@@ -38,10 +38,10 @@ import subprocess
 import sys
 import time
 
-import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import narrows_h5  # noqa: E402
 from lgca_plot import boltzmann_nu, fit_rate  # noqa: E402
 
 
@@ -105,10 +105,11 @@ def mpcd_rows(args, scale):
                                f"output.every={every}",
                                "output.observables=[\"velocity_profile\",\"temperature\"]"]
                 cpu = narrows_run(args.narrows, "run/ata_fluid_table5_1_3d.toml", d, sets)
-                with h5py.File(os.path.join(d, "observables.h5"), "r") as f:
-                    y = f["observables/velocity_profile/bins"][()]
-                    prof = f["observables/velocity_profile/value"][()][:, :, 0]
-                    temp = f["observables/temperature/value"][()]
+                run = narrows_h5.open_run(d)
+                profile = run.series("velocity_profile")
+                y = profile["bins"]
+                prof = profile["value"][:, :, 0]
+                temp = run.series("temperature")["value"]
                 half = prof[len(prof) // 2:]
                 q = y * (L - y) - 1.0 / 12.0  # the parabola averaged over a bin of width 1
                 fits = np.linalg.lstsq(np.vstack([q, np.ones_like(q)]).T, half.T, rcond=None)[0]
@@ -141,8 +142,7 @@ def md_rows(args, scale):
         cpu_s = narrows_run(args.narrows, "run/sedimentation_fig4_10.toml", d,
                             [f"colloids.md_substeps={k}", f"run.steps={settle_steps}",
                              "fluid.density=5", "output.every=10"])
-        with h5py.File(os.path.join(d, "observables.h5"), "r") as f:
-            v = f["observables/settling_velocity/value"][()][:, 0]
+        v = narrows_h5.open_run(d).series("settling_velocity")["value"][:, 0]
         v = v[len(v) // 2:]
         vs, vs_err = v.mean(), v.std(ddof=1) / math.sqrt(len(v) / 10)  # ~10 samples per block
         if k == ref_k:
@@ -152,8 +152,7 @@ def md_rows(args, scale):
         try:
             cpu_e = narrows_run(args.narrows, "run/colloids_conservation.toml", d,
                                 [f"colloids.md_substeps={k}", f"run.steps={steps}"])
-            with h5py.File(os.path.join(d, "observables.h5"), "r") as f:
-                e = f["observables/energy/value"][()]
+            e = narrows_h5.open_run(d).series("energy")["value"]
             drift = e[-1] / e[0] - 1.0
         except RuntimeError:
             cpu_e, drift = float("nan"), float("nan")
@@ -190,9 +189,9 @@ def fhp_rows(args, scale):
                                    [f"lattice.size=[{sx}, {sy}]", f"run.steps={steps}",
                                     f"run.seed={seed}", f"lattice.model={model}",
                                     f"lattice.density={d_link}", "output.every=1"])
-                with h5py.File(os.path.join(d, "observables.h5"), "r") as f:
-                    t = f["observables/shear_wave/step"][()].astype(float)
-                    a = f["observables/shear_wave/value"][()]
+                wave = narrows_h5.open_run(d).series("shear_wave")
+                t = wave["step"].astype(float)
+                a = wave["value"]
                 # skip the first steps: the initial shear wave is not yet the hydrodynamic mode
                 rate, _ = fit_rate(t, a, min(20.0, steps / 4), float(steps))
                 nus.append(rate / k2)
@@ -219,9 +218,9 @@ def kmc_rows(args, scale):
             cpu = narrows_run(args.narrows, "run/tasep_open.toml", d,
                               [f"kmc.replicas={replicas}", f"kmc.time={t}",
                                "kmc.warmup=2000.0", "kmc.length=200"])
-            with h5py.File(os.path.join(d, "observables.h5"), "r") as f:
-                j = float(f["observables/current_mean/value"][()][-1])
-                je = float(f["observables/current_mean_error/value"][()][-1])
+            run = narrows_h5.open_run(d)
+            j = float(run.series("current_mean")["value"][-1])
+            je = float(run.series("current_mean_error")["value"][-1])
             rows.append(Row(engine="kmc", knob=f"{replicas} replicas x t={t:g}",
                             error=j / exact - 1.0, stat=je / exact, cpu=cpu, cost=cpu,
                             unit="CPU s per current estimate",
@@ -229,7 +228,8 @@ def kmc_rows(args, scale):
     return rows
 
 
-# Hook: the continuum engine and the seed 001 colloid models append their functions here.
+# Hook: the continuum engine and the colloid models of Kanehl (thesis) append their functions
+# here.
 ENGINES = {"mpcd": mpcd_rows, "md": md_rows, "fhp": fhp_rows, "kmc": kmc_rows}
 
 
@@ -245,9 +245,7 @@ def pareto(rows):
 
 
 def plot(engine, rows, png):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = narrows_h5.pyplot()
     fig, ax = plt.subplots(figsize=(6, 4.2))
     for r in rows:
         if not math.isfinite(r["error"]):
@@ -331,4 +329,4 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv))
+    sys.exit(narrows_h5.run_tool("accuracy_map", main, sys.argv))

@@ -1,12 +1,13 @@
-"""The shock of a sedimenting colloid chain (seed 000 §4.5 and ch.5) from an mpcd run with
-colloids (e.g. run/sedimentation_chain_31.toml, observables "colloid_positions" and
-"settling_velocity"), and its continuum prediction (flux "colloid-chain", seed 000 eq 5.3).
-Imported by shock_report.py (--chain).
+"""The shock of a sedimenting colloid chain (Tabatabaei (2008) §4.5 and ch.5) from an mpcd run
+with colloids (e.g. run/sedimentation_chain_31.toml, observables "colloid_positions" and
+"settling_velocity"), and its continuum prediction (flux "colloid-chain", Tabatabaei (2008)
+eq 5.3). Imported by shock_report.py (--chain).
 
-Frame: the one co-moving with the centre of mass of fluid and colloids (seed 000 eq 4.8-4.10),
-where eq 5.2 holds with v_cm = 0: a colloid moves at the settling velocity v_s = c rho + c'.
-The centre of mass moves by the colloids' mean lab displacement less the integral of the
-run's settling velocity (mean colloid velocity minus v_cm, sampled as output.every means).
+Frame: the one co-moving with the centre of mass of fluid and colloids (Tabatabaei (2008)
+eq 4.8-4.10), where eq 5.2 holds with v_cm = 0: a colloid moves at the settling velocity
+v_s = c rho + c'. The centre of mass moves by the colloids' mean lab displacement less the
+integral of the run's settling velocity (mean colloid velocity minus v_cm, sampled as
+output.every means).
 
 Line density rho: colloids per unit channel length. The chain starts at spacing d0 (density
 rho0 = 1 / d0); the colloids ahead of it in the direction of gravity are the head. With a flux
@@ -17,13 +18,12 @@ spacing, 1 / (2 rho0) (where the initial step of the coarse-grained density sits
 colloid at each time, not a labelled one: in the zigzag they pass each other.
 """
 import math
-import sys
-import tomllib
 
-import h5py
 import numpy as np
 
+import narrows_h5
 from continuum_run import run_continuum
+from narrows_h5 import NarrowsDataError
 from sedimentation import unwrap
 
 
@@ -31,22 +31,19 @@ def read_chain(run):
     """Positions along x in the co-moving frame [T][N] (ordered from the head), times, the
     channel length, rho0 and the gravity's sign."""
     path = run.rstrip("/") + "/observables.h5"
-    with h5py.File(path, "r") as f:
-        text = f["parameters/scene"][()]
-        scene = tomllib.loads(text.decode() if isinstance(text, bytes) else text)
-        obs = f["observables"]
-        for need in ("colloid_positions", "settling_velocity"):
-            if need not in obs:
-                sys.exit(f"chain_shock: {path} has no /observables/{need}; allowed: an mpcd run "
-                         "with colloids whose output.observables lists colloid_positions and "
-                         "settling_velocity")
-        pos = obs["colloid_positions/value"][()]
-        t = obs["colloid_positions/time"][()]
-        vs = obs["settling_velocity/value"][()][:, 0]
-        ts = obs["settling_velocity/time"][()]
+    data = narrows_h5.open_run(path)
+    scene = data.scene()
+    allowed = ("an mpcd run with colloids whose output.observables lists colloid_positions and "
+               "settling_velocity")
+    positions = data.series("colloid_positions", allowed)
+    settling = data.series("settling_velocity", allowed)
+    pos = positions["value"]
+    t = positions["time"]
+    vs = settling["value"][:, 0]
+    ts = settling["time"]
     if pos.shape[1] < 4 or len(t) < 8:
-        sys.exit(f"chain_shock: {path} has {pos.shape[1]} colloids and {len(t)} samples; "
-                 "allowed: at least 4 colloids and 8 samples")
+        raise NarrowsDataError(path, f"{pos.shape[1]} colloids and {len(t)} samples",
+                               "at least 4 colloids and 8 samples")
     L = float(scene["domain"]["size"][0])
     g = float(scene["colloids"].get("gravity", [0.0])[0])
     sign = 1.0 if g >= 0.0 else -1.0
@@ -55,7 +52,7 @@ def read_chain(run):
     # Centre of mass: X(t) - X(0) - integral of the settling velocity (means over the interval
     # that ends at each sample).
     if not np.allclose(ts, t):
-        sys.exit(f"chain_shock: {path}: settling_velocity and colloid_positions differ in time")
+        raise NarrowsDataError(path, "settling_velocity and colloid_positions differ in time")
     drift = np.concatenate([[0.0], np.cumsum(sign * vs[1:] * np.diff(t))])
     com = x.mean(axis=1) - x[0].mean() - drift
     x = x - com[:, None]

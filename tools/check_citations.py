@@ -4,8 +4,8 @@
 Usage: check_citations.py REPO_ROOT
 
 Fails (exit 1, one line per finding) when
-- a file cites a source document by its working name ("seed 000", "seed001", ...), which means
-  nothing to a reader;
+- a file cites a source document by its working name ("seed" and its number, SEED below), which
+  means nothing to a reader;
 - a citation key of the form "Author (2008)", "Author et al. (1993)", "A & B (2016)" or
   "Author (thesis)" is not a bold key of docs/references.md;
 - a file cites DESIGN.md, which is not part of the repository (docs/architecture.md is).

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Diffusion coefficient of one no-slip colloid (seed 001 §4.4.2, fig 4.9, Table 5.1).
+"""Diffusion coefficient of one no-slip colloid (Kanehl (thesis) §4.4.2, fig 4.9, Table 5.1).
 
 Usage: colloid_diffusion.py --dim 2 --radius 2 [--box-over-a 20] [--density 50] [--dt 0.01]
                             [--time 1000] [--every 10] [--tmax 20] [--blocks 10]
@@ -9,7 +9,7 @@ Runs narrows (build/narrows, or --narrows PATH) on a periodic box of side l = bo
 with one density-matched colloid of radius a, MPC-AT+a, coupling = "no-slip", writing the
 colloid's velocity every --every steps to trajectory.h5 (the fluid subsampled away), then:
   C(t) = <U(0).U(t)> (eq 4.50) up to --tmax, D(t) = (1/d) int_0^t C (eq 4.51),
-  D = the plateau, the mean of D(t) over the last quarter of [0, tmax] (the seed reads
+  D = the plateau, the mean of D(t) over the last quarter of [0, tmax] (Kanehl's thesis reads
       D(t' = 15 t0)),
   and independently the MSD slope, <|r(t) - r(0)|^2> / (2 d t) at t = tmax.
 Errors: the trajectory is cut into --blocks blocks; each gives its own D (VACF and MSD from
@@ -29,8 +29,9 @@ import os
 import subprocess
 import sys
 
-import h5py
 import numpy as np
+
+import narrows_h5
 
 TABLE = {(2, 2.0): 0.00137, (2, 4.0): 0.000973, (3, 2.0): 0.00214, (3, 4.0): 0.000852}
 NU = {2: 3.98, 3: 3.15}
@@ -94,10 +95,9 @@ def vacf(v, nlag):
 
 
 def analyse(a):
-    with h5py.File(os.path.join(a.out, "trajectory.h5"), "r") as f:
-        g = f["particles/colloids"]
-        v = g["velocity/value"][:, 0, :]
-        x = g["position/value"][:, 0, :]
+    with narrows_h5.open_trajectory(a.out) as f:
+        v = f.dataset("particles/colloids/velocity/value")[:, 0, :]
+        x = f.dataset("particles/colloids/position/value")[:, 0, :]
     d = a.dim
     L = a.box_over_a * a.radius
     h = a.every * a.dt  # time between frames
@@ -175,4 +175,4 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(narrows_h5.run_tool("colloid_diffusion", main))

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Plot the colloid VACF C(tau), its running integral D(t) with the fitted plateau (seed 001 fig 4.9) and the per-kind kernel density profiles of a narrows MPCD run.
+"""Plot the colloid VACF C(tau), its running integral D(t) with the fitted plateau (Kanehl (thesis) fig 4.9) and the per-kind kernel density profiles of a narrows MPCD run.
 
 Usage: colloid_plot.py OUTDIR|observables.h5 [--png FILE] [--window T1 T2]
 
@@ -17,50 +17,32 @@ import argparse
 import os
 import sys
 
-import h5py
-import matplotlib
 import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402  (backend must be chosen first)
-
-
-class InputError(Exception):
-    pass
-
-
-def by_kind(group, name, lags):
-    """The [kinds][lags] dataset `name` of a result group (stored flat)."""
-    flat = group[name][()]
-    return flat.reshape(-1, lags)
+import narrows_h5
+from narrows_h5 import NarrowsDataError
 
 
 def read(path):
-    if not os.path.exists(path):
-        raise InputError(f"{path}: no such file")
-    if not h5py.is_hdf5(path):
-        raise InputError(f"{path}: not an HDF5 file")
+    run = narrows_h5.open_run(path)
     out = {}
-    with h5py.File(path, "r") as f:
-        obs = f.get("observables")
-        if obs is None:
-            raise InputError(f"{path}: no /observables group")
-        for name in ("colloid_vacf", "colloid_diffusion"):
-            if name in obs:
-                g = obs[name]
-                lags = g["lags"][()]
-                out[name] = {"lags": lags,
-                             "value": by_kind(g, "value_by_kind", len(lags)),
-                             "error": by_kind(g, "error_by_kind", len(lags)),
-                             "samples": int(g["samples"][0])}
-        if "density_kde" in obs:
-            g = obs["density_kde"]
-            out["density_kde"] = {"y": g["bins"][()], "value": g["value"][()],
-                                  "error": g["error"][()], "width": float(g["width"][0]),
-                                  "counts": g["counts"][()], "samples": int(g["samples"][0])}
+    names = run.names()
+    for name in ("colloid_vacf", "colloid_diffusion"):
+        if name in names:
+            g = run.series(name)
+            lags = g["lags"]
+            out[name] = {"lags": lags,
+                         "value": g["value_by_kind"].reshape(-1, len(lags)),  # [kinds][lags]
+                         "error": g["error_by_kind"].reshape(-1, len(lags)),
+                         "samples": int(g["samples"][0])}
+    if "density_kde" in names:
+        g = run.series("density_kde")
+        out["density_kde"] = {"y": g["bins"], "value": g["value"], "error": g["error"],
+                              "width": float(g["width"][0]), "counts": g["counts"],
+                              "samples": int(g["samples"][0])}
     if not out:
-        raise InputError(f"{path}: none of colloid_vacf, colloid_diffusion, density_kde (list "
-                         "them in output.observables)")
+        raise NarrowsDataError(path, "none of colloid_vacf, colloid_diffusion, density_kde",
+                               "a run that lists them in output.observables")
     return out
 
 
@@ -69,7 +51,8 @@ def plateau(t, d, e, window):
     t1, t2 = window if window else (t[-1] * 2.0 / 3.0, t[-1])
     sel = (t >= t1) & (t <= t2) & np.isfinite(d)
     if not np.any(sel):
-        raise InputError(f"no lag in the plateau window [{t1:g}, {t2:g}] (lags 0 to {t[-1]:g})")
+        raise NarrowsDataError(None, f"no lag in the plateau window [{t1:g}, {t2:g}] (lags 0 "
+                                     f"to {t[-1]:g})")
     err = e[sel]
     err = err[np.isfinite(err)]
     return float(np.mean(d[sel])), float(np.mean(err)) if len(err) else float("nan"), t1, t2
@@ -82,48 +65,45 @@ def main(argv):
     parser.add_argument("--window", nargs=2, type=float, metavar=("T1", "T2"),
                         help="plateau window of D(t) (default: the last third of the lags)")
     args = parser.parse_args(argv[1:])
-    path = args.run if args.run.endswith(".h5") else os.path.join(args.run, "observables.h5")
-    try:
-        data = read(path)
-        panels = [n for n in ("colloid_vacf", "colloid_diffusion", "density_kde") if n in data]
-        fig, axes = plt.subplots(1, len(panels), figsize=(5 * len(panels), 4), squeeze=False)
-        lines = []
-        for ax, name in zip(axes[0], panels):
-            d = data[name]
-            if name == "colloid_vacf":
-                for k, (c, e) in enumerate(zip(d["value"], d["error"])):
-                    ax.plot(d["lags"], c, label=f"kind {k}")
-                    ax.fill_between(d["lags"], c - e, c + e, alpha=0.3)
-                ax.axhline(0.0, color="grey", lw=0.5)
-                ax.set_xlabel("tau")
-                ax.set_ylabel("C(tau) = <v(t).v(t+tau)>")
-                ax.set_title(f"colloid VACF ({d['samples']} samples)")
-            elif name == "colloid_diffusion":
-                for k, (v, e) in enumerate(zip(d["value"], d["error"])):
-                    p, pe, t1, t2 = plateau(d["lags"], v, e, args.window)
-                    ax.plot(d["lags"], v, label=f"kind {k}: D = {p:.4g} +- {pe:.2g}")
-                    ax.fill_between(d["lags"], v - e, v + e, alpha=0.3)
-                    ax.hlines(p, t1, t2, colors="k", linestyles="--")
-                    lines.append(f"kind {k}: D = {p:.6g} +- {pe:.2g} (plateau over t in "
-                                 f"[{t1:g}, {t2:g}])")
-                ax.set_xlabel("t")
-                ax.set_ylabel("D(t) = (1/d) int_0^t C")
-                ax.set_title("running integral, fitted plateau (dashed)")
-            else:
-                dy = d["y"][1] - d["y"][0] if len(d["y"]) > 1 else 1.0
-                for k, (f, e) in enumerate(zip(d["value"], d["error"])):
-                    ax.plot(d["y"], f, label=f"kind {k} ({int(d['counts'][k])} colloids)")
-                    ax.fill_between(d["y"], f - e, f + e, alpha=0.3)
-                    lines.append(f"kind {k}: density_kde integrates to "
-                                 f"{float(np.nansum(f) * dy):.4f} over y")
-                ax.set_xlabel("y")
-                ax.set_ylabel("F_k(y) (eq 5.2)")
-                ax.set_title(f"kernel density, eps = {d['width']:g} ({d['samples']} samples)")
-            ax.legend(fontsize=8)
-        fig.tight_layout()
-    except InputError as e:
-        print(f"colloid_plot: {e}", file=sys.stderr)
-        return 2
+    path = narrows_h5.observables_path(args.run)
+    data = read(path)
+    plt = narrows_h5.pyplot()
+    panels = [n for n in ("colloid_vacf", "colloid_diffusion", "density_kde") if n in data]
+    fig, axes = plt.subplots(1, len(panels), figsize=(5 * len(panels), 4), squeeze=False)
+    lines = []
+    for ax, name in zip(axes[0], panels):
+        d = data[name]
+        if name == "colloid_vacf":
+            for k, (c, e) in enumerate(zip(d["value"], d["error"])):
+                ax.plot(d["lags"], c, label=f"kind {k}")
+                ax.fill_between(d["lags"], c - e, c + e, alpha=0.3)
+            ax.axhline(0.0, color="grey", lw=0.5)
+            ax.set_xlabel("tau")
+            ax.set_ylabel("C(tau) = <v(t).v(t+tau)>")
+            ax.set_title(f"colloid VACF ({d['samples']} samples)")
+        elif name == "colloid_diffusion":
+            for k, (v, e) in enumerate(zip(d["value"], d["error"])):
+                p, pe, t1, t2 = plateau(d["lags"], v, e, args.window)
+                ax.plot(d["lags"], v, label=f"kind {k}: D = {p:.4g} +- {pe:.2g}")
+                ax.fill_between(d["lags"], v - e, v + e, alpha=0.3)
+                ax.hlines(p, t1, t2, colors="k", linestyles="--")
+                lines.append(f"kind {k}: D = {p:.6g} +- {pe:.2g} (plateau over t in "
+                             f"[{t1:g}, {t2:g}])")
+            ax.set_xlabel("t")
+            ax.set_ylabel("D(t) = (1/d) int_0^t C")
+            ax.set_title("running integral, fitted plateau (dashed)")
+        else:
+            dy = d["y"][1] - d["y"][0] if len(d["y"]) > 1 else 1.0
+            for k, (f, e) in enumerate(zip(d["value"], d["error"])):
+                ax.plot(d["y"], f, label=f"kind {k} ({int(d['counts'][k])} colloids)")
+                ax.fill_between(d["y"], f - e, f + e, alpha=0.3)
+                lines.append(f"kind {k}: density_kde integrates to "
+                             f"{float(np.nansum(f) * dy):.4f} over y")
+            ax.set_xlabel("y")
+            ax.set_ylabel("F_k(y) (eq 5.2)")
+            ax.set_title(f"kernel density, eps = {d['width']:g} ({d['samples']} samples)")
+        ax.legend(fontsize=8)
+    fig.tight_layout()
     png = args.png or os.path.join(os.path.dirname(path) or ".", "colloids.png")
     try:
         fig.savefig(png, dpi=100)
@@ -137,4 +117,4 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv))
+    sys.exit(narrows_h5.run_tool("colloid_plot", main, sys.argv))

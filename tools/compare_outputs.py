@@ -22,8 +22,9 @@ import os
 import re
 import sys
 
-import h5py
 import numpy as np
+
+import narrows_h5
 
 # /h5md/creator carries the program version (NARROWS_VERSION = CMake's PROJECT_VERSION) in
 # every observables, checkpoint and trajectory file: a refactor may bump it. Nothing else in
@@ -119,9 +120,9 @@ def fmt_index(index):
 
 
 def read_attribute(obj, name):
-    aid = h5py.h5a.open(obj.id, name.encode())
+    dtype, shape = narrows_h5.attribute_type(obj, name)
     value = obj.attrs[name]
-    return aid.dtype, aid.shape, np.asarray(value) if not isinstance(value, (str, bytes)) \
+    return dtype, shape, np.asarray(value) if not isinstance(value, (str, bytes)) \
         else np.array(value, dtype=object)
 
 
@@ -144,19 +145,13 @@ def compare_attributes(rel, path, obj_a, obj_b, out):
                 out.append(f"{rel} {path}@{name} {fmt_index(index)}")
 
 
-def h5_objects(f):
-    objects = {"/": f}
-    f.visititems(lambda name, obj: objects.__setitem__("/" + name, obj))
-    return objects
-
-
 def kind(obj):
     return type(obj).__name__
 
 
 def compare_h5(rel, path_a, path_b, out):
-    with h5py.File(path_a, "r") as fa, h5py.File(path_b, "r") as fb:
-        oa, ob = h5_objects(fa), h5_objects(fb)
+    with narrows_h5.open_h5(path_a) as fa, narrows_h5.open_h5(path_b) as fb:
+        oa, ob = narrows_h5.objects(fa), narrows_h5.objects(fb)
         for path in sorted(set(oa) ^ set(ob)):
             out.append(f"{rel} {path} only in {'A' if path in oa else 'B'}")
         for path in sorted(set(oa) & set(ob)):
@@ -164,7 +159,7 @@ def compare_h5(rel, path_a, path_b, out):
             if kind(a) != kind(b):
                 out.append(f"{rel} {path} is a {kind(a)} in A, a {kind(b)} in B")
                 continue
-            if isinstance(a, h5py.Dataset):  # the data first: a checksum attribute follows it
+            if narrows_h5.is_dataset(a):  # the data first: a checksum attribute follows it
                 compare_dataset(rel, path, a, b, out)
             compare_attributes(rel, path, a, b, out)
 

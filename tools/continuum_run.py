@@ -6,9 +6,8 @@ import shutil
 import subprocess
 import sys
 import tempfile
-import tomllib
 
-import h5py
+import narrows_h5
 
 
 def find_narrows(given):
@@ -31,7 +30,7 @@ def toml_value(v):
 
 def kmc_flux_lines(kmc_scene_text):
     """The [continuum] flux keys of a kmc scene's preset (family 1 or 2, with its rates)."""
-    kmc = tomllib.loads(kmc_scene_text)["kmc"]
+    kmc = narrows_h5.parse_scene(kmc_scene_text)["kmc"]
     preset = kmc.get("preset", "none")
     if preset == "family1":
         return f'flux = "family1"\nrates = {toml_value(kmc["rates"])}\n'
@@ -54,6 +53,6 @@ def run_continuum(narrows, continuum_lines, observables=("density", "shock_posit
                               capture_output=True, text=True)
         if done.returncode != 0:
             sys.exit(f"the continuum run failed: {done.stderr.strip()}")
-        with h5py.File(os.path.join(tmp, "out", "observables.h5"), "r") as f:
-            return {n: (f[f"observables/{n}/time"][:], f[f"observables/{n}/value"][:])
-                    for n in observables}
+        run = narrows_h5.open_run(os.path.join(tmp, "out"))
+        series = {n: run.series(n) for n in observables}
+        return {n: (s["time"], s["value"]) for n, s in series.items()}

@@ -5,8 +5,8 @@
 #   defaults: build/narrows, out/dem_vs_lammps, 1.8e5 disks, 20 MPCD steps (200 sub-steps)
 #
 # `narrows bench --dem DISKS --dem-data DIR/packing.data` times narrows' spring contacts alone
-# (no fluid, one core) on seed 001 Table 6.1's bidisperse mixture at phi = 0.8 between walls
-# and writes the same packing with its thermal velocities as a LAMMPS data file, atoms in
+# (no fluid, one core) on Kanehl (thesis) Table 6.1's bidisperse mixture at phi = 0.8 between
+# walls and writes the same packing with its thermal velocities as a LAMMPS data file, atoms in
 # narrows' order (each kind numbered along x, as every narrows packing; LAMMPS also sorts its
 # atoms in space itself). LAMMPS (Debian's
 # `lammps`, installed here if missing) then runs the same model on it, one process:

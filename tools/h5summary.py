@@ -11,8 +11,9 @@ Exit code 2 (one line on stderr) if a file is missing or not HDF5.
 import os
 import sys
 
-import h5py
 import numpy as np
+
+import narrows_h5
 
 MAX_VALUE_CHARS = 70
 
@@ -39,7 +40,7 @@ def format_value(value):
 
 
 def format_dtype(dset):
-    string_info = h5py.check_string_dtype(dset.dtype)
+    string_info = narrows_h5.string_info(dset.dtype)
     if string_info is not None:
         return "string" if string_info.length is None else f"string[{string_info.length}]"
     return str(dset.dtype)
@@ -57,7 +58,7 @@ def describe_dataset(dset):
     text = f"{format_shape(dset.shape)} {format_dtype(dset)}"
     if dset.shape == ():
         value = dset[()]
-        if h5py.check_string_dtype(dset.dtype) is not None:
+        if narrows_h5.string_info(dset.dtype) is not None:
             if isinstance(value, bytes):
                 value = value.decode("utf-8", errors="replace")
             lines = value.count("\n") + (0 if value.endswith("\n") or not value else 1)
@@ -73,12 +74,12 @@ def describe_dataset(dset):
 
 def time_series_note(group):
     """'N samples, last step S' for an H5MD time series group {step, time, value}."""
-    if not isinstance(group.get("value"), h5py.Dataset):
+    if not narrows_h5.is_dataset(group.get("value")):
         return None
     value = group["value"]
     samples = value.shape[0] if value.shape else 1
     step = group.get("step")
-    if not isinstance(step, h5py.Dataset):
+    if not narrows_h5.is_dataset(step):
         return f"{samples} samples"
     if step.shape == ():
         last = step[()]
@@ -97,13 +98,12 @@ def print_attributes(obj, indent):
 def print_tree(group, depth):
     indent = "  " * depth
     for name in group:
-        link = group.get(name, getlink=True)
-        if isinstance(link, (h5py.SoftLink, h5py.ExternalLink)):
-            target = link.path if isinstance(link, h5py.SoftLink) else f"{link.filename}:{link.path}"
+        target = narrows_h5.link_target(group, name)
+        if target is not None:
             print(f"{indent}{name} -> {target}")
             continue
         obj = group[name]
-        if isinstance(obj, h5py.Group):
+        if narrows_h5.is_group(obj):
             note = None
             if obj.name.startswith("/observables/") and obj.name.count("/") == 2:
                 note = time_series_note(obj)
@@ -116,7 +116,7 @@ def print_tree(group, depth):
 
 
 def summarise(path):
-    with h5py.File(path, "r") as f:
+    with narrows_h5.open_h5(path) as f:
         print(f"{path}  ({os.path.getsize(path)} bytes)")
         print_attributes(f, "")
         print_tree(f, 1)
@@ -127,12 +127,7 @@ def main(argv):
         print(__doc__.strip())
         return 0 if len(argv) >= 2 else 2
     for i, path in enumerate(argv[1:]):
-        if not os.path.isfile(path):
-            print(f"h5summary: {path}: no such file", file=sys.stderr)
-            return 2
-        if not h5py.is_hdf5(path):
-            print(f"h5summary: {path}: not an HDF5 file", file=sys.stderr)
-            return 2
+        narrows_h5.open_h5(path).close()  # missing or not HDF5: one line, exit 2
         if i:
             print()
         summarise(path)
@@ -141,6 +136,6 @@ def main(argv):
 
 if __name__ == "__main__":
     try:
-        sys.exit(main(sys.argv))
+        sys.exit(narrows_h5.run_tool("h5summary", main, sys.argv))
     except BrokenPipeError:
         sys.exit(0)

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Figures of the jamming model (seed 001 ch.6) like the seed's: growth rate against k, the
-fixed-point classes in the (c, phi0) plane and a phase portrait.
+"""Figures of the jamming model (Kanehl (thesis) ch.6) like the thesis': growth rate against k,
+the fixed-point classes in the (c, phi0) plane and a phase portrait.
 
 Usage: jamming_plot.py [OUTDIR] [--mu 1] [--phi 0.75] [--c -2.8] [--q 2.228] [--png FILE]
 
@@ -23,13 +23,11 @@ OUTDIR/jamming.png or ./jamming.png) and prints the fixed points.
 
 import argparse
 import os
-import tomllib
+import sys
 
-import matplotlib
 import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402  (backend must be chosen first)
+import narrows_h5
 
 TABLE_6_2 = {  # dv, dphi, phi_c, e1, e2, phi_q
     "infinity": (0.0489, 0.00247, 0.744, 2.82, -3.68, 0.819),
@@ -120,12 +118,10 @@ class Model:
 
 
 def measured_rates(outdir):
-    import h5py
-
-    with h5py.File(os.path.join(outdir, "observables.h5"), "r") as f:
-        phi = f["observables/density/value"][()]
-        t = f["observables/density/time"][()]
-        bins = f["observables/density/bins"][()]
+    density = narrows_h5.open_run(outdir).series("density")
+    phi = density["value"]
+    t = density["time"]
+    bins = density["bins"]
     length = bins[1] * len(bins)
     amp = np.abs(np.fft.rfft(phi, axis=1)) / phi.shape[1]
     ks, rates = [], []
@@ -154,16 +150,17 @@ def main():
     args = ap.parse_args()
     drive, diffusion, mu, phi0 = 1.0, 1.0, args.mu, args.phi
     if args.outdir:
-        import h5py
-
-        with h5py.File(os.path.join(args.outdir, "observables.h5"), "r") as f:
-            scene = tomllib.loads(f["parameters/scene"][()].decode())
-        cont = scene["continuum"]
+        run = narrows_h5.open_run(args.outdir)
+        run.require_engine("continuum")
+        cont = run.scene()["continuum"]
         drive, diffusion = cont.get("drive", 1.0), cont.get("diffusion", 1.0)
         mu = cont.get("mu", "1")
         phi0 = cont["initial"].get("mean", phi0)
     m = Model(mu, drive, diffusion)
 
+    plt = narrows_h5.pyplot()
+    import matplotlib.colors
+    import matplotlib.patches
     fig, ax = plt.subplots(2, 2, figsize=(12, 9))
     k = np.linspace(1e-3, 3.0, 600)
     ax[0, 0].plot(k, m.growth(phi0, k).real, label="eq 6.11")
@@ -237,4 +234,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(narrows_h5.run_tool("jamming_plot", main))

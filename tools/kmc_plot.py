@@ -6,11 +6,12 @@
   measured point of each file given (bulk density, mean current, error bars);
 - shock position: mean and variance against time, with the theory v_s and D_s;
 - charge profiles at several times against the solution of the hydrodynamic equation
-  d sigma/dt + d j(sigma)/dx = 0 (seed 000 eq 2.60; family 1 flux from eq 2.48 with rho*(sigma)
-  of eq 2.59, family 2 eq 2.126): this tool does not solve it, the continuum engine does
-  (`narrows run` of a conservation-law scene written from the kmc run's own scene: the preset's
-  rates, the measured profile at the first sample coarse-grained into cells of B sites as the
-  initial cell averages, the two end values held as reservoirs, samples at the kmc sample times).
+  d sigma/dt + d j(sigma)/dx = 0 (Tabatabaei (2008) eq 2.60; family 1 flux from eq 2.48 with
+  rho*(sigma) of eq 2.59, family 2 eq 2.126): this tool does not solve it, the continuum engine
+  does (`narrows run` of a conservation-law scene written from the kmc run's own scene: the
+  preset's rates, the measured profile at the first sample coarse-grained into cells of B sites as
+  the initial cell averages, the two end values held as reservoirs, samples at the kmc sample
+  times).
 
 Usage: tools/kmc_plot.py OUT/observables.h5 [MORE.h5 ...] [--png FILE] [--block B]
                          [--narrows PATH]
@@ -20,9 +21,9 @@ Prints the distance between the coarse-grained measured profile and the hydrodyn
 import argparse
 import sys
 
-import h5py
 import numpy as np
 
+import narrows_h5
 from continuum_run import find_narrows, kmc_flux_lines, run_continuum
 
 
@@ -54,27 +55,28 @@ def main():
     ap.add_argument("--narrows", default=None, help="the narrows binary (default: build/narrows)")
     args = ap.parse_args()
 
-    import matplotlib
+    plt = narrows_h5.pyplot()
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    first = h5py.File(args.files[0], "r")["observables"]
+    run = narrows_h5.open_run(args.files[0])
+    run.require_engine("kmc")
+    names = run.names()  # the observables of the first file
     panels = ["profile", "current"]
-    if "shock_position" in first:
+    if "shock_position" in names:
         panels.append("shock")
-    if "charge_profile" in first and "current_theory" in first:
+    if "charge_profile" in names and "current_theory" in names:
         panels.append("hydro")
     fig, axes = plt.subplots(1, len(panels), figsize=(5.2 * len(panels), 4.2))
 
     # density profile
     ax = axes[panels.index("profile")]
-    d = first["density_profile/value"][-1]
-    sites = first["density_profile/bins"][:]
+    profile = run.series("density_profile")
+    d = profile["value"][-1]
+    sites = profile["bins"]
     for n in range(3):
         ax.plot(sites, d[:, n], label=f"P(n = {n})")
-    if "shock_position" in first:
-        ax.axvline(first["shock_position/value"][-1], color="k", ls=":", label="shock (last)")
+    if "shock_position" in names:
+        ax.axvline(run.series("shock_position")["value"][-1], color="k", ls=":",
+                   label="shock (last)")
     ax.set_xlabel("site")
     ax.set_ylabel("occupation probability")
     ax.set_title("density profile (time average)")
@@ -82,16 +84,18 @@ def main():
 
     # current against density
     ax = axes[panels.index("current")]
-    if "current_theory" in first:
-        dens = first["current_theory/bins"][:]
-        ax.plot(dens, first["current_theory/value"][0], "k-", label="theory (preset)")
-    family1 = "current_theory" in first and first["current_theory/bins"][0] < 0
+    if "current_theory" in names:
+        theory = run.series("current_theory")
+        dens = theory["bins"]
+        ax.plot(dens, theory["value"][0], "k-", label="theory (preset)")
+    family1 = "current_theory" in names and run.series("current_theory")["bins"][0] < 0
     for name in args.files:
-        f = h5py.File(name, "r")["observables"]
-        if "shock_position" in f:  # a moving shock: the time average is no stationary state
+        f = narrows_h5.open_run(name)
+        f.require_engine("kmc")
+        if f.has("shock_position"):  # a moving shock: the time average is no stationary state
             continue
-        p = f["density_profile/value"][-1]
-        pe = f["density_profile_error/value"][-1]
+        p = f.series("density_profile")["value"][-1]
+        pe = f.series("density_profile_error")["value"][-1]
         L = p.shape[0]
         bulk = slice(L // 4, L - L // 4)
         if family1:  # charge sigma = P(A) - P(B), A = state 0, B = state 2
@@ -100,8 +104,8 @@ def main():
         else:  # particles rho = P(1) + P(2)
             x = (p[bulk, 1] + p[bulk, 2]).mean()
             xe = np.sqrt((pe[bulk, 1] ** 2 + pe[bulk, 2] ** 2).mean() / max(1, bulk.stop - bulk.start))
-        j = f["current_mean/value"][-1]
-        je = f["current_mean_error/value"][-1]
+        j = f.series("current_mean")["value"][-1]
+        je = f.series("current_mean_error")["value"][-1]
         ax.errorbar([x], [j], xerr=[xe], yerr=[je], fmt="o", ms=4)
         print(f"{name}: bulk density {x:.5f}, current {j:.5f} +- {je:.2g}")
     ax.set_xlabel("charge sigma" if family1 else "particle density rho")
@@ -111,15 +115,16 @@ def main():
 
     if "shock" in panels:
         ax = axes[panels.index("shock")]
-        t = first["shock_position/time"][:]
-        m = first["shock_position/value"][:]
-        var = first["shock_position_variance/value"][:]
-        ax.errorbar(t, m - m[0], yerr=first["shock_position_error/value"][:], fmt=".",
+        shock = run.series("shock_position")
+        t = shock["time"]
+        m = shock["value"]
+        var = run.series("shock_position_variance")["value"]
+        ax.errorbar(t, m - m[0], yerr=run.series("shock_position_error")["value"], fmt=".",
                     label="mean displacement")
-        ax.errorbar(t, var - var[0], yerr=first["shock_position_variance_error/value"][:], fmt=".",
-                    label="variance growth")
-        if "shock_theory" in first:
-            v, D = first["shock_theory/value"][0]
+        ax.errorbar(t, var - var[0], yerr=run.series("shock_position_variance_error")["value"],
+                    fmt=".", label="variance growth")
+        if "shock_theory" in names:
+            v, D = run.series("shock_theory")["value"][0]
             ax.plot(t, v * t, "C0-", label=f"v t (v = {v:.4g})")
             ax.plot(t, 2 * D * t, "C1-", label=f"2 D t (D = {D:.4g})")
         ax.set_xlabel("time")
@@ -129,12 +134,13 @@ def main():
 
     if "hydro" in panels:
         ax = axes[panels.index("hydro")]
-        q = first["charge_profile/value"][:]
-        t = first["charge_profile/time"][:]
+        charge = run.series("charge_profile")
+        q = charge["value"]
+        t = charge["time"]
         b = max(1, args.block)
-        x = block(first["charge_profile/bins"][:], b)
+        x = block(charge["bins"], b)
         picks = sorted(set([0, len(t) // 3, 2 * len(t) // 3, len(t) - 1]))
-        scene_text = h5py.File(args.files[0], "r")["parameters/scene"][()].decode()
+        scene_text = run.scene_text()
         solution = continuum_solution(find_narrows(args.narrows), scene_text, block(q[0], b), b, t)
         hydro = [solution[i] for i in picks]
         jump = abs(block(q[0], b)[0] - block(q[0], b)[-1])
@@ -159,4 +165,4 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(narrows_h5.run_tool("kmc_plot", main))

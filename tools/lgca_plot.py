@@ -10,19 +10,19 @@
 - tagged VACF (/observables/vacf): FHP models on log-log axes, Z(t) + (1 - d)/N (eq 22) with its
   error, the power-law fit Z ~ t^-a over [--tail-first, --tail-last] (weighted by the error;
   prints a and its error) and eq 19 at t = 1; the 1D model on linear axes with the plateau
-  -(1 - d)/N of eq 22 (seed 002 fig 1);
-- colloid, held or moving (/observables/colloid_vacf, colloid_diffusion; seed 002 fig 3): the canonical
-  VACF Z(t) (of U - V, V the conserved centre-of-mass velocity, + M/M_tot: the eq 22 analogue)
-  on log-log axes with the unsteady-Stokes theory of a disc in a 2D fluid (held_disc_vacf) and
-  its asymptote M/(8 pi rho nu t); prints local exponents over --colloid-windows (Z averaged
-  over +-10 % in t, jackknife errors over the blocks of all files); D(t) against ln t with the
-  straight-line fit over [--colloid-first, --colloid-last], R^2, the curvature d2D/d(ln t)^2
-  (jackknife errors) and the theory's slope. The theory is that of a free disc without the
-  2D renormalisation (D(t) in D + nu, seed 002 §4.3): the held disc's, and for a moving disc
-  a reference it departs from at late times. A chained run continues its averages (they are in
-  the checkpoint): give the last segment's observables-<step>.h5 only. Several files (e.g.
-  runs with other seeds, or segments written before the averages were checkpointed) are
-  averaged with equal weights.
+  -(1 - d)/N of eq 22 (van der Hoef & Frenkel fig 1);
+- colloid, held or moving (/observables/colloid_vacf, colloid_diffusion; van der Hoef & Frenkel
+  fig 3): the canonical VACF Z(t) (of U - V, V the conserved centre-of-mass velocity, + M/M_tot:
+  the eq 22 analogue) on log-log axes with the unsteady-Stokes theory of a disc in a 2D fluid
+  (held_disc_vacf) and its asymptote M/(8 pi rho nu t); prints local exponents over
+  --colloid-windows (Z averaged over +-10 % in t, jackknife errors over the blocks of all files);
+  D(t) against ln t with the straight-line fit over [--colloid-first, --colloid-last], R^2, the
+  curvature d2D/d(ln t)^2 (jackknife errors) and the theory's slope. The theory is that of a free
+  disc without the 2D renormalisation (D(t) in D + nu, van der Hoef & Frenkel §4.3): the held
+  disc's, and for a moving disc a reference it departs from at late times. A chained run continues
+  its averages (they are in the checkpoint): give the last segment's observables-<step>.h5 only.
+  Several files (e.g. runs with other seeds, or segments written before the averages were
+  checkpointed) are averaged with equal weights.
 
 Usage: tools/lgca_plot.py OUT/observables.h5 [MORE.h5 ...] [--png FILE] [--first T0] [--last T1]
                           [--tail-first T0] [--tail-last T1] [--colloid-first T0] [--colloid-last T1]
@@ -31,10 +31,11 @@ Usage: tools/lgca_plot.py OUT/observables.h5 [MORE.h5 ...] [--png FILE] [--first
 import argparse
 import math
 import os
-import tomllib
+import sys
 
-import h5py
 import numpy as np
+
+import narrows_h5
 
 
 def boltzmann_nu(model, d):
@@ -48,13 +49,6 @@ def boltzmann_nu(model, d):
     if model == "fhp-saturated":
         return 1 / (12 * d * e * (1 + 2 * d * e)) - 1 / 8
     raise ValueError(model)
-
-
-def scene_of(f):
-    text = f["parameters/scene"][()]
-    if isinstance(text, bytes):
-        text = text.decode()
-    return tomllib.loads(text)
 
 
 def fit_rate(t, a, first, last):
@@ -72,21 +66,21 @@ def fit_tail(t, z, e, first, last):
 
 
 def vacf_panel(ax, g, lat, args):
-    z, e, lags = g["value"][()], g["error"][()], g["lags"][()]
+    z, e, lags = g["value"], g["error"], g["lags"]
     if lat["model"] == "dhumieres-1d":
-        n = float(g["particles"][()][0])
+        n = g.number("particles")
         ax.plot(lags[1:], z[1:], lw=0.8, label=f"L = {lat['size'][0]}, N = {n:.0f}")
         ax.fill_between(lags[1:], (z - e)[1:], (z + e)[1:], alpha=0.3, lw=0)
-        ax.axhline(g["plateau_theory"][()][0], ls="--", color="k", lw=0.8,
-                   label="eq 22 plateau -(1 - d)/N" if g["plateau_theory"][()][0] else "0")
-        lim = 10 * max(abs(g["plateau_theory"][()][0]), float(np.median(e[1:])))
+        ax.axhline(g["plateau_theory"][0], ls="--", color="k", lw=0.8,
+                   label="eq 22 plateau -(1 - d)/N" if g["plateau_theory"][0] else "0")
+        lim = 10 * max(abs(g["plateau_theory"][0]), float(np.median(e[1:])))
         ax.set_ylim(-lim, lim)
         ax.set_xlabel("t")
         ax.set_ylabel("Z(t) = <v(0) v(t)> / <v^2>")
         ax.set_title(f"d'Humieres 1D, d = {lat['density']}")
         ax.legend(fontsize=8)
         return
-    zc = g["corrected"][()]
+    zc = g["corrected"]
     t = lags.astype(float)
     last = args.tail_last if args.tail_last is not None else t[-1]
     ok = zc > 0
@@ -98,16 +92,16 @@ def vacf_panel(ax, g, lat, args):
         return
     a, da, c = fit_tail(t, zc, e, args.tail_first, last)
     print(f"{lat['model']} d = {lat['density']}: Z(1) = {z[1]:.6f} +- {e[1]:.2g} (eq 19 "
-          f"{g['one_step_theory'][()][0]:.6f}); tail Z + (1-d)/N ~ t^-a, a = {a:.4f} +- {da:.4f} "
-          f"over lags {args.tail_first:g}..{last:g} ({int(g['curves'][()][0])} curves; the error "
+          f"{g['one_step_theory'][0]:.6f}); tail Z + (1-d)/N ~ t^-a, a = {a:.4f} +- {da:.4f} "
+          f"over lags {args.tail_first:g}..{last:g} ({int(g['curves'][0])} curves; the error "
           f"treats lags as independent and understates the spread of independent runs)")
     ax.errorbar(t[1:][ok[1:]], zc[1:][ok[1:]], yerr=e[1:][ok[1:]], fmt=".", ms=3, lw=0.5,
                 label="Z(t) + (1 - d)/N (eq 22)")
     tt = np.array([args.tail_first, last])
     ax.loglog(tt, 1.3 * np.exp(c) * tt ** -a, "-", color="C3", lw=2, zorder=3, label=f"fit (x 1.3 for visibility): t^-{a:.3f}")
-    t0 = float(g["mean_free_time"][()][0])
+    t0 = g.number("mean_free_time")
     tb = np.linspace(1, min(t[-1], 15 * t0), 50)
-    ax.loglog(tb, g["one_step_theory"][()][0] ** tb, "--", lw=0.8, label="Boltzmann Z(1)^t")
+    ax.loglog(tb, g["one_step_theory"][0] ** tb, "--", lw=0.8, label="Boltzmann Z(1)^t")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("t")
@@ -159,12 +153,12 @@ def colloid_curves(groups):
     segments of a chained run count with equal weights; their blocks are pooled). 'corrected'
     is the canonical curve (the eq 22 analogue + M/M_tot, see colloid_correlations.hpp); files
     written before it existed give the raw value and no blocks."""
-    lags = groups[0]["lags"][()].astype(float)
+    lags = groups[0]["lags"].astype(float)
     key = "corrected" if "corrected" in groups[0] else "value"
-    v = np.array([g[key][()] for g in groups]).mean(axis=0)
+    v = np.array([g[key] for g in groups]).mean(axis=0)
     blocks = None
     if "corrected_blocks" in groups[0]:
-        blocks = np.concatenate([g["corrected_blocks"][()].reshape(-1, len(lags)) for g in groups])
+        blocks = np.concatenate([g["corrected_blocks"].reshape(-1, len(lags)) for g in groups])
     return lags, v, blocks, key
 
 
@@ -185,29 +179,27 @@ def jackknife(blocks, f):
     return full, math.sqrt((b - 1) / b * ((jk - jk.mean()) ** 2).sum())
 
 
-def colloid_theory(scene, f0):
+def colloid_theory(scene, vacf0):
     """M (disc + gas inside), M_tot, rho, nu of the scene: the eq 22 plateau M / M_tot gives M."""
     lat, col = scene["lattice"], scene["colloid"]
     d = lat["density"]
     rho = 6 * d / (math.sqrt(3) / 2) # 6 links of mean occupation d per site of area sqrt(3)/2
     m_tot = col["mass"] + 6 * d * lat["size"][0] * lat["size"][1]
-    plateau = f0["observables/colloid_vacf/plateau"][()][0] if "plateau" in f0[
-        "observables/colloid_vacf"] else 0.0
+    plateau = vacf0["plateau"][0] if "plateau" in vacf0 else 0.0
     m = plateau * m_tot if plateau > 0 else col["mass"]
     return m, m_tot, rho, boltzmann_nu(lat["model"], d)
 
 
-def colloid_panel(ax, name, groups, args, scene, f0):
+def colloid_panel(ax, name, groups, args, scene, vacfs):
+    """groups: the observable `name` of each file; vacfs: the colloid_vacf of each file."""
     lags, v, blocks, key = colloid_curves(groups)
     np.seterr(all="ignore") # a short run (a test) leaves long lags empty: NaN, not an error
-    m, m_tot, rho, nu0 = colloid_theory(scene, f0)
+    m, m_tot, rho, nu0 = colloid_theory(scene, vacfs[0])
     nu = args.colloid_nu if args.colloid_nu is not None else nu0
     a = args.colloid_a if args.colloid_a is not None else scene["colloid"]["radius"]
     held = scene["colloid"].get("held", True)
     what = "held colloid" if held else "moving colloid"
-    u2 = np.mean([g["mean_square_velocity"][()][0] for g in groups]) if name == "colloid_vacf" \
-        else np.mean([f["observables/colloid_vacf/mean_square_velocity"][()][0]
-                      for f in [g.file for g in groups]])
+    u2 = np.mean([g["mean_square_velocity"][0] for g in vacfs])
     last = args.colloid_last if args.colloid_last is not None else lags[-1]
     sel = (lags >= args.colloid_first) & (lags <= last)
     tag = "canonical (+ M/M_tot)" if key == "corrected" else "raw"
@@ -308,14 +300,13 @@ def main():
                     help="hydrodynamic radius of the colloid theory (default: colloid.radius)")
     args = ap.parse_args()
 
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = narrows_h5.pyplot()
 
-    files = [h5py.File(p, "r") for p in args.files]
-    scene = scene_of(files[0])
+    files = [narrows_h5.open_run(p) for p in args.files]
+    files[0].require_engine("lgca")
+    scene = files[0].scene()
     lat = scene["lattice"]
-    obs = files[0]["observables"]
+    obs = files[0].names()
     panels = []
     if "shear_wave" in obs:
         panels.append("shear")
@@ -328,8 +319,8 @@ def main():
     fig, axes = plt.subplots(1, len(panels), figsize=(6 * len(panels), 4.5), squeeze=False)
     for ax, panel in zip(axes[0], panels):
         if panel == "shear":
-            t = obs["shear_wave/step"][()].astype(float)
-            runs = np.array([f["observables/shear_wave/value"][()] for f in files])
+            t = files[0].series("shear_wave")["step"].astype(float)
+            runs = np.array([f.series("shear_wave")["value"] for f in files])
             a = runs.mean(axis=0)
             ly = lat["size"][1] * math.sqrt(3) / 2
             k = 2 * math.pi / ly
@@ -355,21 +346,23 @@ def main():
             ax.set_title(f"{lat['model']}, d = {lat['density']}, {lat['size'][0]} x {lat['size'][1]}")
             ax.legend(fontsize=8)
         elif panel == "vacf":
-            vacf_panel(ax, obs["vacf"], lat, args)
+            vacf_panel(ax, files[0].series("vacf"), lat, args)
         elif panel.startswith("colloid"):
-            colloid_panel(ax, panel, [f["observables/" + panel] for f in files], args, scene,
-                          files[0])
+            colloid_panel(ax, panel, [f.series(panel) for f in files], args, scene,
+                          [f.series("colloid_vacf") for f in files])
         else:
             if "velocity" in obs:
-                u = obs["velocity/value"][-1]
+                velocity = files[0].series("velocity")
+                u = velocity["value"][-1]
                 im = ax.imshow(u[:, :, 0], origin="lower", aspect="auto", cmap="viridis")
                 fig.colorbar(im, ax=ax, label="u_x (block average)")
-                ax.set_title(f"u_x at step {obs['velocity/step'][-1]}")
+                ax.set_title(f"u_x at step {velocity['step'][-1]}")
             else:
-                rho = obs["density/value"][-1]
+                density = files[0].series("density")
+                rho = density["value"][-1]
                 im = ax.imshow(rho, origin="lower", aspect="auto", cmap="viridis")
                 fig.colorbar(im, ax=ax, label="particles per site (block average)")
-                ax.set_title(f"density at step {obs['density/step'][-1]}")
+                ax.set_title(f"density at step {density['step'][-1]}")
             ax.set_xlabel("block along x")
             ax.set_ylabel("block along y (rows)")
     fig.tight_layout()
@@ -379,4 +372,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(narrows_h5.run_tool("lgca_plot", main))

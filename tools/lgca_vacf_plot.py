@@ -1,13 +1,13 @@
 #!/usr/bin/python3
-"""VACF of a tagged particle in the 1D d'Humieres lattice gas (seed 002 fig 1).
+"""VACF of a tagged particle in the 1D d'Humieres lattice gas (van der Hoef & Frenkel fig 1).
 
 Reads the files DIR/vacf_L<L>.h5 that tests/validation/test_lgca_vacf_1d.cpp writes when it
 runs with NARROWS_VACF_OUT=DIR (datasets vacf, vacf_error, particles, density, L, plateau,
 plateau_error, window_start, window_end, ensemble) and plots the normalised VACF
-Z(t) = <v(0)v(t)>/<v^2> against t for every L found (seed: 500, 2000, 100000), zoomed on the
-plateaus, with the line -(1 - d)/N of eq 22 for each L and the measured window mean.
-A second panel shows N Z(t), where every plateau of the P = 0 ensemble sits at -(1 - d), with
-the window mean as a thick bar (systems whose N Z is dominated by noise are left out).
+Z(t) = <v(0)v(t)>/<v^2> against t for every L found (van der Hoef & Frenkel: 500, 2000, 100000),
+zoomed on the plateaus, with the line -(1 - d)/N of eq 22 for each L and the measured window mean.
+A second panel shows N Z(t), where every plateau of the P = 0 ensemble sits at -(1 - d), with the
+window mean as a thick bar (systems whose N Z is dominated by noise are left out).
 
 Usage:
   NARROWS_VACF_OUT=/tmp/vacf build/tests/validation_tests --gtest_filter='LgcaVacf1d*'
@@ -18,19 +18,20 @@ import glob
 import os
 import sys
 
-import h5py
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+import narrows_h5
+from narrows_h5 import NarrowsDataError
+
+NAMES = ("vacf", "vacf_error", "particles", "density", "L", "plateau", "plateau_error",
+         "window_start", "window_end", "ensemble")
 
 
 def load(path):
-    with h5py.File(path, "r") as f:
-        out = {k: f[k][()] for k in f.keys()}
-    out["ensemble"] = out["ensemble"].decode() if isinstance(out["ensemble"], bytes) else str(
-        out["ensemble"])
+    out = narrows_h5.read_datasets(path)  # strings (ensemble) as str
+    for name in NAMES:
+        if name not in out:
+            raise NarrowsDataError(path, f"no /{name}")
     return out
 
 
@@ -42,9 +43,11 @@ def main():
     files = sorted(glob.glob(os.path.join(args.dir, "vacf_L*.h5")),
                    key=lambda p: int(os.path.basename(p)[6:-3]))
     if not files:
-        sys.exit(f"no vacf_L*.h5 in {args.dir}")
+        raise NarrowsDataError(args.dir, "no vacf_L*.h5", "a folder that NARROWS_VACF_OUT gave "
+                               "the validation test (usage above)")
     runs = [load(p) for p in files]
 
+    plt = narrows_h5.pyplot()
     fig, (ax, axn) = plt.subplots(2, 1, figsize=(7, 8), sharex=True)
     colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     for k, r in enumerate(runs):
@@ -83,4 +86,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(narrows_h5.run_tool("lgca_vacf_plot", main))

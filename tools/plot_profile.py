@@ -20,18 +20,11 @@ import argparse
 import math
 import os
 import sys
-import tomllib
 
-import h5py
-import matplotlib
 import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402  (backend must be chosen first)
-
-
-class InputError(Exception):
-    pass
+import narrows_h5
+from narrows_h5 import NarrowsDataError
 
 
 def second_half(values):
@@ -62,34 +55,23 @@ def theory_viscosity(collision, dims, n, dt, angle_deg, kT):
 
 
 def read_run(outdir):
-    path = os.path.join(outdir, "observables.h5")
-    if not os.path.isfile(path):
-        raise InputError(f"{path}: no such file")
-    if not h5py.is_hdf5(path):
-        raise InputError(f"{path}: not an HDF5 file")
-    with h5py.File(path, "r") as f:
-        if "observables/velocity_profile/value" not in f:
-            raise InputError(f"{path}: no /observables/velocity_profile (add it to "
-                             "output.observables)")
-        group = f["observables/velocity_profile"]
-        value = np.asarray(group["value"][()], dtype=float)
-        if value.shape[0] == 0:
-            raise InputError(f"{path}: /observables/velocity_profile has no samples")
-        if "bins" in group:
-            bins = np.asarray(group["bins"][()], dtype=float)
-        else:  # fall back to unit-width bins from y = 0
-            bins = np.arange(value.shape[1]) + 0.5
-        steps = np.asarray(group["step"][()]) if "step" in group else None
-        temperature = None
-        if "observables/temperature/value" in f:
-            t = np.asarray(f["observables/temperature/value"][()], dtype=float)
-            if t.shape and t.shape[0] > 0:
-                temperature = float(np.mean(second_half(t)))
-        scene_text = None
-        if "parameters/scene" in f:
-            scene_text = f["parameters/scene"][()]
-            if isinstance(scene_text, bytes):
-                scene_text = scene_text.decode("utf-8")
+    run = narrows_h5.open_run(outdir)
+    path = run.path
+    group = run.series("velocity_profile")
+    value = np.asarray(group["value"], dtype=float)
+    if value.shape[0] == 0:
+        raise NarrowsDataError(path, "/observables/velocity_profile has no samples")
+    if group.bins is not None:
+        bins = np.asarray(group.bins, dtype=float)
+    else:  # fall back to unit-width bins from y = 0
+        bins = np.arange(value.shape[1]) + 0.5
+    steps = np.asarray(group.step) if group.step is not None else None
+    temperature = None
+    if run.has("temperature"):
+        t = np.asarray(run.series("temperature").value, dtype=float)
+        if t.shape and t.shape[0] > 0:
+            temperature = float(np.mean(second_half(t)))
+    scene_text = run.scene_text(required=False)
     ux = value if value.ndim == 2 else value[..., 0]  # [T][bins]: x-velocity
     samples = second_half(ux)
     if steps is not None and len(steps) == len(ux):
@@ -104,10 +86,7 @@ def scene_parameters(scene_text, path):
     """Dict of what the theory needs, or None if the scene has neither flow."""
     if not scene_text:
         return None
-    try:
-        scene = tomllib.loads(scene_text)
-    except tomllib.TOMLDecodeError as e:
-        raise InputError(f"{path}: /parameters/scene is not valid TOML: {e}") from e
+    scene = narrows_h5.parse_scene(scene_text, path)
     force = scene.get("body_force", {})
     if "walls" in scene and "value" in force:
         flow = "poiseuille"
@@ -130,7 +109,7 @@ def scene_parameters(scene_text, path):
             "kT": float(fluid.get("kT", 1.0)),
         }
     except (KeyError, IndexError, TypeError, ValueError) as e:
-        raise InputError(f"{path}: scene lacks what the theory needs ({e!r})") from e
+        raise NarrowsDataError(path, f"scene lacks what the theory needs ({e!r})") from e
 
 
 def main(argv):
@@ -140,13 +119,10 @@ def main(argv):
     args = parser.parse_args(argv[1:])
     png = args.png or os.path.join(args.outdir, "profile.png")
 
-    try:
-        path, y, samples, temperature, scene_text, averaged = read_run(args.outdir)
-        params = scene_parameters(scene_text, path)
-    except InputError as e:
-        print(f"plot_profile: {e}", file=sys.stderr)
-        return 2
+    path, y, samples, temperature, scene_text, averaged = read_run(args.outdir)
+    params = scene_parameters(scene_text, path)
 
+    plt = narrows_h5.pyplot()
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
     u = samples.mean(axis=0)
     ax.plot(y, u, "o", ms=4, label=f"measured ({averaged})")
@@ -225,4 +201,4 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv))
+    sys.exit(narrows_h5.run_tool("plot_profile", main, sys.argv))

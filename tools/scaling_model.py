@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""Efficiency of the full seed 001 Table 6.1 channel (l = 12000 b) on many ranks, predicted from
-what a short run here measures (issue 21, acceptance 7). tools/scaling_model.sh makes the inputs.
+"""Efficiency of the full Kanehl (thesis) Table 6.1 channel (l = 12000 b) on many ranks, predicted
+from what a short run here measures (issue 21, acceptance 7). tools/scaling_model.sh makes the
+inputs.
 
 Measured (inputs):
   * the MPI calls per step of each kind and the bytes a rank sends per step, from two runs of the
@@ -12,7 +13,7 @@ Measured (inputs):
 Model (stated, not measured here):
   * compute time per step and rank = fluid particles per rank x the one-rank cost: the work is
     proportional to the slab (the colloids and their contacts go with the fluid they displace);
-    no load imbalance (the jammed plugs of the seed's runs make one, not modelled);
+    no load imbalance (the jammed plugs of the thesis' runs make one, not modelled);
   * a message costs alpha + bytes / bandwidth (alpha = 2 us, 10 GB/s: an InfiniBand cluster);
   * MPI_Alltoall of one int per rank: Bruck's algorithm, ceil(log2 P) rounds of alpha + P/2 x 4
     bytes; MPI_Allreduce/Allgather of a few numbers: 2 ceil(log2 P) alpha;

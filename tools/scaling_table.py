@@ -48,9 +48,8 @@ def main():
         rows.append((p, speedup, eff))
         print(f"{p:>6} {n:>12} {t:>10.4g} {rate:>17.4g} {speedup:>8.3f} {eff:>10.3f}")
     if a.png:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+        import narrows_h5  # the plot setup every tool shares (no HDF5 here)
+        plt = narrows_h5.pyplot()
         fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(9, 3.5))
         ps = [r[0] for r in rows]
         ax1.plot(ps, [r[1] for r in rows], "o-", label="measured")

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Sedimentation observables of seed 000 ch.4 from one or more run directories.
+"""Sedimentation observables of Tabatabaei (2008) ch.4 from one or more run directories.
 
 Usage: sedimentation.py RUN_DIR [RUN_DIR ...] [--skip 0.25] [--blocks 10] [--chain PNG]
                         [--wake PNG]
@@ -8,9 +8,9 @@ For every run: the colloids' mean settling velocity along the gravity (x) axis i
 co-moving with the centre of mass (eq 4.8-4.10, the run's "settling_velocity" series, averaged
 over the samples after the first --skip fraction, error from --blocks block means), and the
 Reynolds number Re = v_s L_y / nu (eq 4.11) with nu from SRD kinetic theory. With several runs
-at different colloids.gravity, a linear fit v_s = mu g with its R^2 (seed 000 fig 4.10).
-With --chain, the chain distances D_i(t) of §4.5 from "colloid_positions": colloids labelled
-by their initial x, groups of 5 consecutive ones, D_i = mean distance to the next colloid within
+at different colloids.gravity, a linear fit v_s = mu g with its R^2 (Tabatabaei (2008) fig 4.10).
+With --chain, the chain distances D_i(t) of §4.5 from "colloid_positions": colloids labelled by
+their initial x, groups of 5 consecutive ones, D_i = mean distance to the next colloid within
 group i; plotted against time for the first run.
 With --wake, the fluid number density along the channel in the frame of each colloid, from the
 first run's trajectory.h5 (output.trajectory_every, trajectory_subsample = 1): in the colloid's
@@ -22,26 +22,25 @@ a settling colloid and leaves it thinned behind; SRD's flow carries it round.
 import argparse
 import os
 import sys
-import tomllib
 
-import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import narrows_h5  # noqa: E402
+from narrows_h5 import NarrowsDataError  # noqa: E402
 from plot_profile import theory_viscosity  # noqa: E402
 
 
-def read(run):
-    path = os.path.join(run, "observables.h5")
-    with h5py.File(path, "r") as f:
-        scene = tomllib.loads(f["parameters/scene"][()].decode())
-        obs = f["observables"]
-        if "settling_velocity" not in obs:
-            sys.exit(f"{path}: no /observables/settling_velocity (add it to output.observables)")
-        v = obs["settling_velocity/value"][()][:, 0]
-        t = obs["settling_velocity/time"][()]
-        pos = obs["colloid_positions/value"][()] if "colloid_positions" in obs else None
-        pos_t = obs["colloid_positions/time"][()] if "colloid_positions" in obs else None
+def read(run_dir):
+    run = narrows_h5.open_run(run_dir)
+    scene = run.scene()
+    settling = run.series("settling_velocity")
+    v = settling["value"][:, 0]
+    t = settling["time"]
+    pos = pos_t = None
+    if run.has("colloid_positions"):
+        positions = run.series("colloid_positions")
+        pos, pos_t = positions["value"], positions["time"]
     return scene, t, v, pos_t, pos
 
 
@@ -60,9 +59,9 @@ def unwrap(x, L):
 
 
 def chain_distances(pos, L, g, group=5):
-    """D_i(t) of seed 000 §4.5: colloids ordered by initial x from the head (the front in the
-    direction of gravity; for g = 0 the largest x) to the tail, gaps d between successive ones,
-    D_i = mean of group i's 5 gaps, so D_1 is at the head as in the seed's fig 4.12."""
+    """D_i(t) of Tabatabaei (2008) §4.5: colloids ordered by initial x from the head (the front in
+    the direction of gravity; for g = 0 the largest x) to the tail, gaps d between successive ones,
+    D_i = mean of group i's 5 gaps, so D_1 is at the head as in Tabatabaei's fig 4.12."""
     x = unwrap(pos[:, :, 0], L)
     order = np.argsort(x[0])
     if g >= 0.0:
@@ -88,14 +87,14 @@ def growth_rates(t, D, blocks):
 
 def wake_profile(run, skip, blocks, half=40.0, width=1.0):
     """Fluid density against dx = x - x_c (dx > 0 ahead along +x) in the colloid frames."""
-    path = os.path.join(run, "trajectory.h5")
-    with h5py.File(path, "r") as f:
-        if int(f["parameters/subsample"][()]) != 1:
-            sys.exit(f"{path}: --wake needs every fluid particle (output.trajectory_subsample = 1)")
-        L, W = f["particles/fluid/box/edges"][()][:2]
-        xf = f["particles/fluid/position/value"]
-        xc = f["particles/colloids/position/value"][()]
-        r = f["particles/colloids/radius"][()]
+    with narrows_h5.open_trajectory(run) as f:
+        if int(f.parameter("subsample")) != 1:
+            raise NarrowsDataError(f.path, "--wake needs every fluid particle",
+                                   "output.trajectory_subsample = 1")
+        L, W = f.array("particles/fluid/box/edges")[:2]
+        xf = f.dataset("particles/fluid/position/value")  # read frame by frame
+        xc = f.array("particles/colloids/position/value")
+        r = f.array("particles/colloids/radius")
         edges = np.arange(-half, half + 0.5 * width, width)
         frames = range(int(skip * xf.shape[0]), xf.shape[0])
         lane = np.zeros((len(frames), len(edges) - 1))
@@ -137,9 +136,7 @@ def print_wake(run, skip, blocks, png):
     print(f"lane, ahead (2 < dx < 12) minus behind (-12 < dx < -2): {diff:+.3f} +- {err:.3f} "
           f"({diff / n0:+.1%} of n)")
     if png:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+        plt = narrows_h5.pyplot()
         plt.errorbar(x, lane, dl, label="lane |y - y_c| < r")
         plt.errorbar(x, side, ds, label="beside the colloid")
         plt.axhline(n0, color="grey", lw=0.5)
@@ -192,9 +189,7 @@ def main():
         print(f"| {run} | {g:g} | {nc} | {phi:.4f} | {m:.5f} | {e:.5f} | {re:.4f} |")
         gs.append(g), vs.append(m), es.append(e), ns.append(nc), phis.append(phi)
         if a.chain and run == a.runs[0] and pos is not None:
-            import matplotlib
-            matplotlib.use("Agg")
-            import matplotlib.pyplot as plt
+            plt = narrows_h5.pyplot()
             D = chain_distances(pos, float(scene["domain"]["size"][0]), g)
             for i in range(D.shape[1]):
                 plt.plot(pos_t, D[:, i], label=f"D_{i + 1}")
@@ -225,8 +220,8 @@ def main():
             print(f"weighted fit: slope {sl:.4f} +- {dsl:.4f}, intercept "
                   f"{ic:.5f} +- {dic:.5f}, chi^2/dof = {chi2:.2f}")
     elif len(set(phis)) >= 2 and np.all(np.array(es) > 0):
-        # Seed 000 §4.2-4.3: v_s against phi at fixed g, phi varied by the number of colloids
-        # (fig 4.6, 4.7) or by the channel length (fig 4.3, 4.4, 4.8). If chi^2/dof > 1 the block
+        # Tabatabaei (2008) §4.2-4.3: v_s against phi at fixed g, phi varied by the number of
+        # colloids (fig 4.6, 4.7) or by the channel length (fig 4.3, 4.4, 4.8). If chi^2/dof > 1 the block
         # errors are too small (blocks shorter than the slowest correlation time); the error is
         # then scaled by sqrt(chi^2/dof).
         n, phi, v, e = np.array(ns, float), np.array(phis), np.array(vs), np.array(es)
@@ -236,11 +231,11 @@ def main():
         print(f"\nweighted fit against phi ({varied} varied): dv_s/dphi = {sp:.4f} +- {dsp:.4f} "
               f"({sp / dsp:+.1f} sigma; {sp / (dsp * scale):+.1f} sigma with the error scaled by "
               f"sqrt(chi^2/dof)), v_s(0) = {ic:.5f} +- {dic:.5f}, relative {sp / ic:+.2f} +- "
-              f"{dsp / abs(ic):.2f} per unit phi, chi^2/dof = {chi2:.2f} (seed fig 4.6: "
-              f"v_s = 0.15 phi + 0.019)")
+              f"{dsp / abs(ic):.2f} per unit phi, chi^2/dof = {chi2:.2f} (Tabatabaei (2008) "
+              f"fig 4.6: v_s = 0.15 phi + 0.019)")
         if len(set(ns)) >= 2:
             sl, dsl, _, _, _ = weighted_line(n, v, e)
             print(f"against N_c: dv_s/dN_c = {sl:.3e} +- {dsl:.1e}")
 
 if __name__ == "__main__":
-    main()
+    sys.exit(narrows_h5.run_tool("sedimentation", main))

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Fits K_d of the segregation theory (seed 001 ch.5, eq 5.23) to the per-kind kernel density
+"""Fits K_d of the segregation theory (Kanehl (thesis) ch.5, eq 5.23) to the per-kind kernel density
 profiles (observable density_kde, eq 5.2) of a particle run with [[colloids.kind]].
 
   /usr/bin/python3 tools/segregation_fit.py RUN_DIR --diffusivity D_1 [D_2] [options]
@@ -28,34 +28,27 @@ import os
 import subprocess
 import sys
 import tempfile
-import tomllib
 
-import h5py
 import numpy as np
 
+import narrows_h5
 from continuum_run import find_narrows
+from narrows_h5 import NarrowsDataError
 
 
 class InputError(Exception):
-    pass
+    """A bad command line (bad data raise narrows_h5.NarrowsDataError)."""
 
 
 def read_run(run_dir):
-    path = os.path.join(run_dir, "observables.h5")
-    if not os.path.isfile(path):
-        raise InputError(f"{path}: not found; allowed: the output folder of a run with density_kde")
-    with h5py.File(path, "r") as f:
-        if "observables/density_kde" not in f:
-            raise InputError(f"{path}: no /observables/density_kde; allowed: a run that lists "
-                             "\"density_kde\" in output.observables")
-        g = f["observables/density_kde"]
-        out = {"y": g["bins"][()], "value": g["value"][()], "error": g["error"][()],
-               "width": float(g["width"][()][0]), "path": path}
-        scene = f["parameters/scene"][()]
-        out["scene"] = tomllib.loads(scene.decode() if isinstance(scene, bytes) else scene)
-        if "observables/velocity_profile" in f:
-            v = f["observables/velocity_profile/value"][()]
-            out["velocity"] = v[v.shape[0] // 2:, :, 0].mean(axis=0)
+    run = narrows_h5.open_run(os.path.join(run_dir, narrows_h5.OBSERVABLES))
+    g = run.series("density_kde")
+    out = {"y": g["bins"], "value": g["value"], "error": g["error"],
+           "width": float(g["width"][0]), "path": run.path}
+    out["scene"] = run.scene()
+    if run.has("velocity_profile"):
+        v = run.series("velocity_profile")["value"]
+        out["velocity"] = v[v.shape[0] // 2:, :, 0].mean(axis=0)
     return out
 
 
@@ -65,10 +58,10 @@ def channel(run, diffusivity, centre_speed):
     size = s["domain"]["size"]
     kinds = s.get("colloids", {}).get("kind")
     if not kinds:
-        raise InputError(f"{run['path']}: the scene has no [[colloids.kind]]; allowed: a run with "
-                         "one or two colloid kinds")
+        raise NarrowsDataError(run["path"], "the scene has no [[colloids.kind]]",
+                               "a run with one or two colloid kinds")
     if len(kinds) > 2:
-        raise InputError(f"{run['path']}: {len(kinds)} colloid kinds; allowed: one or two")
+        raise NarrowsDataError(run["path"], f"{len(kinds)} colloid kinds", "one or two")
     if len(diffusivity) != len(kinds):
         raise InputError(f"--diffusivity: {len(diffusivity)} values for {len(kinds)} kinds; "
                          "allowed: one D_0 > 0 per kind")
@@ -80,8 +73,7 @@ def channel(run, diffusivity, centre_speed):
         out.append({"radius": a, "fraction": k["count"] * body / volume, "diffusivity": d})
     if centre_speed is None:
         if "velocity" not in run:
-            raise InputError(f"{run['path']}: no velocity_profile for v0; allowed: "
-                             "--centre-speed V0")
+            raise NarrowsDataError(run["path"], "no velocity_profile for v0", "--centre-speed V0")
         centre_speed = float(np.max(run["velocity"]))
     return dims, size[1] / 2.0, out, centre_speed
 
@@ -104,11 +96,11 @@ def steady(narrows, dims, w, kinds, v0, k_d, k_eta, cells, work):
     if r.returncode != 0:
         raise InputError(f"narrows run of the segregation model at K_d = {k_d:g} failed: "
                          + (r.stderr.strip().splitlines() or ["?"])[-1])
-    with h5py.File(os.path.join(out, "observables.h5"), "r") as f:
-        if "observables/steady_density" not in f:
-            return None  # none at this K_d (e.g. close packing reached): chi^2 = infinity
-        g = f["observables/steady_density"]
-        return g["bins"][()], g["value"][()]
+    run = narrows_h5.open_run(out)
+    if not run.has("steady_density"):
+        return None  # none at this K_d (e.g. close packing reached): chi^2 = infinity
+    g = run.series("steady_density")
+    return g["bins"], g["value"]
 
 
 def main(argv):
@@ -143,8 +135,8 @@ def main(argv):
         norm = data.mean(axis=1, keepdims=True)
         data, err = data / norm, err / norm
         if np.any(err <= 0):
-            raise InputError(f"{run['path']}: density_kde errors of 0 in the fit region; allowed: "
-                             "a run with samples in every block")
+            raise NarrowsDataError(run["path"], "density_kde errors of 0 in the fit region",
+                                   "a run with samples in every block")
         with tempfile.TemporaryDirectory() as work:
             cache = {}
 
@@ -212,9 +204,7 @@ def main(argv):
                   f"{k['radius'] ** 3 * v0 / (w * w * k['diffusivity']):.4g}")
         print(f"channel: {dims}D, w = {w:g}, v0 = {v0:.5g}")
         if a.plot:
-            import matplotlib
-            matplotlib.use("Agg")
-            import matplotlib.pyplot as plt
+            plt = narrows_h5.pyplot()
             fig, ax = plt.subplots(figsize=(6, 4))
             for i in range(len(kinds)):
                 ax.errorbar(y[keep] / w, data[i], err[i], fmt="o", ms=3, label=f"kind {i} run")
@@ -224,9 +214,8 @@ def main(argv):
             ax.set_title(f"K_d = {k_best:.4g}")
             ax.legend()
             fig.savefig(os.path.join(a.run_dir, "segregation_fit.png"), dpi=120)
-    except InputError as e:
-        print(f"segregation_fit: {e}", file=sys.stderr)
-        return 2
+    except (InputError, NarrowsDataError) as e:
+        return narrows_h5.report("segregation_fit", e)
     return 0
 
 

@@ -1,18 +1,18 @@
 #!/usr/bin/python3
 """One shock two ways (issue 22, item 4, the kmc half): the three-state lattice gas (a kmc run
 with a shock, e.g. run/kmc_family2_shock.toml) against the conservation law of its preset's flux
-(seed 000 eq 2.60 / 2.126), solved by the continuum engine from the same Riemann data: the two
-densities are the kmc run's mean densities away from the shock, held as reservoirs.
+(Tabatabaei (2008) eq 2.60 / 2.126), solved by the continuum engine from the same Riemann data:
+the two densities are the kmc run's mean densities away from the shock, held as reservoirs.
 
 One PNG with three panels: density profiles at four times (kmc dots; continuum, sharp; the
 continuum shock smeared by the kmc shock's random walk, a Gaussian of variance 2 D_s t, dashed),
-the mean shock position against time (kmc, continuum, Rankine-Hugoniot, the seed's v_s), and
+the mean shock position against time (kmc, continuum, Rankine-Hugoniot, Tabatabaei's v_s), and
 its variance (kmc against 2 D_s t). A table of shock speed and diffusion constant from each
 source is printed and written next to the PNG (same name, .txt).
 
 Three ways (issue 22 item 4, --chain RUN_DIR): a second row for a sedimenting colloid chain, an
-mpcd run with colloids (run/sedimentation_chain_31.toml, seed 000 §4.5 and ch.5; see chain_shock.py):
-the chain's line density at four times against the continuum engine's colloid-chain flux (eq
+mpcd run with colloids (run/sedimentation_chain_31.toml, Tabatabaei (2008) §4.5 and ch.5; see
+chain_shock.py): the chain's line density at four times against the continuum engine's colloid-chain flux (eq
 5.3, c and c' of --c, --c-prime; co-moving frame, v_cm = 0), the head shock's position against
 time (mpcd, continuum, Rankine-Hugoniot c rho0 + c'), and the mean square of its displacement
 about the mean drift against the lag (2 D_s tau). The table gains the chain's rows.
@@ -26,9 +26,9 @@ import math
 import os
 import sys
 
-import h5py
 import numpy as np
 
+import narrows_h5
 from chain_shock import (continuum_chain, density, fit_line, read_chain,
                          speed_and_diffusion)
 from continuum_run import find_narrows, kmc_flux_lines, run_continuum
@@ -70,7 +70,7 @@ def three_ways(narrows, args):
     ok = np.isfinite(xs_c)
     v_c = fit_line(tc[ok][len(tc[ok]) // 2:], xs_c[ok][len(tc[ok]) // 2:])[1]
     rh = args.c * ch["rho0"] + args.c_prime
-    rh_seed = 5.71 * ch["rho0"] / float(ch["scene"]["domain"]["size"][1]) + 0.019
+    rh_fig5_1 = 5.71 * ch["rho0"] / float(ch["scene"]["domain"]["size"][1]) + 0.019
     mid = x[:, x.shape[1] // 3: 2 * x.shape[1] // 3].mean(axis=1)  # the chain's middle third
     v_mid = fit_line(t, mid)[1]
     # The same law with c from the chain's own bulk: c rho0 + c' = the middle third's speed.
@@ -88,8 +88,8 @@ def three_ways(narrows, args):
              f"| colloid chain, continuum engine (flux colloid-chain, c = {args.c:g}, c' = "
              f"{args.c_prime:g}, D = 0) | {v_c:.5g} | 0 |",
              f"| colloid chain, Rankine-Hugoniot c rho0 + c' | {rh:.5g} | |",
-             f"| colloid chain, Rankine-Hugoniot with seed 000 fig 5.1's c = 5.71, c' = 0.019 "
-             f"(rho read as colloids per unit area, rho0 / L_y) | {rh_seed:.5g} | |",
+             f"| colloid chain, Rankine-Hugoniot with Tabatabaei (2008) fig 5.1's c = 5.71, "
+             f"c' = 0.019 (rho read as colloids per unit area, rho0 / L_y) | {rh_fig5_1:.5g} | |",
              f"| colloid chain, mpcd middle third (bulk settling velocity, for c rho0 + c') | "
              f"{v_mid:.5g} | |",
              f"| colloid chain, continuum engine with c = {c_bulk:.4g} from that bulk velocity "
@@ -149,33 +149,30 @@ def main():
     args = ap.parse_args()
     narrows = find_narrows(args.narrows)
 
-    f = h5py.File(args.kmc, "r")
-    obs = f["observables"]
-    for need in ("charge_profile", "shock_position", "current_theory"):
-        if need not in obs:
-            sys.exit(f"shock_report.py: {args.kmc} has no /observables/{need}; allowed: a kmc run "
-                     "with a preset and a shock (kmc.samples > 0)")
-    scene_text = f["parameters/scene"][()]
-    scene_text = scene_text.decode() if isinstance(scene_text, bytes) else scene_text
-    q = obs["charge_profile/value"][:]  # [samples+1][L] mean charge per site
-    t = obs["charge_profile/time"][:]
+    run = narrows_h5.open_run(args.kmc)
+    allowed = "a kmc run with a preset and a shock (kmc.samples > 0)"
+    charge, shock, theory = (run.series(need, allowed)
+                             for need in ("charge_profile", "shock_position", "current_theory"))
+    scene_text = run.scene_text()
+    q = charge["value"]  # [samples+1][L] mean charge per site
+    t = charge["time"]
     L = q.shape[1]
-    x_kmc = obs["shock_position/value"][:]
-    x_err = obs["shock_position_error/value"][:]
-    var = obs["shock_position_variance/value"][:]
-    var_err = obs["shock_position_variance_error/value"][:]
-    dens, flux = obs["current_theory/bins"][:], obs["current_theory/value"][0]
-    v_seed = d_seed = None
-    if "shock_theory" in obs:
-        v_seed, d_seed = obs["shock_theory/value"][0]
+    x_kmc = shock["value"]
+    x_err = run.series("shock_position_error")["value"]
+    var = run.series("shock_position_variance")["value"]
+    var_err = run.series("shock_position_variance_error")["value"]
+    dens, flux = theory["bins"], theory["value"][0]
+    v_theory = d_theory = None
+    if run.has("shock_theory"):
+        v_theory, d_theory = run.series("shock_theory")["value"][0]
 
     # Riemann data: the measured densities either side of the shock, averaged over all samples
     # and over the sites the shock never came within 20 sites of (and 10 from the ends).
     s0 = int(round(x_kmc[0]))
     lo, hi = int(x_kmc.min()) - 20, int(math.ceil(x_kmc.max())) + 20
     if lo <= 10 or hi >= L - 10:
-        sys.exit("shock_report.py: the shock came within 30 sites of an end; allowed: a run whose "
-                 "shock stays inside")
+        raise narrows_h5.NarrowsDataError(args.kmc, "the shock came within 30 sites of an end",
+                                          "a run whose shock stays inside")
     left, right = q[:, 10:lo].mean(), q[:, hi:L - 10].mean()
     rh = (np.interp(left, dens, flux) - np.interp(right, dens, flux)) / (left - right)
     cont = run_continuum(
@@ -196,9 +193,9 @@ def main():
              f"{d_kmc:.5g} +- {d_kmc_err:.2g}"),
             ("continuum engine (D = 0; second half of the run)", f"{v_cont:.5g}", "0"),
             ("Rankine-Hugoniot (J(l) - J(r)) / (l - r)", f"{rh:.5g}", "")]
-    if v_seed is not None:
-        rows.append(("seed 000 eq 2.115-2.116 (shock random walk)", f"{v_seed:.5g}",
-                     f"{d_seed:.5g}"))
+    if v_theory is not None:
+        rows.append(("Tabatabaei (2008) eq 2.115-2.116 (shock random walk)", f"{v_theory:.5g}",
+                     f"{d_theory:.5g}"))
     table = [f"lattice gas: shock {left:.4f} | {right:.4f} at site {s0}, L = {L}, "
              f"t = 0 .. {t[-1]:g}",
              "| source | speed (sites/time, to the right) | diffusion D_s |", "|---|---|---|"]
@@ -208,18 +205,14 @@ def main():
         table += [""] + chain["table"]
     print("\n".join(table))
 
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    plt = narrows_h5.pyplot()
     fig, grid = plt.subplots(2 if chain else 1, 3, figsize=(16, 8.8 if chain else 4.4),
                              squeeze=False)
     axes = grid[0]
     b = max(1, args.block)
     xb = block(np.arange(1, L + 1, dtype=float), b)
     xc = np.arange(L) + 1.0  # continuum cell i covers [i, i + 1): site i + 1
-    d_use = d_seed if d_seed is not None else max(d_kmc, 0.0)
+    d_use = d_theory if d_theory is not None else max(d_kmc, 0.0)
     ax = axes[0]
     picks = sorted(set([0, len(t) // 3, 2 * len(t) // 3, len(t) - 1]))
     for c, i in enumerate(picks):
@@ -236,8 +229,9 @@ def main():
     ax.errorbar(t, x_kmc, yerr=x_err, fmt=".", label="kmc mean")
     ax.plot(t, x_c, "-", label="continuum engine")
     ax.plot(t, s0 + rh * t, ":", color="k", label=f"Rankine-Hugoniot ({rh:.4g})")
-    if v_seed is not None:
-        ax.plot(t, s0 + v_seed * t, "--", color="C3", lw=1, label=f"seed v_s ({v_seed:.4g})")
+    if v_theory is not None:
+        ax.plot(t, s0 + v_theory * t, "--", color="C3", lw=1,
+                label=f"Tabatabaei v_s ({v_theory:.4g})")
     ax.set_xlabel("time")
     ax.set_ylabel("shock position (site)")
     ax.set_title("shock position")
@@ -245,8 +239,9 @@ def main():
 
     ax = axes[2]
     ax.errorbar(t, var, yerr=var_err, fmt=".", label="kmc variance")
-    if d_seed is not None:
-        ax.plot(t, var[0] + 2 * d_seed * t, "-", label=f"2 D_s t (seed D_s = {d_seed:.4g})")
+    if d_theory is not None:
+        ax.plot(t, var[0] + 2 * d_theory * t, "-",
+                label=f"2 D_s t (Tabatabaei D_s = {d_theory:.4g})")
     ax.set_xlabel("time")
     ax.set_ylabel("variance (sites$^2$)")
     ax.set_title("shock position variance (continuum: sharp, 0)")
@@ -265,4 +260,4 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(narrows_h5.run_tool("shock_report", main))

@@ -1,14 +1,14 @@
 #!/usr/bin/env bash
-# One shock three ways (issue 22 item 4, acceptance 5; seed 000 ch.5): runs the three-state
+# One shock three ways (issue 22 item 4, acceptance 5; Tabatabaei (2008) ch.5): runs the three-state
 # lattice gas with a shock (kmc, run/kmc_family2_shock.toml), the sedimenting colloid chain
 # (mpcd with colloids, run/sedimentation_chain_31.toml, cut to --chain-steps) and writes the report
 # with the continuum engine's predictions for both (tools/shock_report.py --chain): OUT/shock_three_ways.png
 # and OUT/shock_three_ways.txt, the table of shock speed and diffusion constant from each.
 #
-# Size: the chain is the seed's 31 colloids at spacing 5 in a 300 x 10 channel; 50000 steps
+# Size: the chain is Tabatabaei's 31 colloids at spacing 5 in a 300 x 10 channel; 50000 steps
 # (t = 750) are about 1.3e9 particle-steps, one to two minutes on an idle core. The head moves
 # ~40 in that time, a few spacings: speed errors of ~10 % and a spread D_s from one run
-# (increments about the mean drift), where the seed asks for many more colloids.
+# (increments about the mean drift), where Tabatabaei (2008) asks for many more colloids.
 # --tiny: a smoke-test size (kmc L = 100; 6 colloids in a 60 x 10 channel for 1000 steps) whose
 # numbers mean nothing.
 #
