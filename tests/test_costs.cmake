@@ -20,7 +20,7 @@ set_tests_properties("validation.LgcaVacf1d.InfiniteSystemHasNoPlateau" PROPERTI
 set_tests_properties("validation.Rules/Poiseuille.ViscosityFromTheProfile/at_a3d_dt0_01_n10_seed" PROPERTIES COST 25)
 set_tests_properties("validation.NoSlipColloid.FixedDiscInPoiseuilleFlowHasZeroFluidVelocityAtItsSurface" PROPERTIES COST 25)
 set_tests_properties("validation.Rules/Viscosity.KolmogorovFlowMatchesTheory/at_a2d_dt0_5_report" PROPERTIES COST 24)
-set_tests_properties("validation.PoiseuilleSeed000.Figure3_6" PROPERTIES COST 24)
+set_tests_properties("validation.PoiseuilleTabatabaei.Figure3_6" PROPERTIES COST 24)
 set_tests_properties("validation.Rules/Poiseuille.ViscosityFromTheProfile/at3d_dt0_5" PROPERTIES COST 24)
 set_tests_properties("validation.Rules/Viscosity.KolmogorovFlowMatchesTheory/at3d_dt0_5" PROPERTIES COST 23)
 set_tests_properties("validation.Rules/Viscosity.KolmogorovFlowMatchesTheory/at2d_dt0_5" PROPERTIES COST 22)

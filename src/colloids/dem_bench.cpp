@@ -27,7 +27,8 @@ void write_lammps(const std::string &path, const Colloids &c, double length) {
     throw input_error("command line: --dem-data '" + path +
                       "' cannot be written; allowed: a writable file path");
   char line[256];
-  f << "narrows bench --dem packing: seed 001 Table 6.1 mixture, phi = 0.8, walls at y = 0, "
+  f << "narrows bench --dem packing: Kanehl (thesis) Table 6.1 mixture, phi = 0.8, "
+       "walls at y = 0, "
     << width << "\n\n"
     << c.size() << " atoms\n2 atom types\n\n";
   std::snprintf(line, sizeof line, "0 %.17g xlo xhi\n0 %.17g ylo yhi\n-0.5 0.5 zlo zhi\n\n", length,

@@ -1,4 +1,4 @@
-// Colloid-colloid 48-24 forces (seed 000 eq 3.43) from a cell list of the colloids.
+// Colloid-colloid 48-24 forces (Tabatabaei (2008) eq 3.43) from a cell list of the colloids.
 #include "narrows/colloids/colloid_pairs.hpp"
 #include "narrows/colloids/force_terms.hpp"
 #include "narrows/colloids/pair_geometry.hpp"

@@ -1,4 +1,4 @@
-// Colloid-fluid WCA forces (seed 000 eq 3.42) from a cell list of the fluid.
+// Colloid-fluid WCA forces (Tabatabaei (2008) eq 3.42) from a cell list of the fluid.
 #include "narrows/colloids/force_terms.hpp"
 #include "narrows/colloids/pair_geometry.hpp"
 #include "narrows/colloids/potentials.hpp"

@@ -1,4 +1,4 @@
-// Gravity on the colloids: the force M_a g (seed 000 eq 4.4).
+// Gravity on the colloids: the force M_a g (Tabatabaei (2008) eq 4.4).
 #include "narrows/colloids/force_terms.hpp"
 #include "narrows/colloids/pair_geometry.hpp"
 

@@ -1,4 +1,4 @@
-// Forces of the integrated Lennard-Jones walls on the colloids (seed 000 eq 3.35-3.37).
+// Forces of the integrated Lennard-Jones walls on the colloids (Tabatabaei (2008) eq 3.35-3.37).
 #include "narrows/colloids/force_terms.hpp"
 #include "narrows/colloids/pair_geometry.hpp"
 #include "narrows/colloids/potentials.hpp"

@@ -1,4 +1,5 @@
-// Linear springs with Coulomb friction between colloids and with the walls (seed 001 §4.2.3).
+// Linear springs with Coulomb friction between colloids and with the walls
+// (Kanehl (thesis) §4.2.3).
 #include "narrows/colloids/springs.hpp"
 
 #include "narrows/colloids/colloid_pairs.hpp"

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# The jamming model of the continuum engine (seed 001 ch.6) from the command line: check prints
-# the friction fit, the unstable band of eq 6.11 and the time step; a run writes density (phi)
-# and velocity (v) and conserves the mass; a restart from the checkpoint half-way continues
+# The jamming model of the continuum engine (Kanehl (thesis) ch.6) from the command line: check
+# prints the friction fit, the unstable band of eq 6.11 and the time step; a run writes density
+# (phi) and velocity (v) and conserves the mass; a restart from the checkpoint half-way continues
 # bitwise; 2 ranks give the bits of 1; tools/jamming_plot.py draws the run; bad input exits 2
 # with one line.
 set -u

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The segregation model of the continuum engine (seed 001 ch.5) from the command line: check
+# The segregation model of the continuum engine (Kanehl (thesis) ch.5) from the command line: check
 # prints the model, the coupling matrix, the steady state and the time step; a run writes the
 # fractions per kind (density [samples+1][cells][kinds]), Delta(t) (evolution) and the steady
 # profile, keeps each kind's total; a restart from the checkpoint half-way continues bitwise; 2

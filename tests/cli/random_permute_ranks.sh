@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # random-permute permutes the velocities within the particle array of one rank, so on several
-# ranks it would not be the seed's permutation of all velocities (nor the same run as on one):
+# ranks it would not be Tabatabaei's permutation of all velocities (nor the same run as on one):
 # it is refused on 2 and 3 ranks with one line naming fluid.collision, the rank count and the
 # alternative random-maxwell, exit 2 and no output directory; on 1 rank it runs, and
 # random-maxwell runs on 3 ranks.

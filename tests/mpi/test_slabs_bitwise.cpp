@@ -208,7 +208,7 @@ INSTANTIATE_TEST_SUITE_P(
              0.4},
         Case{"srd3d_walls_colloids_radius_sd", 3, scene::Collision::srd, false, true, false, true,
              false, 0.1},
-        // no-slip colloids with hard contacts (seed 001 §4.2.1-4.2.2)
+        // no-slip colloids with hard contacts (Kanehl (thesis) §4.2.1-4.2.2)
         Case{"at_a2d_walls_noslip_hard", 2, scene::Collision::at_a, false, true, false, true, false,
              0.3, true},
         Case{"srd3d_sine_noslip_hard", 3, scene::Collision::srd, true, false, false, true, false,

@@ -1,4 +1,4 @@
-// Event-driven rough hard spheres (seed 001 §4.2.2): one collision reverses the relative
+// Event-driven rough hard spheres (Kanehl (thesis) §4.2.2): one collision reverses the relative
 // velocity of the touching surfaces and conserves momentum, angular momentum and energy; a
 // rough wall reverses the contact velocity; many disks and spheres over many steps keep their
 // energy and momentum to round-off and never overlap.

@@ -1,4 +1,4 @@
-// kmc presets (issue 7, acceptance 4): the seed's derived constants, the residuals of its
+// kmc presets (issue 7, acceptance 4): Tabatabaei's derived constants, the residuals of its
 // conditions, warnings when they fail, and the generated boundary rates - checked against the
 // full master equation of a short open chain.
 #include "narrows/models/three_state/preset.hpp"

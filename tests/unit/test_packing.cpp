@@ -1,8 +1,8 @@
-// Dense packings grown from points with the spring contacts (seed 001 §6.1): 200 bidisperse disks
-// (a = 2.1 and 2.94, equal numbers, the seed's mixture) reach area fraction 0.82 in a channel of
-// width 50 with the deepest overlap below 1 % of the small radius, judged by an all-pairs check
-// independent of the generator's cell list; the same seed gives the same bits; a fraction no
-// spring relaxation can reach is refused with one line.
+// Dense packings grown from points with the spring contacts (Kanehl (thesis) §6.1): 200 bidisperse
+// disks (a = 2.1 and 2.94, equal numbers, the thesis' mixture) reach area fraction 0.82 in a
+// channel of width 50 with the deepest overlap below 1 % of the small radius, judged by an
+// all-pairs check independent of the generator's cell list; the same seed gives the same bits; a
+// fraction no spring relaxation can reach is refused with one line.
 #include "narrows/colloids/packing.hpp"
 #include "narrows/colloids/placement.hpp"
 #include "narrows/core/error.hpp"
@@ -20,7 +20,7 @@ using namespace narrows::colloids;
 
 namespace {
 
-// n_small + n_large disks of the seed's radii in a channel L_x x 50 with walls.
+// n_small + n_large disks of the thesis' radii in a channel L_x x 50 with walls.
 struct Channel {
   Colloids c;
   mpcd::Box box;

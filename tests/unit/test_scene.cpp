@@ -422,7 +422,7 @@ TEST(Scene, ColloidsDefaultsAndValues) {
   EXPECT_EQ(c.md_substeps, 15);
   EXPECT_DOUBLE_EQ(c.gravity[0], 0.1);
   EXPECT_DOUBLE_EQ(c.effective_wall_sigma(), 4.0);
-  // seed 000 table 3.1: M = pi r^2 n = 125.664 for r = 2, n = 10
+  // Tabatabaei (2008) table 3.1: M = pi r^2 n = 125.664 for r = 2, n = 10
   EXPECT_NEAR(c.effective_mass(2, 10.0), 125.664, 1e-3);
   EXPECT_NEAR(c.effective_mass(3, 1.0), 4.0 / 3.0 * 3.14159265358979 * 8.0, 1e-12);
   const Scene l = parse_scene(

@@ -1,4 +1,4 @@
-// Linear springs with Coulomb friction (seed 001 §4.2.3) in vacuum: a head-on collision is
+// Linear springs with Coulomb friction (Kanehl (thesis) §4.2.3) in vacuum: a head-on collision is
 // elastic with the contact time and the largest overlap of a linear oscillator; an oblique one
 // transfers the tangential impulse of the tangential spring (sticking) or mu times the normal
 // impulse (sliding), none with mu = 0; energy stays put over 1e6 sub-steps without friction; a
@@ -102,7 +102,7 @@ double contact_time(double m, double kn) { return pi / std::sqrt(kn / (0.5 * m))
 
 } // namespace
 
-// Head-on: elastic (no damping in the seed) up to the integration error of velocity Verlet,
+// Head-on: elastic (no damping in the thesis) up to the integration error of velocity Verlet,
 // which is of order (omega_n h)^2 (measured 0.10-0.12 (omega h)^2 at h = dt / 1, 10, 100);
 // the largest overlap is u sqrt(m_red / k_n) and the contact lasts pi / omega_n.
 TEST(Springs, HeadOnCollisionIsElasticWithTheOscillatorsOverlapAndTime) {
@@ -124,9 +124,9 @@ TEST(Springs, HeadOnCollisionIsElasticWithTheOscillatorsOverlapAndTime) {
   }
 }
 
-// Overlap at the seed's speeds: thermal colloids of Table 6.1 (a = 2.1 and 2.94, density 25)
+// Overlap at the thesis' speeds: thermal colloids of Table 6.1 (a = 2.1 and 2.94, density 25)
 // meet at a relative normal speed whose rms is sqrt(kT / m_red); at kn = 2500 the deepest
-// overlap of such a collision stays below 1 % of the radius (the seed's fig 6.2a, dense and
+// overlap of such a collision stays below 1 % of the radius (the thesis' fig 6.2a, dense and
 // driven, has its bulk at 1-2 %).
 TEST(Springs, OverlapAtThermalSpeedsBelowOnePercentOfTheRadius) {
   for (double r : {2.1, 2.94}) {

@@ -1,5 +1,5 @@
-// Per-layer rescaling thermostat (seed 000 eq 3.53-3.54): cell momenta are kept, and each layer's
-// kinetic energy relative to the cell means becomes (d/2)(N - C) kT.
+// Per-layer rescaling thermostat (Tabatabaei (2008) eq 3.53-3.54): cell momenta are kept, and each
+// layer's kinetic energy relative to the cell means becomes (d/2)(N - C) kT.
 #include "narrows/core/fixed_point.hpp"
 #include "narrows/engines/mpcd/kernels/cell_grid.hpp"
 #include "narrows/engines/mpcd/kernels/thermostat.hpp"

@@ -1,5 +1,5 @@
-// Test helper: the 2D SRD fluid of seed 000 ch.3-4 (n = 10, tau_c = 0.1, alpha = 90 deg) with
-// colloids, in a periodic box or a channel.
+// Test helper: the 2D SRD fluid of Tabatabaei (2008) ch.3-4 (n = 10, tau_c = 0.1, alpha = 90 deg)
+// with colloids, in a periodic box or a channel.
 #pragma once
 
 #include "narrows/scene/scene.hpp"

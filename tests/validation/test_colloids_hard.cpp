@@ -1,9 +1,9 @@
 // Issue 8 acceptance 7 (hard case) and 6 (single file). Five colloids (r_c = 2, M = 126) start
 // touching the walls (centre at r_c from the wall, deep inside the wall potential, ~6000 kT) and
 // each other (centre distance sigma_cc = 2 r_c) in a 40 x 10 channel with sigma_w = 2 r_c.
-// colloids.gravity is the field g of seed 000 (force M g on each colloid).
+// colloids.gravity is the field g of Tabatabaei (2008) (force M g on each colloid).
 //
-// Hard case: g = 1.0 (ten times the seed's g_c = 0.1: a force of 126 kT per unit length on each
+// Hard case: g = 1.0 (ten times Tabatabaei's g_c = 0.1: a force of 126 kT per unit length on each
 // colloid), layer thermostat (without one, the viscous heating of that drive takes the fluid to
 // kT ~ 15 within 3000 steps and keeps rising), 10^4 steps. Nothing may become non-finite, no
 // fluid particle may leave the channel (InvariantCheck), no colloid may leave it. A fluid particle
@@ -13,10 +13,10 @@
 // at ~4.5 per unit time (0.45 per step) by forces of 126, a particle in front of a colloid meets it
 // at up to a few thermal speeds plus that, and the fluid is at kT ~ 2: none may pass 0.80 sigma_cf
 // (phi_cf = 44 kT, Boltzmann factor e^-22 at kT 2: ~1e-4 expected visits over the 8e4 x 5 x 3400
-// samples). At this drive, forces between colloids push them into the walls far beyond the seed's
+// samples). At this drive, forces between colloids push them into the walls far beyond Tabatabaei's
 // regime, and they do pass each other: single file is not asked here.
 //
-// Single file: the same start under the seed's g_c = 0.1 without thermostat: the cyclic order of
+// Single file: the same start under Tabatabaei's g_c = 0.1 without thermostat: the cyclic order of
 // the colloids along x is kept for 10^4 steps (with sigma_w = 2 r_c two colloids side by side would
 // need centres within 2 of the walls, where the wall potential is > 50 kT).
 #include "narrows/engines/mpcd/invariants.hpp"

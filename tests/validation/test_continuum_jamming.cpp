@@ -1,4 +1,4 @@
-// The jamming model of the continuum engine (seed 001 ch.6) against its linear stability
+// The jamming model of the continuum engine (Kanehl (thesis) ch.6) against its linear stability
 // (issue 22, acceptance 3): homogeneous flow at phi0 is perturbed by small random noise at every
 // grid point (all Fourier modes at once), the pseudo-spectral solver runs, and the growth rate
 // of each of ten wave numbers k_n = 2 pi n / L, five inside the unstable band of eq 6.11 and

@@ -31,8 +31,8 @@ struct Case {
   double shock_l, shock_r, fan_l, fan_r, mean, amplitude;
 };
 
-// The seed's family 1 and family 2 rates of run/kmc_family1_shock.toml and
-// run/kmc_family2_shock.toml; the colloid chain with seed 000 fig 5.1's c, c'.
+// Tabatabaei's family 1 and family 2 rates of run/kmc_family1_shock.toml and
+// run/kmc_family2_shock.toml; the colloid chain with Tabatabaei (2008) fig 5.1's c, c'.
 const Case cases[] = {
     {"burgers", "flux = \"burgers\"\n", 1.0, 0.0, 0.2, 1.0, 0.5, 0.3},
     {"tasep", "flux = \"tasep\"\n", 0.2, 0.7, 0.9, 0.1, 0.5, 0.2},

@@ -1,9 +1,9 @@
-// The segregation theory of seed 001 ch.5 (issue 22, acceptance 4): the steady profiles of the
-// continuum model against what the seed states about its theory curves (fig 5.6, 5.8, 5.9, 5.11,
-// 5.13) for its own constants K_eta / K_c = 1.51 and K_d / K_c = 7.46 (2D) or 0.61 (3D),
+// The segregation theory of Kanehl (thesis) ch.5 (issue 22, acceptance 4): the steady profiles of
+// the continuum model against what the thesis states about its theory curves (fig 5.6, 5.8, 5.9,
+// 5.11, 5.13) for its own constants K_eta / K_c = 1.51 and K_d / K_c = 7.46 (2D) or 0.61 (3D),
 // phi_M = 0.82 (2D) or 0.64 (3D), a_S / w = 0.05, a_L / w = 0.1 (w = 40, Table 5.1), the Table
-// 5.1 diffusivities and Pe_S = a_S^3 v0 / (w^2 D_S) = 1 (eq 5.1; this gives the seed's Pe_L ~
-// 10 in 2D). The figures' curves are not in the seed's text, so the checks are the features
+// 5.1 diffusivities and Pe_S = a_S^3 v0 / (w^2 D_S) = 1 (eq 5.1; this gives the thesis' Pe_L ~
+// 10 in 2D). The figures' curves are not in the thesis' text, so the checks are the features
 // it states for them:
 // - 2D mixture at phi = 0.5, phi_L / phi_S = 1 (fig 5.6 bottom right, sec 5.3.3): the large
 //   disks enrich the centre, the small ones are depleted there and their density grows towards
@@ -39,7 +39,7 @@ using namespace narrows::continuum;
 
 namespace {
 
-// The seed's channel: w = 40, a_S = 2, a_L = 4 (a_L absent for one kind), Table 5.1's D_0.
+// The thesis' channel: w = 40, a_S = 2, a_L = 4 (a_L absent for one kind), Table 5.1's D_0.
 scene::Continuum seed_case(int dims, double small, double large, double peclet_s = 1.0,
                            int cells = 80, double time = 1.0, const char *shear = "poiseuille") {
   const double ds = dims == 2 ? 0.00137 : 0.00214, dl = dims == 2 ? 0.000973 : 0.000852;

@@ -1,12 +1,12 @@
-// Travelling waves of the jamming model (seed 001 §6.3.3-6.3.5; issue 22, acceptance 3) with
-// the fit of Table 6.2 for mu = 1 and sigma = D = 1 (the seed's normalisation):
+// Travelling waves of the jamming model (Kanehl (thesis) §6.3.3-6.3.5; issue 22, acceptance 3) with
+// the fit of Table 6.2 for mu = 1 and sigma = D = 1 (the thesis' normalisation):
 // - the fixed points of the co-moving ODEs (eq 6.13-6.14) at the parameters of fig 6.18 b)
-//   (c = -2.8, q = 2.228) are those the seed describes: three, a saddle on the free-flow branch,
+//   (c = -2.8, q = 2.228) are those the thesis describes: three, a saddle on the free-flow branch,
 //   a focus at phi_c between them and a saddle on the jammed branch; Eigen's eigenvalues agree
 //   with the closed form eq 6.20;
 // - on the Hopf line (eq 6.21) the focus has purely imaginary eigenvalues and changes from sink
 //   to source as |c| grows across it, and the line is the neutral curve of eq 6.11;
-// - the limit cycle around the focus (the seed's periodic pulse train of fig 6.18 b) exists, and
+// - the limit cycle around the focus (the thesis' periodic pulse train of fig 6.18 b) exists, and
 //   the PDE started from it travels at c and keeps its shape;
 // - a pulse grown in the PDE from a small perturbation is a travelling wave of eq 6.13-6.14 at
 //   its measured (c, q), next to the homoclinic loop of the jammed saddle.
@@ -72,7 +72,7 @@ TEST(JammingWave, FixedPointsOfFig6_18b) {
   }
 }
 
-// The seed's statements on the phase portraits (§6.3.4, fig 6.15 a and 6.12), over a grid of
+// The thesis' statements on the phase portraits (§6.3.4, fig 6.15 a and 6.12), over a grid of
 // (c, q) with c from -4 to -1.2 and q from 1 to 3.5 whose fixed points all lie below
 // phi_q - 0.005 (at phi_q = 0.845 the fit's v_ss touches 0 and rises again beyond, where a lone
 // fixed point can be a node source: outside the physical range, left out): with one fixed point it
@@ -158,7 +158,7 @@ double periodic_at(const std::vector<double> &y, double period, double x) {
 // samples. The cycle is tabulated at dz = 1e-3 (interpolation error ~1e-7 in phi), the PDE runs
 // at cfl 0.1 (splitting error ~1e-4 in the linear test): 0.5 % is a generous bound on the
 // speed; the shape (min and max of phi) must persist to 1 % of its amplitude over t = 20
-// (the pulse train is stable in the PDE, as the seed's simulations show pulse trains).
+// (the pulse train is stable in the PDE, as the thesis' simulations show pulse trains).
 TEST(JammingWave, LimitCycleOfFig6_18bIsAPulseTrainOfThePDE) {
   const JammingModel m = mu1();
   const double c = -2.8, q = 2.228;
@@ -243,7 +243,7 @@ std::vector<double> derivative(const std::vector<double> &y, double L) {
 // eq 6.15, c = (phi_j v_j - phi v) / (phi_j - phi) between the extremes of the profile; the ODE at
 // (c, q) has the three fixed points of fig 6.18 a), and the jam of the pulse sits at the jammed
 // saddle (max phi within 1e-3 of its phi0): the PDE pulse train is the orbit near the homoclinic
-// loop of that saddle, the seed's solitary rarefaction pulse (§6.3.5). About 5 s (two grids).
+// loop of that saddle, the thesis' solitary rarefaction pulse (§6.3.5). About 5 s (two grids).
 struct Pulse {
   double c = 0.0, q = 0.0, q_spread = 0.0, residual = 0.0, phi_min = 0.0, phi_max = 0.0;
   double c_6_15 = 0.0; // eq 6.15 from the profile's extremes

@@ -1,6 +1,7 @@
-// The Ladd-Frenkel colloid in the FHP lattice gas (seed 002 §4.2-4.3, issue 6 point 4), held and
-// moving: total momentum of fluid + colloid conserved exactly, the moving-boundary rule handing
-// the colloid's momentum to the fluid, the moving disc's geometry and drift.
+// The Ladd-Frenkel colloid in the FHP lattice gas (van der Hoef & Frenkel §4.2-4.3, issue 6
+// point 4), held and moving: total momentum of fluid + colloid conserved exactly, the
+// moving-boundary rule handing the colloid's momentum to the fluid, the moving disc's geometry and
+// drift.
 #include "narrows/core/error.hpp"
 #include "narrows/engines/lgca/colloid_correlations.hpp"
 #include "narrows/engines/lgca/fhp_colloid.hpp"
@@ -177,9 +178,9 @@ TEST(FhpColloid, HeldDiscFluctuatesAboutTheCentreOfMassVelocity) {
   EXPECT_GT(std::abs(d.u), 0.5 * d.v); // not about zero
 }
 
-// Seed 002 §4.3 scaled down to a test: the held colloid's VACF tail goes as t^-1. A light disc
-// (M = 100, R = 2.5; with the gas inside M_c ~ 168) on 128 x 128 sites, 2e6 steps (~20 s of
-// CPU): its own velocity relaxation is over by t ~ 300, so the local exponent n of Z(t) over
+// van der Hoef & Frenkel §4.3 scaled down to a test: the held colloid's VACF tail goes as t^-1. A
+// light disc (M = 100, R = 2.5; with the gas inside M_c ~ 168) on 128 x 128 sites, 2e6 steps (~20 s
+// of CPU): its own velocity relaxation is over by t ~ 300, so the local exponent n of Z(t) over
 // lags 300..1000 is near 1. The unsteady-Stokes theory of a disc in a 2D fluid
 // (tools/lgca_plot.py held_disc_vacf; nu = 0.092 to 0.097, hydrodynamic radius a = 1.6 to 2.5;
 // a = 2.1 fits the M = 680 run of run/lgca_colloid_held.toml within 1-4 % over t = 30..2700)

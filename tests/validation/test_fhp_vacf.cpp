@@ -1,6 +1,6 @@
-// Tagged-particle VACF of the FHP models by moment propagation on the lattice slabs (seed 002
-// §3; issue 6 point 3): the slab implementation against the library kernel, the one-step VACF
-// against eq 19 with collisions on, and the 2D long-time tail t^-1.
+// Tagged-particle VACF of the FHP models by moment propagation on the lattice slabs
+// (van der Hoef & Frenkel §3; issue 6 point 3): the slab implementation against the library kernel,
+// the one-step VACF against eq 19 with collisions on, and the 2D long-time tail t^-1.
 #include "narrows/engines/lgca/fhp_lattice.hpp"
 #include "narrows/engines/lgca/fhp_tagged.hpp"
 #include "narrows/engines/lgca/moment_propagation.hpp"
@@ -112,13 +112,13 @@ double log_slope(const std::vector<double> &z, int t1, int t2) {
 
 } // namespace
 
-// The 2D long-time tail (seed 002 §3.5, fig 2a): Z(t) + (1 - d)/N (eq 22) ~ t^-a with a -> 1.
-// FHP-III, d = 0.3, 256 x 256 sites, 4 blocks of 50 successive curves of 200 lags (40000 steps,
-// about 30 s on one core). Window [50, 200]: from 50 mean free times (t0 = 0.93, the Boltzmann
-// part Z(1)^t is e^-50 there) to below the time sound needs to cross the box (L_y sqrt 2 = 313
-// steps); the diffusive cut-off of the periodic box ((L / 2 pi)^2 / nu ~ 1e4 steps) is far.
-// The effective exponent still grows slowly towards 1 (the run that set this test up: lags
-// 20..100 a = 0.90 +- 0.013, 50..200 a = 0.97 +- 0.03; the plot tool's fit over 200 curves
+// The 2D long-time tail (van der Hoef & Frenkel §3.5, fig 2a): Z(t) + (1 - d)/N (eq 22) ~ t^-a
+// with a -> 1. FHP-III, d = 0.3, 256 x 256 sites, 4 blocks of 50 successive curves of 200 lags
+// (40000 steps, about 30 s on one core). Window [50, 200]: from 50 mean free times (t0 = 0.93, the
+// Boltzmann part Z(1)^t is e^-50 there) to below the time sound needs to cross the box
+// (L_y sqrt 2 = 313 steps); the diffusive cut-off of the periodic box ((L / 2 pi)^2 / nu ~ 1e4
+// steps) is far. The effective exponent still grows slowly towards 1 (the run that set this test
+// up: lags 20..100 a = 0.90 +- 0.013, 50..200 a = 0.97 +- 0.03; the plot tool's fit over 200 curves
 // of one run gives 0.974 for 50..200). The error is the spread of the 4 blocks (lags of one
 // curve are strongly correlated, so a fit weighted per lag would understate it ten-fold).
 // The test asserts |a - 1| < 0.12 (4 block sigma) with the block error below 0.05: an

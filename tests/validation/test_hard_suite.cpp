@@ -106,7 +106,7 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         SceneClass{"quickstart.toml", tiny2d},        // SRD channel, body force, virtual particles
         SceneClass{"strong_scaling.toml", tiny2d},    // periodic SRD box
-        SceneClass{"poiseuille_fig3_7.toml", tiny2d}, // SRD channel of seed 000 ch.3
+        SceneClass{"poiseuille_fig3_7.toml", tiny2d}, // SRD channel of Tabatabaei (2008) ch.3
         SceneClass{"ata_fluid_table5_1_2d.toml", tiny2d}, // MPC-AT+a channel
         SceneClass{"ata_fluid_table5_1_3d.toml",
                    {"domain.size=[4.0, 4.0, 4.0]", "fluid.density=2"}}, // 3D AT+a slit

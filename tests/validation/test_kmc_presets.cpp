@@ -1,5 +1,5 @@
-// Families 1 and 2 of seed 000 ch.2 in the kmc engine (issue 7, acceptance 2 and 3), run from
-// the scenes in run/: on the product-measure manifold the current, the density relation and
+// Families 1 and 2 of Tabatabaei (2008) ch.2 in the kmc engine (issue 7, acceptance 2 and 3), run
+// from the scenes in run/: on the product-measure manifold the current, the density relation and
 // the vanishing nearest-neighbour correlations; on the shock manifold the shock drift and
 // diffusion. Errors are standard errors over independent replicas; each comparison is within
 // 3 of them, or 4 where nine correlated comparisons are made at once.

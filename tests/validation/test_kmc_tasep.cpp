@@ -1,5 +1,5 @@
 // Open TASEP as a special case of the kmc engine (issue 7, acceptance 1): currents against
-// the exact finite-L result (Derrida et al. 1993) and the phase diagram alpha(1 - alpha),
+// the exact finite-L result (Derrida et al. (1993)) and the phase diagram alpha(1 - alpha),
 // beta(1 - beta), 1/4, within 3 standard errors over independent replicas.
 #include "narrows/engines/kmc/driver.hpp"
 #include "narrows/models/three_state/rates.hpp"

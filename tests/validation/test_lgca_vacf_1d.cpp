@@ -1,6 +1,6 @@
-// Tagged-particle VACF of the 1D d'Humieres lattice gas by moment propagation (seed 002 §3,
-// fig 1; issue 6 point 3): the one-step VACF against eq 18/19, and the finite-size plateau of
-// eq 22 for L = 500 and 2000 at d = 0.7, for the ensemble it belongs to.
+// Tagged-particle VACF of the 1D d'Humieres lattice gas by moment propagation
+// (van der Hoef & Frenkel §3, fig 1; issue 6 point 3): the one-step VACF against eq 18/19, and the
+// finite-size plateau of eq 22 for L = 500 and 2000 at d = 0.7, for the ensemble it belongs to.
 //
 // The plateau. A tagged particle of velocity v0 carries, with the hole it makes in its own
 // node (the other links there are short of d v0 on average), an excess momentum (1 - d) v0;
@@ -11,7 +11,7 @@
 // background: <v0 v(t)> = <v0 (P - (1 - d) v0)> / N, i.e.
 //   Z_plateau = <P^2> / (N^2 <v^2>) - (1 - d) / N,
 // using <v0 P> summed over particles = <P^2>. With P = 0 exactly (the MD ensemble of §3.4) this
-// is the seed's -(1 - d)/N; with independent occupations <P^2> = N (1 - d) <v^2> and the
+// is the paper's -(1 - d)/N; with independent occupations <P^2> = N (1 - d) <v^2> and the
 // plateau vanishes; per run it is P^2 / (N^2 <v^2>) - (1 - d)/N. Each pulse passage gives an
 // echo at t ~ k L / c_s; long after, the pulses have spread evenly and Z -> P^2/(N^2 <v^2>).
 //
@@ -187,7 +187,7 @@ TEST(LgcaVacf1d, InfiniteSystemHasNoPlateau) {
 
 class LgcaVacf1dPlateau : public ::testing::TestWithParam<std::int64_t> {};
 
-// (b) The seed's ensemble, P = 0 and N fixed: plateau -(1 - d)/N, i.e. N x plateau = -0.3.
+// (b) The paper's ensemble, P = 0 and N fixed: plateau -(1 - d)/N, i.e. N x plateau = -0.3.
 // The error is the standard error of the run means over independent runs (each run its own
 // initial state and collision noise); the assertion allows 3 of them.
 TEST_P(LgcaVacf1dPlateau, ZeroMomentumGivesMinusOneMinusDOverN) {
@@ -221,7 +221,7 @@ TEST_P(LgcaVacf1dPlateau, IndependentOccupationsCancelThePlateau) {
 
 // Exactly N particles but free total momentum: sampling N of the M = L b links without
 // replacement gives <P^2> = N <v^2> (1 - d) M / (M - 1), so the plateau is (1 - d)/(N (M - 1)),
-// zero for all purposes: fixing N alone does not produce the seed's plateau, fixing P does.
+// zero for all purposes: fixing N alone does not produce the paper's plateau, fixing P does.
 TEST(LgcaVacf1d, FixedNumberAloneCancelsThePlateau) {
   const std::int64_t L = 500;
   const int t1 = window_start, t2 = window_end(L);

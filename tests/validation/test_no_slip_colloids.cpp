@@ -1,13 +1,13 @@
-// Issue 20 acceptance 3: the no-slip coupling (seed 001 §4.2.1) puts the fluid at the colloid's
-// rigid-body velocity at its surface.
+// Issue 20 acceptance 3: the no-slip coupling (Kanehl (thesis) §4.2.1) puts the fluid at the
+// colloid's rigid-body velocity at its surface.
 //
 // (a) A colloid held fixed in a Poiseuille flow: the time-averaged fluid velocity on lines
 //     through its centre (along and across the channel) extrapolates to zero at its surface.
 // (b) A free colloid at the centre of the shear of a Kolmogorov flow spins at Omega_z = -gdot/2,
 //     gdot = du_x/dy of the fluid measured in the same run.
 //
-// Both use MPC-AT+a (the seed's rule; SRD and AT-a do not conserve angular momentum, which
-// changes the torque on a rotating body: Götze, Noguchi, Gompper, PRE 76, 046705 (2007)).
+// Both use MPC-AT+a (the thesis' rule; SRD and AT-a do not conserve angular momentum, which
+// changes the torque on a rotating body: Götze et al. (2007)).
 #include "narrows/engines/mpcd/simulation.hpp"
 
 #include "fluid_scene.hpp"
@@ -217,7 +217,7 @@ TEST(NoSlipColloid, FixedDiscInPoiseuilleFlowHasZeroFluidVelocityAtItsSurface) {
 }
 
 // (b) Kolmogorov flow a_x = A sin(k y), k = 2 pi/L_y, in a periodic 12 x 40 box, MPC-AT+a,
-// n = 10, dt = 0.01 (the seed's), A = 0.065; one free disc (radius a = 2, density-matched)
+// n = 10, dt = 0.01 (the thesis'), A = 0.065; one free disc (radius a = 2, density-matched)
 // starts at y = L_y/2, where u_x = 0 and the shear is largest. Theory (2D Stokes, exact for a
 // torque-free disc by the reciprocal theorem): it spins at half the ambient vorticity averaged
 // over its area, Omega_z = (1/2) <omega>_disc; for omega = omega_0 cos(k y) that is (1/2)
@@ -244,7 +244,7 @@ TEST(NoSlipColloid, FixedDiscInPoiseuilleFlowHasZeroFluidVelocityAtItsSurface) {
 // Gaussians of the MPC-AT+a noise (another realisation) 0.996 +- 0.021 (50 blocks), and of the
 // ghosts too 1.042 +- 0.019 (64 blocks); with the ghosts as sums per cut cell (exact in
 // distribution, another realisation) 1.002 +- 0.0200 (64 blocks: a block scatter of 0.16, so
-// the error bound below was missed by a hair; 80 blocks since, the test below). At half the seed's
+// the error bound below was missed by a hair; 80 blocks since, the test below). At half the thesis'
 // time step the disc does spin too fast: dt = 0.005 (A doubled, U ~ 0.8): a = 2: 1.216 +- 0.050, a
 // = 4 (L_y = 80, L_x = 32): 1.059 +- 0.049; with no ghost particles (bounce-back alone) the
 // far-field estimate at dt = 0.005 is as high (1.25 +- 0.09), and bouncing back along the

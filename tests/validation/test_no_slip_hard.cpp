@@ -7,7 +7,7 @@
 // which the first test provokes on purpose.
 //
 // Hard cases at 10^5 steps (reduced boxes and densities, so that each takes 10-30 s):
-// - polydisperse disks (radius 3 +- 3 x 0.33, so 2 to 4, as the seed's a = 2b and 4b) at area
+// - polydisperse disks (radius 3 +- 3 x 0.33, so 2 to 4, as the thesis' a = 2b and 4b) at area
 //   fraction 0.5 in a channel under a strong pressure drive;
 // - three disks touching each other and the lower wall at the start, pressed down by gravity
 //   and pushed along by the flow.
@@ -157,7 +157,7 @@ TEST(NoSlipHardCase, FluidLeftInsideAColloidIsAnInvariantError) {
 // Polydisperse disks at area fraction 0.5 under a strong drive: 11 disks of radius 2-4 (mean
 // area 28.6) in a 36 x 18 channel, n = 3, MPC-AT+a, dt 0.05, g = 0.02 (the centre-line velocity of
 // the empty channel, g L^2 / (8 nu) with nu ~ 0.5, is ~1.6: Re = u 2a / nu ~ 10 on the colloid
-// scale, beyond the seed's Re ~ 1).
+// scale, beyond the thesis' Re ~ 1).
 TEST(NoSlipHardCase, PolydisperseDisksAtHalfAreaFractionUnderStrongDrive) {
   scene::Colloids c = no_slip_colloids(scene::ColloidContacts::hard);
   c.radius = 3.0;

@@ -1,12 +1,13 @@
 // Poiseuille-channel viscosity (issue 4): walls at y = 0 and y = L_y, force g along x, nu from
-// the fitted curvature of the steady profile (seed 000 eq 3.15, seed 001 eq 4.48-4.49).
+// the fitted curvature of the steady profile (Tabatabaei (2008) eq 3.15, Kanehl (thesis)
+// eq 4.48-4.49).
 //
-// - Seed 000 fig 3.6 (2D SRD, 25 x 25, n = 10, dt = 0.1, alpha = 90, g = 0.001): standard error
-//   <= 2 % and within two standard errors of the theory value 0.755.
+// - Tabatabaei (2008) fig 3.6 (2D SRD, 25 x 25, n = 10, dt = 0.1, alpha = 90, g = 0.001):
+//   standard error <= 2 % and within two standard errors of the theory value 0.755.
 // - lambda >= 0.5: SRD 2D and 3D, two angles each, within 3 % of theory at the measured
 //   temperature; MPC-AT within 5 % of its formula (thermostatted, theory at kT = 1).
-// - Seed 001 values for MPC-AT+a at small dt (molecular chaos fails there, so the formula is
-//   not the reference; the seed's measurements are), within 5 %.
+// - Kanehl (thesis) values for MPC-AT+a at small dt (molecular chaos fails there, so the formula is
+//   not the reference; the thesis' measurements are), within 5 %.
 // Every run also reports the fitted wall velocity (slip) relative to the centre velocity.
 // Blocks are several momentum-relaxation times L_y^2/(pi^2 nu) long; the test requires the
 // block-average error to be below half the tolerance, so a pass is not luck.
@@ -62,7 +63,7 @@ TEST_P(Poiseuille, ViscosityFromTheProfile) {
               "of v0\n",
               c.name, c.size[1], r.nu, r.nu_error, 100 * r.nu_error / r.nu, reference,
               c.reference == Reference::theory  ? "theory at measured kT"
-              : c.reference == Reference::fixed ? "seed measurement"
+              : c.reference == Reference::fixed ? "Kanehl (thesis) measurement"
                                                 : "for comparison",
               100 * dev, std::abs(r.nu - reference) / r.nu_error, r.kT, r.v0, 100 * r.slip,
               100 * r.slip_error);
@@ -92,15 +93,15 @@ TEST_P(Poiseuille, ViscosityFromTheProfile) {
   }
 }
 
-// Seed 000 fig 3.6 asks for a standard error <= 2 % and agreement within two of them.
-TEST(PoiseuilleSeed000, Figure3_6) {
+// Tabatabaei (2008) fig 3.6 asks for a standard error <= 2 % and agreement within two of them.
+TEST(PoiseuilleTabatabaei, Figure3_6) {
   const auto s =
       validation::channel_scene(2, scene::Collision::srd, 10, 0.1, 90, {25, 25, 0}, 0.001);
   const auto r = validation::measure_poiseuille(s, 20000, 80, 2000);
   const double theory = 0.755;
-  std::printf("[ measured ] seed 000 fig 3.6: nu = %.4f +- %.4f (%.2f %%), theory %.3f (%.1f "
-              "standard errors), seed measured 0.729; wall velocity %+.2f +- %.2f %% of v0 = "
-              "%.4f; nu from v_max = g L^2/(8 v_max) would be %.4f\n",
+  std::printf("[ measured ] Tabatabaei (2008) fig 3.6: nu = %.4f +- %.4f (%.2f %%), theory "
+              "%.3f (%.1f standard errors), Tabatabaei measured 0.729; wall velocity %+.2f +- "
+              "%.2f %% of v0 = %.4f; nu from v_max = g L^2/(8 v_max) would be %.4f\n",
               r.nu, r.nu_error, 100 * r.nu_error / r.nu, theory,
               std::abs(r.nu - theory) / r.nu_error, 100 * r.slip, 100 * r.slip_error, r.v0,
               0.001 * 625 / (8 * r.v0));
@@ -109,11 +110,11 @@ TEST(PoiseuilleSeed000, Figure3_6) {
 }
 
 // Virtual particles are what hold the fluid at the wall: without them the cut cells are
-// partly empty and the fitted wall velocity is several times larger. At rest (seed 000 eq
-// 3.14) they leave a slip of a few percent of v0 (slip length ~0.2 a at lambda = 0.1: the cut
-// cell averages the fluid with resting virtual particles, not with the flow's continuation);
-// continuing the flow antisymmetrically through the wall (virtual_flow = mirror) brings it
-// below 2 % of v0 (issue 4, acceptance 4).
+// partly empty and the fitted wall velocity is several times larger. At rest
+// (Tabatabaei (2008) eq 3.14) they leave a slip of a few percent of v0 (slip length ~0.2 a at
+// lambda = 0.1: the cut cell averages the fluid with resting virtual particles, not with the flow's
+// continuation); continuing the flow antisymmetrically through the wall (virtual_flow = mirror)
+// brings it below 2 % of v0 (issue 4, acceptance 4).
 TEST(PoiseuilleVirtualParticles, HoldTheFluidAtTheWall) {
   auto s = validation::channel_scene(2, scene::Collision::srd, 10, 0.1, 90, {50, 25, 0}, 0.001);
   const auto rest = validation::measure_poiseuille(s, 20000, 40, 2000);
@@ -226,7 +227,7 @@ INSTANTIATE_TEST_SUITE_P(
              Reference::theory,
              0,
              0.05},
-        // MPC-AT+a, seed 001 tables 5.1 and 6.1. At dt = 0.01 the viscosity is large and the
+        // MPC-AT+a, Kanehl (thesis) tables 5.1 and 6.1. At dt = 0.01 the viscosity is large and the
         // profile small against the thermal noise: 10 blocks at g = 0.029 scattered by 4.5 %
         // from seed to seed (6 seeds), so half the 5 % tolerance was not reached; g is 1.5 times
         // that (v0 ~ 0.17, Re = v0 L / nu ~ 0.5; the Poiseuille profile is exact at any Re) and
@@ -259,8 +260,8 @@ INSTANTIATE_TEST_SUITE_P(
              Reference::fixed,
              1.98,
              0.05},
-        // Seed 001 table 5.1 gives 3.22 here, which its own 2D value at dt = 0.02, n = 25 does
-        // not support (nu_coll ~ 1/dt predicts ~3.9); reported, see the issue note.
+        // Kanehl (thesis) table 5.1 gives 3.22 here, which its own 2D value at dt = 0.02, n = 25
+        // does not support (nu_coll ~ 1/dt predicts ~3.9); reported, see the issue note.
         // (g and blocks raised as for the 3D case: 10 blocks at g = 0.026 gave errors of 3-6 %.)
         Case{"at_a2d_dt0.01_n50_seed_report",
              2,
@@ -276,8 +277,8 @@ INSTANTIATE_TEST_SUITE_P(
              Reference::report,
              3.22,
              0},
-        // Seed 000 fig 3.7 (20 x 10, n = 5, dt = 0.1, alpha = 90); g = 0.004 instead of the
-        // seed's 0.001 for signal (Ma 0.06, still linear); reported against 0.680.
+        // Tabatabaei (2008) fig 3.7 (20 x 10, n = 5, dt = 0.1, alpha = 90); g = 0.004 instead of
+        // the dissertation's 0.001 for signal (Ma 0.06, still linear); reported against 0.680.
         Case{"srd2d_fig3_7_report",
              2,
              Collision::srd,

@@ -6,7 +6,7 @@
 // along the channel. Every 100 steps: the run's invariants (count, ids, no NaN or runaway speed),
 // no fluid particle inside a colloid, the colloid count, the contacts. At the end the deepest
 // overlap is reported: the kicks of fluid trapped in the gaps at the contacts make it deeper than
-// the static 1 % (measured 5 %; the seed's fig 6.2a has a tail beyond 4 %), and below 10 % is
+// the static 1 % (measured 5 %; the thesis' fig 6.2a has a tail beyond 4 %), and below 10 % is
 // asked. The pyramid does not stay jammed at kT = 1: those kicks open a contact now and then, which
 // drops its tangential spring (the history lasts as long as the contact), and the disks creep
 // apart over the run.
@@ -111,9 +111,9 @@ TEST(SpringHardCase, DiskWedgedBetweenTwoOthersAndAWall) {
 }
 
 // Issue 21 acceptance 5, the first and third hard cases, 10^5 steps (10^6 sub-steps): the
-// seed's Table 6.1 mixture (a = 2.1 and 2.94, 1 : 1) packed to phi = 0.82 in a walled channel
+// thesis' Table 6.1 mixture (a = 2.1 and 2.94, 1 : 1) packed to phi = 0.82 in a walled channel
 // (2w = 50, l = 100: 200 disks; at l = 60 the packing jams below 0.82), friction that never slides
-// (mu = inf between the disks and with the walls), under the seed's strongest drive (sigma = 1.25:
+// (mu = inf between the disks and with the walls), under the thesis' strongest drive (sigma = 1.25:
 // 0.05 per fluid particle, and the same pressure gradient on the colloids, M g = sigma V),
 // MPC-AT+a, n = 25, dt = 0.02, as run/pulses_table6_1.toml. At phi = 0.82 most of the fluid sits
 // in gaps between surfaces thinner than one cell; the run counts those particles at the end (the

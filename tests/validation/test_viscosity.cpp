@@ -2,7 +2,7 @@
 // "Measuring nu honestly"): SRD 2D/3D at lambda >= 0.5 within 3 %, MPC-AT within 5 %, MPC-AT+a
 // measured and printed next to the large-n formula.
 //
-// How the runs are sized (all from the seed's own numbers, no tuning to theory):
+// How the runs are sized (all from the estimates below, no tuning to theory):
 // - laminar: Re_k = u0/(k nu) < 1, below the sqrt(2) instability of long Kolmogorov boxes;
 // - heating: SRD conserves energy, so kT rises by ~u0^2/2 per relaxation time 1/(k^2 nu); with
 //   u0 ~ 0.06 and ~100 relaxation times the rise is ~15 %, and theory is evaluated at the
@@ -163,7 +163,7 @@ INSTANTIATE_TEST_SUITE_P(
         Case{
             "at2d_dt0.5", 2, Collision::at, 10, 0.5, 90, {100, 24, 0}, 0.00297, 640, 20, 320, 0.05},
         Case{"at3d_dt0.5", 3, Collision::at, 10, 0.5, 90, {16, 16, 16}, 0.01, 280, 20, 140, 0.05},
-        // MPC-AT+a: large-n formula in 3D (seed 001 eq 4.13-4.14), none in 2D: report only.
+        // MPC-AT+a: large-n formula in 3D (Kanehl (thesis) eq 4.13-4.14), none in 2D: report only.
         Case{"at_a3d_dt0.5_report",
              3,
              Collision::at_a,

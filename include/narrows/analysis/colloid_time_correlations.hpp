@@ -1,4 +1,4 @@
-// Time correlations of colloids (seed 001 §4.4.2): the velocity autocorrelation
+// Time correlations of colloids (Kanehl (thesis) §4.4.2): the velocity autocorrelation
 // C(tau) = <v(t).v(t+tau)> (eq 4.50), its running integral D(t) = (1/d) int_0^t C (eq 4.51), the
 // mean-square displacement <|r(t+tau) - r(t)|^2> and the angular VACF <w(t).w(t+tau)> with its
 // integral D_rot(t) = (1/d_rot) int_0^t C_w (d_rot = 1 in 2D, 3 in 3D), per kind of colloid and

@@ -1,4 +1,4 @@
-// Kernel density profiles across the channel (seed 001 eq 5.2): per kind k,
+// Kernel density profiles across the channel (Kanehl (thesis) eq 5.2): per kind k,
 //   F_k(y) = (1/N_k) sum_{i in k} 3/(4 eps^3) (eps^2 - (y - y_i)^2) H(eps - |y - y_i|),
 // the Epanechnikov kernel of half-width eps (it integrates to 1, so F_k is the probability
 // density of a k colloid's y), evaluated at the centres of `bins` equal bins of [0, length),

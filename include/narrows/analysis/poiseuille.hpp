@@ -1,5 +1,5 @@
-// Viscosity from a Poiseuille profile (seed 000 eq 3.15, seed 001 eq 4.48-4.49): walls at
-// y = 0 and y = L, force g along x, steady v_x(y) = g y (L - y) / (2 nu).
+// Viscosity from a Poiseuille profile (Tabatabaei (2008) eq 3.15, Kanehl (thesis) eq 4.48-4.49):
+// walls at y = 0 and y = L, force g along x, steady v_x(y) = g y (L - y) / (2 nu).
 #pragma once
 
 #include <vector>

@@ -1,4 +1,4 @@
-// Contact history of the spring contacts (seed 001 §4.2.3): the tangential spring of each
+// Contact history of the spring contacts (Kanehl (thesis) §4.2.3): the tangential spring of each
 // contact that lasts, as data of its own. A contact is keyed by the ids of its two colloids,
 // (owner, partner) with owner < partner, or (owner, wall) for a colloid touching a wall; it is
 // owned by the colloid `owner` and lives on the rank that owns that colloid, which alone

@@ -16,7 +16,7 @@ struct DemBenchOptions {
   bool json = false;
 };
 
-// The packing: seed 001 Table 6.1's mixture (a = 2.1 and 2.94, number ratio 1 : 1) at area
+// The packing: Kanehl (thesis) Table 6.1's mixture (a = 2.1 and 2.94, number ratio 1 : 1) at area
 // fraction 0.8 between walls 50 apart, grown by colloids/packing.hpp on a tile of 1000 disks,
 // periodic along x, and the tile repeated along x. Velocities and spins thermal at kT = 1,
 // disks density-matched to rho = 25; k_n = k_t = 2500, mu = 1 (colloid-colloid and wall),

@@ -1,10 +1,10 @@
-// The forces on colloids and on the fluid near them (seed 000 §3.3-3.4): a sum of separate
+// The forces on colloids and on the fluid near them (Tabatabaei (2008) §3.3-3.4): a sum of separate
 // terms, each its own function and file (force_terms.hpp), all accumulated in 64-bit fixed
 // point so that the sum is exact and independent of the order of pairs and of ranks:
 //   colloid-fluid WCA (force_colloid_fluid.cpp), colloid-colloid 48-24
 //   (force_colloid_colloid.cpp), integrated LJ wall (force_wall.cpp), gravity
 //   (force_gravity.cpp).
-// Contact forces with per-contact history (springs and friction, seed 001 §4.2.3) are not a
+// Contact forces with per-contact history (springs and friction, Kanehl (thesis) §4.2.3) are not a
 // term here: they move no-slip colloids in their own sub-steps (springs.hpp), with their history
 // as data of its own that travels with the colloid owning the contact (contact_history.hpp);
 // event-driven hard-sphere collisions (hard_spheres.hpp) likewise move no-slip colloids.

@@ -1,7 +1,7 @@
-// Event-driven rough hard spheres (seed 001 §4.2.2, eq 4.19-4.33): colloids move ballistically
-// and collide instantaneously, earliest collision first, from a priority queue of predicted
-// events. At contact the relative velocity of the touching surface points, U (eq 4.26), is
-// reversed whole: its normal part (elastic) and its tangential part (no slip, fig 4.5). The
+// Event-driven rough hard spheres (Kanehl (thesis) §4.2.2, eq 4.19-4.33): colloids move
+// ballistically and collide instantaneously, earliest collision first, from a priority queue of
+// predicted events. At contact the relative velocity of the touching surface points, U (eq 4.26),
+// is reversed whole: its normal part (elastic) and its tangential part (no slip, fig 4.5). The
 // impulse that does so (eq 4.27-4.29) conserves momentum, angular momentum and kinetic energy
 // (translational plus rotational). Walls at y = 0 and y = L_y (with box.walls_y) are rough
 // hard walls at rest: infinite mass, the same rule.

@@ -36,8 +36,8 @@ void set_radii_and_masses(Colloids &c, const scene::Colloids &spec, double densi
 Colloids place_colloids(const scene::Colloids &spec, const mpcd::Box &box, double density,
                         std::uint64_t seed, PackingReport *report = nullptr);
 
-// Fluid particles the scene has with colloids: round(n (V_box - sum_a V_a)) (seed 000 §3.4.1:
-// N_f = n (L_x L_y - N_c pi r_c^2) for equal radii); `seed` draws the radii.
+// Fluid particles the scene has with colloids: round(n (V_box - sum_a V_a)) (Tabatabaei (2008)
+// §3.4.1: N_f = n (L_x L_y - N_c pi r_c^2) for equal radii); `seed` draws the radii.
 std::uint64_t fluid_count_with_colloids(const scene::Colloids &spec, const mpcd::Box &box,
                                         double density, std::uint64_t seed);
 

@@ -1,20 +1,20 @@
-// The interaction potentials of seed 000 §3.3-3.4, as inline kernels for the force loops.
+// The interaction potentials of Tabatabaei (2008) §3.3-3.4, as inline kernels for the force loops.
 //
 // Pair potentials phi(r) = 4 eps [(sigma/r)^(2n) - (sigma/r)^n + 1/4] for r < r_cut = 2^(1/n)
 // sigma (the repulsive, shifted Lennard-Jones form): n = 6 colloid-fluid (eq 3.42, sigma_cf =
-// r_a, the colloid's radius), n = 24 colloid-colloid (eq 3.43, sigma_cc = r_a + r_b; the seed's
+// r_a, the colloid's radius), n = 24 colloid-colloid (eq 3.43, sigma_cc = r_a + r_b; Tabatabaei's
 // 2 r_c for equal radii).
 //
 // Wall (eq 3.35-3.37): a Lennard-Jones 12-6 line density q/sigma integrated along the wall,
 //   U(h) = (3 pi eps q / 2) [ (21/32)(sigma/h)^11 - (sigma/h)^5 ] ,  h = distance to the wall,
 // using int dx/(x^2+b^2)^3 = 3 pi/(8 b^5) and int dx/(x^2+b^2)^6 = 63 pi/(256 b^11). Its
 // minimum solves (21/32) 11 (sigma/h)^11 = 5 (sigma/h)^5, i.e. (h/sigma)^6 = 231/160 = 1.44375:
-//   h_cut = 1.44375^(1/6) sigma = 1.063119 sigma  (the seed's "(1.444375 sigma)^(1/6)" is garbled:
-//   the constant is 231/160 and sigma stands outside the root),
+//   h_cut = 1.44375^(1/6) sigma = 1.063119 sigma  (Tabatabaei's "(1.444375 sigma)^(1/6)" is
+//   garbled: the constant is 231/160 and sigma stands outside the root),
 // where U(h_cut) = -(3 pi eps q / 2)(6/11)(160/231)^(5/6). Truncated at h_cut and shifted by
 // that value, U and the force F = -dU/dh = (15 pi eps q / 2)[(231/160)(sigma/h)^11 -
 // (sigma/h)^5]/h (eq 3.37) both vanish at the cut-off, so the potential is continuous with a
-// continuous force. The seed is 2D (a wall is a line of LJ centres); in a 3D slit the same
+// continuous force. The dissertation is 2D (a wall is a line of LJ centres); in a 3D slit the same
 // profile is used as a smooth repulsive wall (the plane-integrated 9-3 form is not implemented).
 #pragma once
 
@@ -32,7 +32,7 @@ inline double repulsive_cutoff(int n, double sigma) { return std::pow(2.0, 1.0 /
 
 // The (2n, n) repulsive potential at squared distance r2 < cutoff^2 (the caller checks).
 template <int N> inline PairTerm repulsive_pair(double r2, double sigma2, double eps) {
-  static_assert(N == 6 || N == 24, "the potentials of seed 000 use n = 6 and n = 24");
+  static_assert(N == 6 || N == 24, "the potentials of Tabatabaei (2008) use n = 6 and n = 24");
   const double s2 = sigma2 / r2;
   double sn = s2 * s2 * s2; // (sigma/r)^6
   if constexpr (N == 24) {

@@ -1,6 +1,6 @@
-// Linear springs with Coulomb friction (seed 001 §4.2.3, eq 4.39-4.42, fig 4.6), the contacts of
-// `[colloids] contacts = "spring"`. Two overlapping bodies (colloid-colloid, or colloid and a
-// wall at rest at y = 0 or y = L_y) feel
+// Linear springs with Coulomb friction (Kanehl (thesis) §4.2.3, eq 4.39-4.42, fig 4.6), the
+// contacts of `[colloids] contacts = "spring"`. Two overlapping bodies (colloid-colloid, or colloid
+// and a wall at rest at y = 0 or y = L_y) feel
 //   normal:      F_n = -k_n delta_n n           (delta_n the overlap, n towards the partner)
 //   tangential:  F_t = -k_t xi                  (xi the tangential spring of the contact)
 // on the first body and the opposite on the second, with torques r n x F_t on both (lever arm
@@ -9,7 +9,7 @@
 // plane keeping its length (eq 4.40), then stretched by the tangential relative velocity of
 // the contact points times the sub-step (eq 4.39), and cut back to |F_t| = mu |F_n| when it is
 // longer (Coulomb, eq 4.41-4.42: the contact slides). mu = 0: no tangential force; mu = inf:
-// never slides. Separate mu colloid-colloid and colloid-wall. The seed has no damping: sigma of
+// never slides. Separate mu colloid-colloid and colloid-wall. The thesis has no damping: sigma of
 // its Table 6.1 is the pressure gradient of the drive; the fluid damps the collisions.
 //
 // Integration: velocity Verlet sub-steps (half kick, drift, springs updated with the half-step
@@ -38,7 +38,7 @@
 namespace narrows::colloids {
 
 struct SpringParams {
-  double kn = 2500.0, kt = 2500.0; // kT / a^2 (seed 001 Table 6.1)
+  double kn = 2500.0, kt = 2500.0; // kT / a^2 (Kanehl (thesis) Table 6.1)
   double mu_cc = 1.0, mu_cw = 1.0; // infinity: never slides
   int substeps = 10;               // velocity-Verlet sub-steps per MPCD step
 };

@@ -6,7 +6,7 @@
 
 namespace narrows {
 
-// Exit codes of the command line (DESIGN.md, "The user-facing contract").
+// Exit codes of the command line (docs/architecture.md, "The user-facing contract").
 enum class ExitCode : int { ok = 0, other = 1, bad_input = 2, invariant = 3 };
 
 class Error : public std::runtime_error {

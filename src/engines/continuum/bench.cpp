@@ -108,7 +108,7 @@ void run_bench(std::ostream &out, double cells, bool json) {
            static_cast<double>(steps) * static_cast<double>(n) / seconds, steps,
            "Strang splitting, IF-RK4: 20 real FFTs of n points each");
   }
-  // The segregation model: two kinds (seed 001 fig 5.6, 2D, phi = 0.5) on an even number of
+  // The segregation model: two kinds (Kanehl (thesis) fig 5.6, 2D, phi = 0.5) on an even number of
   // cells across the channel, from the uniform start at a stable dt.
   {
     const std::size_t n = std::max<std::size_t>(4, static_cast<std::size_t>(cells) / 2 * 2);

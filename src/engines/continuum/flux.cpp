@@ -44,12 +44,13 @@ std::string Flux::describe() const {
   case scene::ContinuumFlux::colloid_chain:
     std::snprintf(buf, sizeof buf,
                   "J(rho) = rho (c rho + c' - v_cm), c = %g, c' = %g, v_cm = %g (sedimenting "
-                  "colloid chain, seed 000 eq 5.3)",
+                  "colloid chain, Tabatabaei (2008) eq 5.3)",
                   c_, c_prime_, v_cm_);
     return buf;
   case scene::ContinuumFlux::tasep:
     std::snprintf(buf, sizeof buf,
-                  "J(rho) = (p - q) rho (1 - rho) = %g rho (1 - rho) (TASEP/ASEP, seed 000 eq 5.1)",
+                  "J(rho) = (p - q) rho (1 - rho) = %g rho (1 - rho) "
+                  "(TASEP/ASEP, Tabatabaei (2008) eq 5.1)",
                   three_state::hydrodynamic_flux(lattice_, 0.5) * 4.0);
     return buf;
   case scene::ContinuumFlux::family1:

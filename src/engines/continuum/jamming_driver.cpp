@@ -36,7 +36,7 @@ std::vector<std::string> describe_jamming(const scene::Scene &scene) {
   const JammingPlan p = plan_of(scene, make_jamming_plan);
   std::vector<std::string> out;
   out.push_back("engine continuum: jamming model phi_t + (phi v)_x = D phi_xx, v_t + v v_x = "
-                "sigma - xi(phi) v (seed 001 eq 6.2-6.6), D = " +
+                "sigma - xi(phi) v (Kanehl (thesis) eq 6.2-6.6), D = " +
                 format("%g, sigma = %g", m.diffusion, m.drive));
   out.push_back("friction: " + model.describe());
   out.push_back("grid: " + std::to_string(m.cells) + " points x_i = i dx, dx = " +
@@ -85,7 +85,7 @@ std::vector<std::string> describe_jamming(const scene::Scene &scene) {
     out.push_back(
         "warning: the mean phi = " +
         format("%g is at or beyond phi_q = %g, where the fit's v_ss (eq 6.4) reaches 0 and "
-               "rises again: outside the range of the seed's data (fig 6.8)",
+               "rises again: outside the range of the thesis' data (fig 6.8)",
                phi0, model.fit().phi_q));
   out.push_back("stability boundary in the (phi, drive) plane: flow at phi = " +
                 format("%g is unstable to long waves for drive < %.6g (phi^2 v_ss'^2 v_ss / D)",

@@ -33,8 +33,8 @@ std::vector<std::string> describe_segregation(const scene::Scene &scene) {
   const std::size_t n = model.kinds();
   std::vector<std::string> out;
   out.push_back("engine continuum: segregation model phi_i_t = -J_i_y, J_i = -phi_i A_ij [K_c "
-                "(phi_j gdot)_y + K_eta phi_j gdot eta_y / eta] - D_C^ij phi_j_y (seed 001 eq "
-                "5.13-5.30), " +
+                "(phi_j gdot)_y + K_eta phi_j gdot eta_y / eta] - D_C^ij phi_j_y "
+                "(Kanehl (thesis) eq 5.13-5.30), " +
                 std::to_string(s.dimensions) + "D, " + std::to_string(n) +
                 (n == 1 ? " kind" : " kinds"));
   out.push_back("constants: " +
@@ -85,7 +85,7 @@ std::vector<std::string> describe_segregation(const scene::Scene &scene) {
                   "); the time step comes from the uniform start only");
   }
   out.push_back("scheme: finite volumes, the current of eq 5.14 at each face from its two cells "
-                "(second order), RK4 in time (seed sec 5.2.4)");
+                "(second order), RK4 in time (Kanehl (thesis) sec 5.2.4)");
   out.push_back(
       "time step: dt = " +
       format("%.6g (cfl %g: dt (%.4g / h^2 + %.4g / h) = ", p.dt, m.cfl, p.diffusive, p.drift) +

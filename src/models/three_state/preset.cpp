@@ -1,4 +1,5 @@
-// Presets of seed 000 ch.2: derived quantities and condition residuals (see kmc/preset.hpp).
+// Presets of Tabatabaei (2008) ch.2: derived quantities and condition residuals
+// (see kmc/preset.hpp).
 #include "narrows/models/three_state/preset.hpp"
 
 #include <algorithm>
@@ -11,7 +12,7 @@ namespace {
 
 using scene::KmcPreset;
 
-// The seed's w_ij (i target label, j initial label, label = pair code + 1).
+// Tabatabaei's w_ij (i target label, j initial label, label = pair code + 1).
 struct SeedRates {
   const std::array<double, 81> &r;
   double operator()(int i, int j) const { return r[(j - 1) * 9 + (i - 1)]; }

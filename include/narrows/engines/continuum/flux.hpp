@@ -1,7 +1,7 @@
 // The flux J(rho) of the 1D conservation law rho_t + J(rho)_x = D rho_xx: Burgers, the
-// lattice-gas fluxes of seed 000 ch.2 (taken from the kmc presets, kmc/preset.hpp: family 1's
-// eq 2.48 with rho*(sigma) of eq 2.59, i.e. eq 2.60; family 2's eq 2.126; TASEP/ASEP as family 2
-// without B) and the sedimenting colloid chain of seed 000 ch.5 (eq 5.3).
+// lattice-gas fluxes of Tabatabaei (2008) ch.2 (taken from the kmc presets, kmc/preset.hpp: family
+// 1's eq 2.48 with rho*(sigma) of eq 2.59, i.e. eq 2.60; family 2's eq 2.126; TASEP/ASEP as family
+// 2 without B) and the sedimenting colloid chain of Tabatabaei (2008) ch.5 (eq 5.3).
 #pragma once
 
 #include "narrows/scene/scene.hpp"

@@ -1,9 +1,9 @@
-// The jamming model of seed 001 ch.6 (eq 6.2-6.3): the area fraction phi(x, t) and the flow
+// The jamming model of Kanehl (thesis) ch.6 (eq 6.2-6.3): the area fraction phi(x, t) and the flow
 // velocity v(x, t) of colloids driven through a channel,
 //   phi_t + (phi v)_x = D phi_xx,      v_t + v v_x = sigma - xi(phi) v,
 // with the friction xi(phi) = sigma / v_ss(phi) taken from the fitted steady-state velocity
 // v_ss (eq 6.4, the parameters of Table 6.2 for the wall friction mu). With sigma = D = 1 these
-// are the normalised eq 6.5-6.6 of the seed (time (D / sigma^2)^(1/3), length (D^2/sigma)^(1/3)).
+// are the normalised eq 6.5-6.6 of the thesis (time (D / sigma^2)^(1/3), length (D^2/sigma)^(1/3)).
 #pragma once
 
 #include "narrows/scene/scene.hpp"

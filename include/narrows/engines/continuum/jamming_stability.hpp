@@ -1,5 +1,5 @@
-// Linear stability of homogeneous flow phi = phi0, v = v_ss(phi0) in the jamming model (seed
-// 001 eq 6.7-6.11): a perturbation exp(i k x + lambda t) grows at Re lambda, with
+// Linear stability of homogeneous flow phi = phi0, v = v_ss(phi0) in the jamming model
+// (Kanehl (thesis) eq 6.7-6.11): a perturbation exp(i k x + lambda t) grows at Re lambda, with
 //   lambda = lambda* - i k v0,  lambda* = a +- sqrt(a^2 - xi D k^2 + i k phi0 sigma xi' / xi),
 //   a = -(D k^2 + xi) / 2,
 // the eigenvalues of the 2x2 matrix of eq 6.10 (with sigma = D = 1 exactly eq 6.11).

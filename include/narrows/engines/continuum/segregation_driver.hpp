@@ -14,7 +14,7 @@
 namespace narrows::continuum {
 
 // The model, its kinds (coupling matrix A, Peclet numbers), viscosity and shear rate, grid, the
-// steady profile (centre and wall values, the seed's migration-to-diffusion ratio at the wall),
+// steady profile (centre and wall values, the thesis' migration-to-diffusion ratio at the wall),
 // the scheme and its time step.
 std::vector<std::string> describe_segregation(const scene::Scene &scene);
 

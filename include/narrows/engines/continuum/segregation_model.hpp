@@ -1,6 +1,6 @@
-// The segregation theory of seed 001 ch.5 (sec 5.2): one or two colloid kinds across a channel
-// y in [-w, w] in pressure-driven flow. Kind i (radius a_i, single-colloid diffusivity D_0^i)
-// has the area (volume) fraction phi_i(y, t) and the current (eq 5.14)
+// The segregation theory of Kanehl (thesis) ch.5 (sec 5.2): one or two colloid kinds across a
+// channel y in [-w, w] in pressure-driven flow. Kind i (radius a_i, single-colloid diffusivity
+// D_0^i) has the area (volume) fraction phi_i(y, t) and the current (eq 5.14)
 //   J_i = -phi_i A_ij [K_c (phi_j gdot)' + K_eta phi_j gdot eta'/eta] - D_C^ij phi_j',
 // with the coupling matrix A of eq 5.13, the collective diffusion D_C^ii = K_d D_0^i / S(phi)
 // (eq 5.23-5.24, S of eq 5.19-5.20 in 2D, 5.21-5.22 in 3D), D_C^ij = D_C^ii phi_i / (1 -
@@ -45,7 +45,7 @@ public:
   bool admissible(const double *phi) const;
   // Peclet number a^3 v0 / (w^2 D_0) of kind i (eq 5.1).
   double peclet(std::size_t i) const;
-  // The seed's ratio of shear migration to diffusion K_c a_i^2 gdot phi_i / (K_d D_0^i) (sec
+  // The thesis' ratio of shear migration to diffusion K_c a_i^2 gdot phi_i / (K_d D_0^i) (sec
   // 5.3.3) at the fractions phi and position y.
   double migration_ratio(std::size_t i, const double *phi, double y) const;
 

@@ -1,8 +1,8 @@
-// The segregation model's time-dependent profiles (seed 001 eq 5.30, phi_i_t = -J_i_y): finite
-// volumes of width h = 2w / cells across [-w, w], the current of eq 5.14 at each interior face
-// from the mean and the difference of its two cells (J = -(M (phi_R - phi_L) / h + b) with M, b
-// at the face; second order), no current through the walls (the total of each kind is kept to
-// rounding), classical RK4 in time as in the seed (sec 5.2.4).
+// The segregation model's time-dependent profiles (Kanehl (thesis) eq 5.30, phi_i_t = -J_i_y):
+// finite volumes of width h = 2w / cells across [-w, w], the current of eq 5.14 at each interior
+// face from the mean and the difference of its two cells (J = -(M (phi_R - phi_L) / h + b) with M,
+// b at the face; second order), no current through the walls (the total of each kind is kept to
+// rounding), classical RK4 in time as in the thesis (sec 5.2.4).
 #pragma once
 
 #include "narrows/engines/continuum/segregation_model.hpp"

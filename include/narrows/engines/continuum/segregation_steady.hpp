@@ -1,8 +1,8 @@
-// The steady state of the segregation model (seed 001 eq 5.30 with d phi / dt = 0): with walls
-// that let no colloid through, every current vanishes, J_i = -(M phi' + b)_i = 0, a first-order
-// ODE system phi' = -M^-1 b across the channel (Eigen's LU per step). The profile is even in y;
-// it is integrated from the centre to the wall by RK4 with the centre values phi_i(0) found by
-// Newton's method so that each kind's mean over the channel is its fraction.
+// The steady state of the segregation model (Kanehl (thesis) eq 5.30 with d phi / dt = 0): with
+// walls that let no colloid through, every current vanishes, J_i = -(M phi' + b)_i = 0, a
+// first-order ODE system phi' = -M^-1 b across the channel (Eigen's LU per step). The profile is
+// even in y; it is integrated from the centre to the wall by RK4 with the centre values phi_i(0)
+// found by Newton's method so that each kind's mean over the channel is its fraction.
 #pragma once
 
 #include "narrows/engines/continuum/segregation_model.hpp"

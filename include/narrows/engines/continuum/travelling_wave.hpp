@@ -1,7 +1,7 @@
-// Travelling waves phi(z), v(z), z = x - c t, of the jamming model (seed 001 §6.3.3-6.3.4): with
-// the co-moving flux q = (v - c) phi - D phi' constant (eq 6.12), the PDE becomes the ODEs
+// Travelling waves phi(z), v(z), z = x - c t, of the jamming model (Kanehl (thesis) §6.3.3-6.3.4):
+// with the co-moving flux q = (v - c) phi - D phi' constant (eq 6.12), the PDE becomes the ODEs
 //   D phi' = (v - c) phi - q,     v' = (sigma - xi(phi) v) / (v - c)        (eq 6.13-6.14)
-// (sigma = D = 1 in the seed). Fixed points lie where q = phi0 (v_ss(phi0) - c) (eq 6.18); their
+// (sigma = D = 1 in the thesis). Fixed points lie where q = phi0 (v_ss(phi0) - c) (eq 6.18); their
 // type comes from the eigenvalues of the Jacobian (eq 6.19-6.20, solved by Eigen). A limit cycle
 // of the ODEs is a periodic pulse train of the PDE moving at c.
 #pragma once

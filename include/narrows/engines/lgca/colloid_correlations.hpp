@@ -1,4 +1,4 @@
-// Time-origin averages of a colloid's velocity (seed 002 §4.3, eq 5 and 29): the VACF
+// Time-origin averages of a colloid's velocity (van der Hoef & Frenkel §4.3, eq 5 and 29): the VACF
 // <U(0).U(t)> for lags 0..max_lag and the virtual displacement X(t) = sum of U (one step per
 // unit time), its mean square <|X(t0 + t) - X(t0)|^2> and D(t) = msd / (4 t) at lags that are
 // multiples of `every`. Every step is a time origin. Errors: the run is cut into `blocks` equal
@@ -8,8 +8,9 @@
 // colloid, which total-momentum conservation keeps fixed: U - V has mean zero, so neither a
 // plateau |V|^2 in the VACF nor a ballistic drift |V|^2 t^2 in the mean square displacement.
 // What remains is the VACF at total momentum exactly zero, which lacks the share of the
-// colloid's momentum that the k = 0 mode keeps for ever. The analogue of seed eq 22 adds it
-// back: with total momentum P = M U + P_fluid free (canonical), <U(0).V> = M <U^2> / M_tot, so
+// colloid's momentum that the k = 0 mode keeps for ever. The analogue of van der Hoef & Frenkel
+// eq 22 adds it back: with total momentum P = M U + P_fluid free (canonical),
+// <U(0).V> = M <U^2> / M_tot, so
 //   Z(t) = Z_P0(t) + M / M_tot,   D(t) = D_P0(t) + (M / M_tot) <U^2> t / 4,
 // with M the mass moving with U (disc + gas inside) and M_tot that of disc + all gas (the
 // `plateau` argument of vacf() and diffusion()). The derivation: given P, the colloid's mean

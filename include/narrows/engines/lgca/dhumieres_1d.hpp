@@ -1,6 +1,7 @@
-// The 1D lattice gas of d'Humieres, Lallemand and Qian (seed 002 ref [12]): velocities 0, +-1,
-// +-2 on a periodic ring, at most one particle per velocity per site, collisions that conserve
-// mass and momentum at each site. One byte per site; bit i is the link of velocity[i].
+// The 1D lattice gas of d'Humieres, Lallemand and Qian (van der Hoef & Frenkel ref [12]):
+// velocities 0, +-1, +-2 on a periodic ring, at most one particle per velocity per site,
+// collisions that conserve mass and momentum at each site. One byte per site; bit i is the link
+// of velocity[i].
 #pragma once
 
 #include "narrows/engines/lgca/moment_propagation.hpp"

@@ -1,5 +1,5 @@
-// Tagged-particle VACF of the 1D d'Humieres model by moment propagation (seed 002 fig 1): one
-// run draws an initial state from an ensemble and records successive VACF curves.
+// Tagged-particle VACF of the 1D d'Humieres model by moment propagation (van der Hoef & Frenkel
+// fig 1): one run draws an initial state from an ensemble and records successive VACF curves.
 #pragma once
 
 #include "narrows/engines/lgca/dhumieres_1d.hpp"

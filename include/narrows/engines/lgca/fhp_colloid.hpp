@@ -1,5 +1,5 @@
-// A colloidal disc in the FHP lattice gas with the Ladd-Frenkel moving-boundary rules (seed 002
-// §4.2, eq 23-27), moving or held in place (§4.3).
+// A colloidal disc in the FHP lattice gas with the Ladd-Frenkel moving-boundary rules
+// (van der Hoef & Frenkel §4.2, eq 23-27), moving or held in place (§4.3).
 //
 // The disc is the set of sites within `radius` of its centre; the lattice gas fills inside
 // and outside. A boundary link joins an outside site A and an inside site B (or the reverse)
@@ -24,7 +24,7 @@
 // the centre has moved farther than the smallest distance of a site from the circle since the
 // last rebuild (otherwise no site can have crossed it). Held (§4.3): the disc stays at its
 // position, its velocity evolves from the momentum exchange (the velocity whose VACF and
-// integral, the virtual displacement, the seed measures).
+// integral, the virtual displacement, the paper measures).
 //
 // MPI slabs: the colloid is replicated on every rank. apply() gathers the post-collision
 // states of the boundary links' end sites (a few per link) to all ranks with one MPI_BOR

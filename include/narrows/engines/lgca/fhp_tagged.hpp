@@ -1,4 +1,4 @@
-// Moment propagation (seed 002 eq 11, 13, 14) on the MPI slabs of an FhpLattice: the
+// Moment propagation (van der Hoef & Frenkel eq 11, 13, 14) on the MPI slabs of an FhpLattice: the
 // tagged-particle VACF of all particles as starting points, over successive time origins.
 //
 // Pull form of eq 11: the weight a(r) that arrives at site r is the sum over links i of

@@ -1,5 +1,5 @@
-// Moment propagation (seed 002 eq 11, 13, 14): the velocity autocorrelation of a tagged
-// particle averaged over all its trajectories and over all particles as starting points, for
+// Moment propagation (van der Hoef & Frenkel eq 11, 13, 14): the velocity autocorrelation of a
+// tagged particle averaged over all its trajectories and over all particles as starting points, for
 // any lattice gas whose node state is a byte of link occupations. The kernel needs only the
 // post-collision occupation of every site each step, the link velocities and a neighbour table.
 #pragma once

@@ -1,5 +1,5 @@
-// Kinetic theory of the tagged-particle VACF of a lattice gas (seed 002 §3.3-3.4): the exact
-// one-step VACF (eq 18 by enumeration, eq 19 in closed form), the Boltzmann diffusion
+// Kinetic theory of the tagged-particle VACF of a lattice gas (van der Hoef & Frenkel §3.3-3.4):
+// the exact one-step VACF (eq 18 by enumeration, eq 19 in closed form), the Boltzmann diffusion
 // coefficient (eq 20), the mean free time (eq 21) and the finite-size plateau (eq 22).
 #pragma once
 
@@ -38,7 +38,7 @@ double finite_size_correction(double d, double n);
 // pulses, has come back around the system (t < L / c_s in 1D):
 //   Z = <P^2> / (N^2 <v^2>) - (1 - d) / N,
 // where m2 = <P^2> / (N <v^2>) describes the ensemble: 0 for P = 0 exactly (Z = -(1 - d)/N,
-// the seed's plateau), 1 - d for independent occupations (Z = 0). Once the pulses have spread
+// the paper's plateau), 1 - d for independent occupations (Z = 0). Once the pulses have spread
 // evenly (t >> L^2 / Gamma) the tagged particle moves with the centre of mass, Z -> m2 / N.
 double intermediate_plateau(double d, double n, double m2);
 double long_time_limit(double n, double m2);

@@ -1,8 +1,8 @@
-// Presets of seed 000 ch.2 for the kmc engine: what the seed derives for family 1 (charge
-// conserving, eq 2.5) and family 2 (ASEP with a binary internal state, eq 2.79/2.86), and
+// Presets of Tabatabaei (2008) ch.2 for the kmc engine: what the dissertation derives for family 1
+// (charge conserving, eq 2.5) and family 2 (ASEP with a binary internal state, eq 2.79/2.86), and
 // whether the given rates satisfy the conditions the derivations need, with residuals.
 //
-// Two kinds of check are made. The seed's own equations (2.35-2.36, 2.93-2.94, 2.109-2.111,
+// Two kinds of check are made. The dissertation's own equations (2.35-2.36, 2.93-2.94, 2.109-2.111,
 // 2.114, 2.72-2.75) are evaluated as printed. Independently, the product measure pi of each
 // fugacity is tested numerically against the condition those equations come from: the
 // two-site generator G must map pi (x) pi into divergence form,
@@ -44,10 +44,10 @@ struct PresetReport {
   std::vector<Branch> branches;
   bool shock = false;                // two fugacities given
   double d1 = 0.0, d2 = 0.0;         // shock hopping rates to the left and to the right
-  double v_s = 0.0;                  // shock velocity, the seed's sign: positive to the left
+  double v_s = 0.0;                  // shock velocity, Tabatabaei's sign: positive to the left
   double d_s = 0.0;                  // shock diffusion coefficient
   std::vector<Residual> residuals;   // every condition checked (0 when it holds)
-  std::vector<std::string> lines;    // what the seed derives, for check/info/log
+  std::vector<std::string> lines;    // what the dissertation derives, for check/info/log
   std::vector<std::string> warnings; // conditions that fail, with their residuals
 };
 
@@ -94,7 +94,7 @@ double hydrodynamic_flux(const scene::Kmc &model, double density);
 // eq 2.59 solved for rho* in [|sigma|, 1].
 double family1_rho_star(double sigma, double r);
 
-// Everything the seed derives for the model's preset, checked.
+// Everything the dissertation derives for the model's preset, checked.
 PresetReport analyse(const scene::Kmc &model);
 
 } // namespace narrows::three_state

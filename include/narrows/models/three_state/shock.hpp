@@ -1,4 +1,4 @@
-// Shock position of a three-state configuration (seed 000 §2.3.8, §2.4.2).
+// Shock position of a three-state configuration (Tabatabaei (2008) §2.3.8, §2.4.2).
 //
 // Estimator (maximum likelihood over shock measures): the configuration is scored as a shock
 // measure |k> (eq 2.23) with single-site probabilities p_left on sites 1..k and p_right on

@@ -4,8 +4,8 @@
 namespace narrows::three_state::theory {
 
 // Stationary current of open TASEP (hop rate 1, injection alpha, extraction beta) on L sites:
-// J = Z_(L-1) / Z_L with the matrix-product normalisation (Derrida, Evans, Hakim, Pasquier
-// 1993)  Z_N = sum_p p (2N-1-p)! / (N! (N-p)!) * (b^(p+1) - a^(p+1)) / (b - a), a = 1/alpha,
+// J = Z_(L-1) / Z_L with the matrix-product normalisation of Derrida et al. (1993),
+//   Z_N = sum_p p (2N-1-p)! / (N! (N-p)!) * (b^(p+1) - a^(p+1)) / (b - a), a = 1/alpha,
 // b = 1/beta (the limit (p+1) a^p when a = b).
 double tasep_open_current(int L, double alpha, double beta);
 

@@ -1,4 +1,4 @@
-// Ghost particles inside no-slip colloids for the collision step (seed 001 §4.2.1, eq 4.18).
+// Ghost particles inside no-slip colloids for the collision step (Kanehl (thesis) §4.2.1, eq 4.18).
 #include "narrows/colloids/hard_spheres.hpp"
 #include "narrows/colloids/pair_geometry.hpp"
 #include "narrows/core/error.hpp"

@@ -1,4 +1,4 @@
-// Bounce-back of fluid particles at the surfaces of no-slip colloids (seed 001 §4.2.1).
+// Bounce-back of fluid particles at the surfaces of no-slip colloids (Kanehl (thesis) §4.2.1).
 #include "narrows/colloids/pair_geometry.hpp"
 #include "narrows/core/error.hpp"
 #include "narrows/core/timer.hpp"
@@ -243,7 +243,7 @@ BounceStats NoSlipCoupling::bounce_back(mpcd::Fluid &fluid, Colloids &c,
     active_.swap(still_);
     T *= 0.5;
   }
-  // No fluid inside a colloid after the step (seed 001 §4.2.1): checked for every particle
+  // No fluid inside a colloid after the step (Kanehl (thesis) §4.2.1): checked for every particle
   // that was bounced, the others were outside already.
   for (std::size_t j = 0; j < m; ++j) {
     const double p[3] = {batch_.x[0][j], batch_.x[1][j], dim_ == 3 ? batch_.x[2][j] : 0.0};

@@ -1,4 +1,4 @@
-// MPC-AT and MPC-AT+a (seed 001 eq 4.5-4.11; Noguchi & Gompper).
+// MPC-AT and MPC-AT+a (Kanehl (thesis) eq 4.5-4.11; Noguchi et al. (2007)).
 #include "narrows/core/fixed_point.hpp"
 #include "narrows/core/rng.hpp"
 #include "narrows/core/rng_batch.hpp"

@@ -1,4 +1,4 @@
-// Random solvents (seed 000 section 4.3): hydrodynamic interactions switched off.
+// Random solvents (Tabatabaei (2008) section 4.3): hydrodynamic interactions switched off.
 #include "narrows/core/rng.hpp"
 #include "narrows/engines/mpcd/kernels/collision.hpp"
 

@@ -1,4 +1,4 @@
-// Stochastic rotation dynamics (seed 000 eq 3.4-3.8).
+// Stochastic rotation dynamics (Tabatabaei (2008) eq 3.4-3.8).
 #include "narrows/core/fixed_point.hpp"
 #include "narrows/core/rng.hpp"
 #include "narrows/engines/mpcd/kernels/collision.hpp"
@@ -24,8 +24,8 @@ inline double *aligned_records(std::vector<double> &par, std::size_t nc, int str
 }
 
 // The rotation of one cell: 2D {cos, +-sin}; 3D {axis, cos - 1, sin} about a random axis
-// uniform on the sphere (seed 000 eq 3.8), drawn by Marsaglia's method: (u, v) uniform in the
-// unit disc, s = u^2 + v^2, axis = (2u sqrt(1 - s), 2v sqrt(1 - s), 1 - 2s). One Philox block
+// uniform on the sphere (Tabatabaei (2008) eq 3.8), drawn by Marsaglia's method: (u, v) uniform in
+// the unit disc, s = u^2 + v^2, axis = (2u sqrt(1 - s), 2v sqrt(1 - s), 1 - 2s). One Philox block
 // gives two tries; the rare third and later tries (4.6 %) use further blocks.
 template <int D>
 void set_rotation(double *rot, double ca, double sa, std::uint64_t seed, std::uint64_t step,

@@ -88,7 +88,8 @@ void init_fluid(Fluid &fluid, const Box &box, double kT, std::uint64_t seed, std
     }
   }
   MPI_Allreduce(local.data(), momentum.data(), 3, MPI_INT64_T, MPI_SUM, comm);
-  // Zero total momentum (seed 000 section 3.4.4): a net drift biases every flow measurement.
+  // Zero total momentum (Tabatabaei (2008) section 3.4.4): a net drift biases every
+  // flow measurement.
   for (int k = 0; k < dim; ++k) {
     const double mean = total ? fixed::to_double(momentum[k]) / static_cast<double>(total) : 0.0;
     for (auto &vk : fluid.v[k])

@@ -1,4 +1,4 @@
-// The per-layer rescaling thermostat of seed 000 eq 3.53-3.54.
+// The per-layer rescaling thermostat of Tabatabaei (2008) eq 3.53-3.54.
 #include "narrows/engines/mpcd/kernels/thermostat.hpp"
 
 #include "narrows/core/fixed_point.hpp"

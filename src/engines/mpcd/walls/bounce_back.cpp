@@ -1,5 +1,5 @@
-// Bounce-back and specular walls for the streaming step (seed 000 eq 3.9-3.13, derived for a
-// force with components along and across the wall: at the hit the velocity is reversed and
+// Bounce-back and specular walls for the streaming step (Tabatabaei (2008) eq 3.9-3.13, derived for
+// a force with components along and across the wall: at the hit the velocity is reversed and
 // the rest of the step is flown under the force again).
 #include "narrows/engines/mpcd/walls/bounce_back.hpp"
 

@@ -17,8 +17,9 @@ struct CellSums {
   std::uint32_t n = 0;
 };
 
-// A cell cut by a wall, filled to the mean density by virtual particles (seed 000 eq 3.14):
-// only their number and the sums of their velocities and of their MPC-AT noise are needed.
+// A cell cut by a wall, filled to the mean density by virtual particles
+// (Tabatabaei (2008) eq 3.14): only their number and the sums of their velocities and of their
+// MPC-AT noise are needed.
 struct VirtualCell {
   std::uint32_t cell = 0; // local cell index
   double count = 0.0;     // number of virtual particles, density - real count

@@ -37,7 +37,7 @@ void collide_at(Fluid &fluid, const CellGrid &grid, CollisionScratch &scratch, d
                 std::uint64_t seed, std::uint64_t step);
 
 // MPC-AT+a: MPC-AT plus the rigid-rotation correction that restores each cell's angular
-// momentum (Noguchi & Gompper). Cells whose moment of inertia is singular (one particle; two
+// momentum (Noguchi et al. (2007)). Cells whose moment of inertia is singular (one particle; two
 // in 3D, collinear) use the pseudo-inverse, which is exact there.
 void collide_at_a(Fluid &fluid, const CellGrid &grid, CollisionScratch &scratch, double kT,
                   std::uint64_t seed, std::uint64_t step);

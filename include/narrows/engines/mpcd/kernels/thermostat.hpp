@@ -1,4 +1,4 @@
-// Thermostats of seed 000 §3.4.6.
+// Thermostats of Tabatabaei (2008) §3.4.6.
 //
 // Per-layer velocity rescaling (eq 3.53-3.54): in each layer of collision
 // cells (a row at fixed y, spanning x and z over all ranks) the velocities relative to their
@@ -12,7 +12,7 @@
 // [0, gamma], either with probability 1/2), accepted with probability
 //   min(1, zeta^(d(n-1)) exp(-(zeta^2 - 1) E / kT)),  E = sum_i m (v_i - u)^2 / 2,
 // which is detailed balance for the Boltzmann weight of the d(n-1) relative degrees of freedom
-// (the seed prints the 3D exponent 3(n-1) and writes E as (n-1) T with its eq 3.57).
+// (the dissertation prints the 3D exponent 3(n-1) and writes E as (n-1) T with its eq 3.57).
 #pragma once
 
 #include "narrows/engines/mpcd/kernels/cell_grid.hpp"

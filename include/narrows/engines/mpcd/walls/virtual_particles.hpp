@@ -1,7 +1,7 @@
-// Virtual wall particles (seed 000 §3.2.5, eq 3.14): cells cut by a wall hold fewer particles
-// than the bulk, which weakens the no-slip condition; virtual particles at rest on average
-// fill them to the mean density. Only their number and summed velocities enter the collision,
-// so they are drawn as one Gaussian per component with variance (n - n_cell) kT.
+// Virtual wall particles (Tabatabaei (2008) §3.2.5, eq 3.14): cells cut by a wall hold fewer
+// particles than the bulk, which weakens the no-slip condition; virtual particles at rest on
+// average fill them to the mean density. Only their number and summed velocities enter the
+// collision, so they are drawn as one Gaussian per component with variance (n - n_cell) kT.
 #pragma once
 
 #include "narrows/engines/mpcd/kernels/cell_grid.hpp"
