@@ -160,6 +160,13 @@ void check_runnable(const scene::Scene &s, MPI_Comm comm) {
 
 std::vector<std::string> describe_scene(const scene::Scene &s, MPI_Comm comm) {
   check_runnable(s, comm);
+  const MpcdSimulation plan(s, comm, false);
+  return describe_simulation(plan);
+}
+
+std::vector<std::string> describe_simulation(const MpcdSimulation &sim) {
+  const scene::Scene &s = sim.scene();
+  const MPI_Comm comm = sim.comm();
   std::vector<std::string> out;
   const int d = s.run.dimensions;
   std::string box = "box ";
@@ -176,10 +183,8 @@ std::vector<std::string> describe_scene(const scene::Scene &s, MPI_Comm comm) {
   out.push_back(std::string("engine mpcd, ") + std::to_string(d) + "D, " + box + ", seed " +
                 std::to_string(s.run.seed) + ", " + std::to_string(s.run.steps) + " steps");
   out.push_back("pipeline (per step):");
-  MpcdSimulation plan(s, comm, false);
-  int i = 1;
-  for (const Stage &stage : plan.stages())
-    out.push_back("  " + std::to_string(i++) + ". " + stage.name);
+  for (auto &line : describe_pipeline(sim.stages()))
+    out.push_back(std::move(line));
   std::string obs;
   for (const auto &o : s.output.observables)
     obs += (obs.empty() ? "" : ", ") + o;

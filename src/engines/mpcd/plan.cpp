@@ -1,4 +1,4 @@
-// Resolving a scene into the MPCD plan, and describing the pipeline it gives.
+// Resolving a scene into the MPCD plan, and the words of the pipeline for what it resolved.
 #include "narrows/engines/mpcd/plan.hpp"
 
 #include "narrows/colloids/placement.hpp"
@@ -10,8 +10,6 @@
 #include <sstream>
 
 namespace narrows::mpcd {
-
-namespace {
 
 std::string format_number(double v) {
   std::ostringstream os;
@@ -45,6 +43,8 @@ std::string stream_text(const scene::Scene &s, const MpcdPlan &p, const mpcd::Bo
   }
   return name;
 }
+
+namespace {
 
 // "2 kinds: 100 of r 2 M 125.664, 100 of r 4 M 600" ([[colloids.kind]]).
 std::string kinds_text(const scene::Colloids &c, int dim, double density) {
@@ -130,6 +130,12 @@ std::string no_slip_text(const scene::Scene &s, const MpcdPlan &p) {
 
 } // namespace
 
+std::string colloids_text(const scene::Scene &s, const MpcdPlan &p) {
+  if (!p.colloids)
+    return "";
+  return p.no_slip ? no_slip_text(s, p) : md_text(s, p);
+}
+
 MpcdPlan make_plan(const scene::Scene &s, const mpcd::Box &box, int ranks) {
   MpcdPlan p;
   const auto &f = s.fluid;
@@ -203,72 +209,6 @@ MpcdPlan make_plan(const scene::Scene &s, const mpcd::Box &box, int ranks) {
   }
   p.sort_every = f.sort_every > 0 ? static_cast<std::uint64_t>(f.sort_every) : 0;
   return p;
-}
-
-std::vector<std::string> describe_pipeline(const scene::Scene &s, const MpcdPlan &p,
-                                           const mpcd::Box &box) {
-  std::vector<std::string> out;
-  const std::string stream = stream_text(s, p, box);
-  if (p.no_slip) {
-    out.push_back(no_slip_text(s, p));
-    out.push_back(stream);
-    out.push_back("bounce-back of fluid that entered a colloid (U + Omega x r at the surface, "
-                  "halved intervals; impulses to the colloids)");
-  } else {
-    out.push_back(p.colloids ? md_text(s, p) + "; fluid between kicks: " + stream : stream);
-  }
-  out.push_back("grid shift");
-  const std::string ranks = std::to_string(p.ranks);
-  if (p.collision == scene::Collision::random_maxwell) {
-    if (p.slabs)
-      out.push_back("migrate to slab owners (" + ranks + " ranks)");
-    out.push_back("draw Maxwell-Boltzmann velocities (random solvent)");
-    return out;
-  }
-  if (p.slabs) {
-    out.push_back("bin into cells, list particles leaving the slab");
-    out.push_back("migrate to slab owners (" + ranks + " ranks), bin arrivals");
-  } else {
-    out.push_back("bin into cells");
-  }
-  if (p.no_slip)
-    out.push_back("ghost particles in the cells cut by colloid surfaces (density " +
-                  format_number(p.density) +
-                  ", rigid-body velocity + Maxwell-Boltzmann; each colloid's in a cell as one "
-                  "group of sums)");
-  if (p.virtual_particles)
-    out.push_back(std::string("virtual particles in cells cut by the walls (") +
-                  (p.virtual_mirror ? "mirror-image flow)" : "at rest)"));
-  const std::string kT = format_number(p.kT);
-  switch (p.collision) {
-  case scene::Collision::srd:
-  case scene::Collision::random_permute:
-    out.push_back("collide SRD (angle " + format_number(s.fluid.angle_deg) + " deg)");
-    break;
-  case scene::Collision::at:
-    out.push_back("collide MPC-AT (kT " + kT + ")");
-    break;
-  case scene::Collision::at_a:
-    out.push_back("collide MPC-AT+a (kT " + kT + ", angular momentum)");
-    break;
-  case scene::Collision::random_maxwell:
-    break;
-  }
-  if (p.no_slip)
-    out.push_back("ghost particles' momentum and angular momentum change to the colloids");
-  if (p.collision == scene::Collision::random_permute)
-    out.push_back("permute all velocities (random solvent)"); // one rank only (check_ranks)
-  if (p.thermostat == MpcdPlan::Thermostat::layers)
-    out.push_back("thermostat: rescale velocities relative to the cell means per layer of "
-                  "cells to kT " +
-                  kT + " (seed 000 eq 3.53-3.54)");
-  if (p.thermostat == MpcdPlan::Thermostat::monte_carlo)
-    out.push_back("thermostat: Monte Carlo scaling of each cell's relative velocities "
-                  "toward kT " +
-                  kT + ", gamma " + format_number(p.gamma) + " (seed 000 eq 3.55-3.57)");
-  if (p.sort_every > 0)
-    out.push_back("sort by cell (every " + std::to_string(p.sort_every) + " steps)");
-  return out;
 }
 
 } // namespace narrows::mpcd

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <string_view>
 
 namespace narrows::mpcd {
@@ -98,12 +99,11 @@ parallel::Slabs check_ranks(const scene::Scene &scene, MPI_Comm comm) {
 MpcdSimulation::MpcdSimulation(const scene::Scene &scene, MPI_Comm comm, bool allocate)
     : scene_(scene), comm_(comm), box_(make_box(scene)), slabs_(check_ranks(scene, comm)),
       exchange_(comm), plan_(make_plan(scene, box_, slabs_.ranks())) {
-  for (auto &line : describe_pipeline(scene, plan_, box_))
-    stages_.push_back({std::move(line)});
   if (plan_.no_slip)
-    no_slip_.emplace(plan_.no_slip_params, box_, slabs_);
+    coupling_ = &no_slip_.emplace(plan_.no_slip_params, box_, slabs_);
   else if (plan_.colloids)
-    md_.emplace(plan_.md, plan_.forces, box_, slabs_);
+    coupling_ = &md_.emplace(plan_.md, plan_.forces, box_, slabs_);
+  build_stages();
   if (allocate) {
     grid_ = mpcd::CellGrid(box_, slabs_.first_column(), slabs_.local_columns());
     // Each rank keeps the particles (drawn per id) of its own cells, so nothing migrates at
@@ -207,71 +207,6 @@ void MpcdSimulation::migrate_strays_and_bin_arrivals() {
   mpcd::bin_more_particles(fluid_, grid_, staying);
 }
 
-void MpcdSimulation::stream(mpcd::Fluid &fluid, double t) const {
-  const MpcdPlan &p = plan_;
-  switch (p.stream) {
-  case MpcdPlan::Stream::free:
-    mpcd::stream_free(fluid, box_, t);
-    break;
-  case MpcdPlan::Stream::constant_force:
-    mpcd::stream_constant_force(fluid, box_, t, p.force);
-    break;
-  case MpcdPlan::Stream::sine_force:
-    mpcd::stream_sine_force(fluid, box_, t, p.sine_amplitude);
-    break;
-  case MpcdPlan::Stream::channel:
-    walls::stream_channel(fluid, box_, t, p.force, p.slip);
-    break;
-  }
-}
-
-void MpcdSimulation::bin_into_cells() {
-  // With slabs, binning also lists the particles whose shifted column left this slab (a thin
-  // band at each edge); they go to their owners, where they are binned on arrival.
-  if (plan_.slabs) {
-    mpcd::bin_particles(fluid_, grid_, &strays_);
-    migrate_strays_and_bin_arrivals();
-  } else {
-    mpcd::bin_particles(fluid_, grid_);
-  }
-}
-
-void MpcdSimulation::collide(std::uint64_t step) {
-  const MpcdPlan &p = plan_;
-  collision_scratch_.v2_max = -1.0; // only MPC-AT+a finds it
-  switch (p.collision) {
-  case scene::Collision::srd:
-  case scene::Collision::random_permute: // SRD, then the velocities are permuted
-    mpcd::collide_srd(fluid_, grid_, collision_scratch_, p.angle_rad, p.seed, step);
-    break;
-  case scene::Collision::at:
-    mpcd::collide_at(fluid_, grid_, collision_scratch_, p.kT, p.seed, step);
-    break;
-  case scene::Collision::at_a:
-    mpcd::collide_at_a(fluid_, grid_, collision_scratch_, p.kT, p.seed, step);
-    break;
-  case scene::Collision::random_maxwell: // no cells: see advance()
-    break;
-  }
-  if (p.collision == scene::Collision::random_permute)
-    mpcd::permute_velocities(fluid_, collision_scratch_, p.seed, step);
-}
-
-void MpcdSimulation::thermostat(std::uint64_t step) {
-  const MpcdPlan &p = plan_;
-  switch (p.thermostat) {
-  case MpcdPlan::Thermostat::none:
-    return;
-  case MpcdPlan::Thermostat::layers: // seed 000 eq 3.53-3.54
-    mpcd::rescale_layers(fluid_, grid_, p.kT, layer_sums_, comm_);
-    break;
-  case MpcdPlan::Thermostat::monte_carlo: // seed 000 eq 3.55-3.57
-    mpcd::monte_carlo_cells(fluid_, grid_, p.kT, p.gamma, p.seed, step, layer_sums_);
-    break;
-  }
-  collision_scratch_.v2_max = -1.0; // the velocities changed after the collision
-}
-
 void MpcdSimulation::advance() {
   try {
     step_stages();
@@ -293,49 +228,161 @@ void MpcdSimulation::advance() {
   ++step_;
 }
 
-// One MPCD step. Every stage is a call; the plan (built once from the scene) says which.
-void MpcdSimulation::step_stages() {
+coupling::FluidStream MpcdSimulation::stream_kernel() const {
+  // The exact kernel for what the scene has, chosen once: the fluid's stage and the colloid
+  // couplings (MD sub-steps, bounce-back intervals) stream with it.
   const MpcdPlan &p = plan_;
+  switch (p.stream) {
+  case MpcdPlan::Stream::free:
+    return [this](mpcd::Fluid &f, double t) { mpcd::stream_free(f, box_, t); };
+  case MpcdPlan::Stream::constant_force:
+    return
+        [this](mpcd::Fluid &f, double t) { mpcd::stream_constant_force(f, box_, t, plan_.force); };
+  case MpcdPlan::Stream::sine_force:
+    return [this](mpcd::Fluid &f, double t) {
+      mpcd::stream_sine_force(f, box_, t, plan_.sine_amplitude);
+    };
+  case MpcdPlan::Stream::channel:
+    return [this](mpcd::Fluid &f, double t) {
+      walls::stream_channel(f, box_, t, plan_.force, plan_.slip);
+    };
+  }
+  throw std::logic_error("MpcdSimulation: no streaming kernel for the plan");
+}
+
+// The step as a list of stages, in the order they run, each with its line of the pipeline. Only
+// what the scene has becomes a stage; the coupling adds its own at its four hooks.
+void MpcdSimulation::build_stages() {
+  const MpcdPlan &p = plan_;
+  const coupling::StageContext at{fluid_,
+                                  colloids_,
+                                  grid_,
+                                  collision_scratch_,
+                                  stream_kernel(),
+                                  stream_text(scene_, p, box_),
+                                  colloids_text(scene_, p)};
+  std::vector<Stage> &list = stages_;
+  list.clear();
+  const auto add = [&list](coupling::Stages more) {
+    for (Stage &stage : more)
+      list.push_back(std::move(stage));
+  };
+  add(coupling_->before_stream(at));
+  // Every particle, the whole step (walls, body force exact).
+  list.push_back(
+      {at.stream_name, [this, stream = at.stream](std::uint64_t) { stream(fluid_, plan_.dt); }});
+  add(coupling_->after_stream(at));
+  list.push_back({"grid shift", [this](std::uint64_t step) { // the same on every rank
+                    grid_.set_shift(mpcd::grid_shift(plan_.seed, step, plan_.dim));
+                  }});
+  const std::string ranks = std::to_string(p.ranks);
+  if (p.collision == scene::Collision::random_maxwell) { // random solvent (b): no cells
+    if (!coupling_->after_bin(at).empty() || !coupling_->after_collide(at).empty())
+      throw std::logic_error("MpcdSimulation: a coupling with cell stages and no cells");
+    if (p.slabs)
+      list.push_back({"migrate to slab owners (" + ranks + " ranks)",
+                      [this](std::uint64_t) { migrate_to_owners(); }});
+    list.push_back(
+        {"draw Maxwell-Boltzmann velocities (random solvent)", [this](std::uint64_t step) {
+           mpcd::draw_maxwell_velocities(fluid_, plan_.kT, plan_.seed, step);
+         }});
+    return;
+  }
+  if (p.slabs) {
+    // Binning also lists the particles whose shifted column left this slab (a thin band at
+    // each edge); they go to their owners, where they are binned on arrival.
+    list.push_back({"bin into cells, list particles leaving the slab",
+                    [this](std::uint64_t) { mpcd::bin_particles(fluid_, grid_, &strays_); }});
+    list.push_back({"migrate to slab owners (" + ranks + " ranks), bin arrivals",
+                    [this](std::uint64_t) { migrate_strays_and_bin_arrivals(); }});
+  } else {
+    list.push_back(
+        {"bin into cells", [this](std::uint64_t) { mpcd::bin_particles(fluid_, grid_); }});
+  }
+  add(coupling_->after_bin(at));
+  if (p.virtual_particles) // fill the cells cut by the walls to the mean density
+    list.push_back({std::string("virtual particles in cells cut by the walls (") +
+                        (p.virtual_mirror ? "mirror-image flow)" : "at rest)"),
+                    [this](std::uint64_t step) {
+                      walls::add_virtual_particles(grid_, plan_.density, plan_.kT, plan_.seed, step,
+                                                   plan_.virtual_at_noise, plan_.virtual_mirror);
+                    }});
+  const std::string kT = format_number(p.kT);
+  switch (p.collision) { // each resets v2_max first: only MPC-AT+a finds it
+  case scene::Collision::srd:
+  case scene::Collision::random_permute: // SRD, then the velocities are permuted
+    list.push_back({"collide SRD (angle " + format_number(scene_.fluid.angle_deg) + " deg)",
+                    [this](std::uint64_t step) {
+                      collision_scratch_.v2_max = -1.0;
+                      mpcd::collide_srd(fluid_, grid_, collision_scratch_, plan_.angle_rad,
+                                        plan_.seed, step);
+                    }});
+    break;
+  case scene::Collision::at:
+    list.push_back({"collide MPC-AT (kT " + kT + ")", [this](std::uint64_t step) {
+                      collision_scratch_.v2_max = -1.0;
+                      mpcd::collide_at(fluid_, grid_, collision_scratch_, plan_.kT, plan_.seed,
+                                       step);
+                    }});
+    break;
+  case scene::Collision::at_a:
+    list.push_back(
+        {"collide MPC-AT+a (kT " + kT + ", angular momentum)", [this](std::uint64_t step) {
+           collision_scratch_.v2_max = -1.0;
+           mpcd::collide_at_a(fluid_, grid_, collision_scratch_, plan_.kT, plan_.seed, step);
+         }});
+    break;
+  case scene::Collision::random_maxwell: // no cells: above
+    break;
+  }
+  if (p.collision == scene::Collision::random_permute) // one rank only (check_ranks)
+    list.push_back({"permute all velocities (random solvent)", [this](std::uint64_t step) {
+                      mpcd::permute_velocities(fluid_, collision_scratch_, plan_.seed, step);
+                    }});
+  add(coupling_->after_collide(at));
+  // The thermostats change the velocities after the collision, so its v2_max no longer holds.
+  if (p.thermostat == MpcdPlan::Thermostat::layers)
+    list.push_back({"thermostat: rescale velocities relative to the cell means per layer of "
+                    "cells to kT " +
+                        kT + " (Tabatabaei (2008) eq 3.53-3.54)",
+                    [this](std::uint64_t) {
+                      mpcd::rescale_layers(fluid_, grid_, plan_.kT, layer_sums_, comm_);
+                      collision_scratch_.v2_max = -1.0;
+                    }});
+  if (p.thermostat == MpcdPlan::Thermostat::monte_carlo)
+    list.push_back({"thermostat: Monte Carlo scaling of each cell's relative velocities toward "
+                    "kT " +
+                        kT + ", gamma " + format_number(p.gamma) +
+                        " (Tabatabaei (2008) eq 3.55-3.57)",
+                    [this](std::uint64_t step) {
+                      mpcd::monte_carlo_cells(fluid_, grid_, plan_.kT, plan_.gamma, plan_.seed,
+                                              step, layer_sums_);
+                      collision_scratch_.v2_max = -1.0;
+                    }});
+  if (p.sort_every > 0) // locality: counting sort by cell
+    list.push_back({"sort by cell (every " + std::to_string(p.sort_every) + " steps)",
+                    [this](std::uint64_t step) {
+                      if ((step + 1) % plan_.sort_every == 0)
+                        mpcd::sort_by_cell(fluid_, grid_, sort_scratch_);
+                    }});
+}
+
+std::vector<std::string> describe_pipeline(const std::vector<Stage> &stages) {
+  std::vector<std::string> lines;
+  for (std::size_t i = 0; i < stages.size(); ++i)
+    lines.push_back("  " + std::to_string(i + 1) + ". " + stages[i].name);
+  return lines;
+}
+
+// One MPCD step: the stages of the list, in order.
+void MpcdSimulation::step_stages() {
   const auto step = static_cast<std::uint64_t>(step_);
   if (restored_) { // a checkpoint's blocks: each particle to the slab of its unshifted column,
     migrate_to_owners(); // as after binning (colloid ghosts assume the fluid near its slab)
     restored_ = false;
   }
-  const auto streamer = [this](mpcd::Fluid &f, double t) { stream(f, t); };
-  if (p.no_slip) // ghost colloids; gravity; every colloid moves (with hard contacts if any)
-    no_slip_->move_colloids(fluid_, colloids_, collision_scratch_.v2_max);
-  else if (p.colloids) // forces now; ghost colloids; copies out the fluid that may meet a colloid
-    md_->take_near_fluid(fluid_, colloids_);
-  stream(fluid_, p.dt); // every particle, the whole step (walls, body force exact)
-  if (p.no_slip) {      // fluid that entered a colloid goes back out, the colloids recoil
-    no_slip_->bounce_back(fluid_, colloids_, streamer);
-  } else if (p.colloids) { // MD sub-steps of the colloids and those copies, which then go back
-    md_->substeps(colloids_, streamer);
-    md_->put_back_near_fluid(fluid_);
-    md_->check_paths(colloids_);
-    md_->hand_over(colloids_); // ghosts dropped; colloids that left the slab change owner
-  }
-  grid_.set_shift(mpcd::grid_shift(p.seed, step, p.dim)); // the same on every rank
-  if (p.collision == scene::Collision::random_maxwell) {  // random solvent (b): no cells
-    if (p.slabs)
-      migrate_to_owners();
-    mpcd::draw_maxwell_velocities(fluid_, p.kT, p.seed, step);
-  } else {
-    bin_into_cells(); // with slabs: particles leaving the slab migrate, arrivals are binned
-    if (p.no_slip)    // ghost particles fill the cells the colloids cut
-      no_slip_->add_ghost_particles(grid_, colloids_, step);
-    if (p.virtual_particles) // fill the cells cut by the walls to the mean density
-      walls::add_virtual_particles(grid_, p.density, p.kT, p.seed, step, p.virtual_at_noise,
-                                   p.virtual_mirror);
-    collide(step);
-    if (p.no_slip) { // their momentum change to the colloids; ghosts leave, colloids may too
-      no_slip_->take_back_ghost_particles(grid_, collision_scratch_, colloids_);
-      no_slip_->hand_over(colloids_);
-    }
-    thermostat(step);
-    if (p.sort_every > 0 && (step + 1) % p.sort_every == 0) // locality: counting sort by cell
-      mpcd::sort_by_cell(fluid_, grid_, sort_scratch_);
-  }
+  for (const Stage &stage : stages_)
+    stage.run(step);
 }
 
 } // namespace narrows::mpcd

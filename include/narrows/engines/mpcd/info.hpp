@@ -16,6 +16,11 @@ namespace narrows::mpcd {
 // Refuses first what cannot run (check_runnable).
 std::vector<std::string> describe_scene(const scene::Scene &scene, MPI_Comm comm);
 
+class MpcdSimulation;
+// The same lines for a simulation already built (describe_scene builds one without its state):
+// the pipeline is its stage list as it is now, the list the step runs.
+std::vector<std::string> describe_simulation(const MpcdSimulation &sim);
+
 // Refuses (input_error, one line) a scene that cannot run: a mean free path beyond 1e6 cells,
 // zero or more than 1e15 fluid particles, a memory estimate above the machine's memory per
 // rank (physical memory / ranks on the node), colloids whose thermal motion per MD sub-step

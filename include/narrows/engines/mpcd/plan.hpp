@@ -1,6 +1,6 @@
-// The MPCD plan: the scene's choices resolved once into plain fields the step branches on
-// (which streaming kernel, colloids or not, slabs or not, which collision rule, thermostat,
-// sorting), and the pipeline text `narrows check`/`info` print from it.
+// The MPCD plan: the scene's choices resolved once into plain fields the step's stage list is
+// built from (which streaming kernel, colloids or not, slabs or not, which collision rule,
+// thermostat, sorting), and the words for the stages whose text only the scene knows.
 #pragma once
 
 #include "narrows/colloids/forces.hpp"
@@ -54,8 +54,14 @@ struct MpcdPlan {
 
 MpcdPlan make_plan(const scene::Scene &scene, const mpcd::Box &box, int ranks);
 
-// One line per stage of the step, in the order the step runs them.
-std::vector<std::string> describe_pipeline(const scene::Scene &scene, const MpcdPlan &plan,
-                                           const mpcd::Box &box);
+// The words of the pipeline for what only the scene knows; the step's stage list
+// (MpcdSimulation::build_stages) names its stages with them.
+// A number as the pipeline prints it (as %g).
+std::string format_number(double v);
+// The streaming stage: free flight, body force, walls.
+std::string stream_text(const scene::Scene &scene, const MpcdPlan &plan, const mpcd::Box &box);
+// The colloids: count, sizes and masses, and their forces (MD) or how they move (no-slip);
+// empty without [colloids].
+std::string colloids_text(const scene::Scene &scene, const MpcdPlan &plan);
 
 } // namespace narrows::mpcd

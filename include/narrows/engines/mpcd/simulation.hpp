@@ -1,9 +1,11 @@
-// The MPCD simulation: state, the plan resolved once from the scene (mpcd_plan.hpp), and the
-// step, one function that calls each stage the plan has (advance() in mpcd_simulation.cpp).
+// The MPCD simulation: state, the plan resolved once from the scene (plan.hpp), and the step: a
+// list of stages built once from the plan (build_stages in simulation.cpp), each a line of the
+// pipeline `narrows check`/`info` print and the call that runs it.
 #pragma once
 
 #include "narrows/colloids/colloids.hpp"
 #include "narrows/colloids/packing.hpp"
+#include "narrows/engines/mpcd/coupling/coupling.hpp"
 #include "narrows/engines/mpcd/coupling/md_integrator.hpp"
 #include "narrows/engines/mpcd/coupling/no_slip.hpp"
 #include "narrows/engines/mpcd/kernels/cell_grid.hpp"
@@ -25,10 +27,8 @@
 
 namespace narrows::mpcd {
 
-// A stage of the step as `narrows check`/`info` print it.
-struct Stage {
-  std::string name;
-};
+// A stage of the step: its line in the pipeline and its call (coupling.hpp).
+using Stage = coupling::Stage;
 
 class MpcdSimulation {
 public:
@@ -42,7 +42,7 @@ public:
   MpcdSimulation(const MpcdSimulation &) = delete;
   MpcdSimulation &operator=(const MpcdSimulation &) = delete;
 
-  // One MPCD step: every stage of the plan in order, then the step counter advances.
+  // One MPCD step: every stage of the list in order, then the step counter advances.
   void advance();
 
   // Continues from a checkpoint: the fluid becomes `fluid` (any block of the particles; the
@@ -55,7 +55,11 @@ public:
 
   std::int64_t step() const { return step_; }
   double time() const { return static_cast<double>(step_) * scene_.fluid.dt; }
+  // The step's stages in the order they run; the pipeline `check`/`info` print is this list.
   const std::vector<Stage> &stages() const { return stages_; }
+  // The same, to add or take out a stage (a test of the list; an effect tried out before it
+  // has a scene key). advance() runs whatever the list holds.
+  std::vector<Stage> &stages() { return stages_; }
   const scene::Scene &scene() const { return scene_; }
   const mpcd::Box &box() const { return box_; }
   mpcd::Fluid &fluid() { return fluid_; }
@@ -91,10 +95,8 @@ public:
 
 private:
   void step_stages(); // the step itself; advance() adds the step and rank to its errors
-  void stream(mpcd::Fluid &fluid, double t) const;
-  void bin_into_cells();
-  void collide(std::uint64_t step);
-  void thermostat(std::uint64_t step);
+  void build_stages();
+  coupling::FluidStream stream_kernel() const;
   void migrate_to_owners();
   void migrate_strays_and_bin_arrivals();
 
@@ -111,6 +113,8 @@ private:
   std::optional<colloids::PackingReport> packing_;
   std::optional<coupling::MdIntegrator> md_;
   std::optional<coupling::NoSlipCoupling> no_slip_;
+  coupling::NoColloids no_colloids_;
+  coupling::Coupling *coupling_ = &no_colloids_; // md_, no_slip_ or no_colloids_
   mpcd::CellGrid grid_;
   mpcd::CollisionScratch collision_scratch_;
   mpcd::SortScratch sort_scratch_;
@@ -119,6 +123,10 @@ private:
   std::int64_t step_ = 0;
   bool restored_ = false; // the fluid is a checkpoint's blocks, not yet on its slabs
 };
+
+// The pipeline as `narrows check`/`info` print it: one numbered line per stage, in the order
+// the step runs them.
+std::vector<std::string> describe_pipeline(const std::vector<Stage> &stages);
 
 mpcd::Box make_box(const scene::Scene &scene);
 

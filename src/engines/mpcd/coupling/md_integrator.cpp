@@ -28,6 +28,23 @@ MdIntegrator::MdIntegrator(const MdParams &params, const ForceParams &forces, co
     : params_(params), box_(box), dim_(box.dim), slabs_(slabs), forces_(forces, box),
       ghosts_(slabs, box), migration_(slabs.comm()) {}
 
+Stages MdIntegrator::before_stream(const StageContext &at) {
+  return {{"MD: forces, ghost colloids, a copy of the fluid that may meet a colloid this step",
+           [this, &fluid = at.fluid, &colloids = at.colloids](std::uint64_t) {
+             take_near_fluid(fluid, colloids);
+           }}};
+}
+
+Stages MdIntegrator::after_stream(const StageContext &at) {
+  return {{at.colloids_name + "; fluid between kicks: " + at.stream_name,
+           [this, &fluid = at.fluid, &colloids = at.colloids, stream = at.stream](std::uint64_t) {
+             substeps(colloids, stream);
+             put_back_near_fluid(fluid);
+             check_paths(colloids);
+             hand_over(colloids); // ghosts dropped; colloids that left the slab change owner
+           }}};
+}
+
 void MdIntegrator::take_near_fluid(const mpcd::Fluid &fluid, Colloids &colloids) {
   // Forces depend on positions only, which the collision does not change: they are computed
   // afresh here rather than carried across the migration of the fluid.

@@ -65,6 +65,41 @@ NoSlipCoupling::NoSlipCoupling(const NoSlipParams &params, const mpcd::Box &box,
   }
 }
 
+Stages NoSlipCoupling::before_stream(const StageContext &at) {
+  // The collision's v2_max is read when the stage runs: the last step's collision found it.
+  return {{at.colloids_name,
+           [this, &fluid = at.fluid, &colloids = at.colloids, &collision = at.collision](
+               std::uint64_t) { move_colloids(fluid, colloids, collision.v2_max); }}};
+}
+
+Stages NoSlipCoupling::after_stream(const StageContext &at) {
+  return {{"bounce-back of fluid that entered a colloid (U + Omega x r at the surface, halved "
+           "intervals; impulses to the colloids)",
+           [this, &fluid = at.fluid, &colloids = at.colloids, stream = at.stream](std::uint64_t) {
+             bounce_back(fluid, colloids, stream);
+           }}};
+}
+
+Stages NoSlipCoupling::after_bin(const StageContext &at) {
+  std::ostringstream density;
+  density << params_.density;
+  return {{"ghost particles in the cells cut by colloid surfaces (density " + density.str() +
+               ", rigid-body velocity + Maxwell-Boltzmann; each colloid's in a cell as one group "
+               "of sums)",
+           [this, &grid = at.grid, &colloids = at.colloids](std::uint64_t step) {
+             add_ghost_particles(grid, colloids, step);
+           }}};
+}
+
+Stages NoSlipCoupling::after_collide(const StageContext &at) {
+  return {
+      {"ghost particles' momentum and angular momentum change to the colloids",
+       [this, &grid = at.grid, &colloids = at.colloids, &collision = at.collision](std::uint64_t) {
+         take_back_ghost_particles(grid, collision, colloids);
+         hand_over(colloids); // ghost colloids go; colloids that left the slab change owner
+       }}};
+}
+
 void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c, double fluid_v2_max) {
   const ScopedSeconds timed(seconds_);
   const double dt = params_.dt;

@@ -1,11 +1,14 @@
 // MD of colloids and fluid (seed 000 §3.4.5): over one collision step dt, k sub-steps of
 // velocity Verlet with tau_MD = dt / k for the colloids and the fluid particles near them, with
 // the forces of forces.hpp. Each rank moves the colloids it owns (ownership.hpp) with ghost
-// copies of the others it can meet (ghosts.hpp). The MPCD step calls, in order:
+// copies of the others it can meet (ghosts.hpp). Its stages in the MPCD step (the hooks of
+// coupling.hpp), in order:
+// before_stream:
 //   take_near_fluid  forces now; each colloid's largest path; the ghosts for the step; a copy
 //                    of the fluid that may meet a colloid this step (near_fluid.hpp says how
 //                    it is chosen)
-//   (the engine streams all fluid the whole step, exactly, with the kernel its plan chose)
+// (the engine streams all fluid the whole step, exactly, with the kernel its plan chose)
+// after_stream:
 //   substeps         velocity Verlet of the owned colloids and the near copies (these stream by
 //                    the same kernel between the kicks); the ghosts follow their owners
 //   put_back_near_fluid  the near copies replace their rows of the fluid
@@ -18,13 +21,13 @@
 #include "narrows/colloids/colloids.hpp"
 #include "narrows/colloids/forces.hpp"
 #include "narrows/colloids/ghosts.hpp"
+#include "narrows/engines/mpcd/coupling/coupling.hpp"
 #include "narrows/engines/mpcd/kernels/fluid.hpp"
 #include "narrows/parallel/exchange.hpp"
 #include "narrows/parallel/slabs.hpp"
 
 #include <array>
 #include <cstdint>
-#include <functional>
 #include <vector>
 
 namespace narrows::coupling {
@@ -35,13 +38,13 @@ struct MdParams {
   double fluid_accel = 0.0; // largest body-force acceleration of a fluid particle
 };
 
-// Streams fluid by tau (walls and body force exact); chosen once by the engine's plan.
-using FluidStream = std::function<void(mpcd::Fluid &, double tau)>;
-
-class MdIntegrator {
+class MdIntegrator final : public Coupling {
 public:
   MdIntegrator(const MdParams &params, const colloids::ForceParams &forces, const mpcd::Box &box,
                const parallel::Slabs &slabs);
+
+  Stages before_stream(const StageContext &at) override;
+  Stages after_stream(const StageContext &at) override;
 
   void take_near_fluid(const mpcd::Fluid &fluid, colloids::Colloids &colloids);
   void substeps(colloids::Colloids &colloids, const FluidStream &stream);

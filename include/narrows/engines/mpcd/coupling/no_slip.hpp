@@ -3,7 +3,8 @@
 // with the rigid-body velocity there, and fill the cells they cut with ghost particles that
 // take part in the collision. Every momentum and angular momentum the fluid loses goes to the
 // colloids (summed in fixed point, so the result does not depend on the order of particles or
-// on the number of ranks). The MPCD step calls, in order:
+// on the number of ranks). Its stages in the MPCD step (the hooks of coupling.hpp), in order:
+// before_stream:
 //   move_colloids          orientation turned by Omega dt (the step's starting spin); gravity
 //                          kick U += g dt (springs: the force M g in each sub-step, so that a
 //                          colloid resting on others does not bounce each step); ghosts for the
@@ -12,19 +13,22 @@
 //                          (contacts = "hard", hard_spheres.hpp) or in velocity-Verlet
 //                          sub-steps under linear springs with Coulomb friction (contacts =
 //                          "spring", springs.hpp; the ghosts follow their owners each sub-step)
-//   (the engine streams all fluid the whole step with the kernel its plan chose)
+// (the engine streams all fluid the whole step with the kernel its plan chose)
+// after_stream:
 //   bounce_back            every fluid particle that ended inside a colloid: back half the
 //                          interval, onto the surface, v' = 2 (U + Omega x r) - v (eq 4.15),
 //                          forward half the interval; again with halved intervals while it
 //                          ends inside one (Padding et al.); the impulses go to the colloids
 //                          (eq 4.16-4.17 with the sign that conserves momentum)
-//   (the engine shifts the grid and bins the fluid)
+// (the engine shifts the grid and bins the fluid)
+// after_bin:
 //   add_ghost_particles    in each cell cut by a colloid's surface, at the fluid density, at
 //                          random points inside the colloid, velocity U + Omega x r + a
 //                          Maxwell-Boltzmann draw at kT (eq 4.18); each (colloid, cell) pair's
 //                          ghosts enter the collision as one group of sums (grid.groups, see
 //                          ghost_particles.cpp), exact in distribution
-//   (the engine collides)
+// (the engine collides)
+// after_collide:
 //   take_back_ghost_particles  their momentum and angular momentum change to the colloids;
 //                          they leave the cell sums
 //   hand_over              ghost colloids go; colloids that left the slab change owner (with
@@ -39,6 +43,7 @@
 #include "narrows/colloids/springs.hpp"
 #include "narrows/core/rng.hpp"
 #include "narrows/engines/mpcd/coupling/colloid_lookup.hpp"
+#include "narrows/engines/mpcd/coupling/coupling.hpp"
 #include "narrows/engines/mpcd/coupling/md_integrator.hpp"
 #include "narrows/engines/mpcd/kernels/cell_grid.hpp"
 #include "narrows/engines/mpcd/kernels/collision.hpp"
@@ -72,9 +77,14 @@ struct BounceStats {
   int deepest = 0;             // most halvings any one needed
 };
 
-class NoSlipCoupling {
+class NoSlipCoupling final : public Coupling {
 public:
   NoSlipCoupling(const NoSlipParams &params, const mpcd::Box &box, const parallel::Slabs &slabs);
+
+  Stages before_stream(const StageContext &at) override;
+  Stages after_stream(const StageContext &at) override;
+  Stages after_bin(const StageContext &at) override;
+  Stages after_collide(const StageContext &at) override;
 
   // fluid_v2_max: the largest |v|^2 of the fluid if known (the last collision found it), or
   // negative (a pass over the fluid finds it, on more than one rank).
