@@ -7,7 +7,7 @@
 #include "narrows/engines/lgca/driver.hpp"
 #include "narrows/engines/mpcd/bench.hpp"
 #include "narrows/engines/mpcd/driver.hpp"
-#include "narrows/engines/mpcd/info.hpp"
+#include "narrows/run/drive.hpp"
 #include "narrows/run/shell.hpp"
 #include "narrows/scene/parse.hpp"
 
@@ -15,6 +15,8 @@
 #include <mpi.h>
 
 #include <iostream>
+#include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -30,6 +32,29 @@ int rank_of_world() {
 std::string one_line(const std::string &s) {
   const auto nl = s.find('\n');
   return nl == std::string::npos ? s : s.substr(0, nl);
+}
+
+// The engines: what `check` / `info` print (after the refusals a run would make; warnings as
+// "warning: ..." lines), and the engine `run` drives (run/drive.hpp).
+struct EngineEntry {
+  narrows::scene::Engine engine;
+  std::vector<std::string> (*check)(const narrows::scene::Scene &, MPI_Comm);
+  std::unique_ptr<narrows::run::Engine> (*make)(const narrows::scene::Scene &,
+                                                const narrows::run::Options &, MPI_Comm);
+};
+const EngineEntry engines[] = {
+    {narrows::scene::Engine::mpcd, narrows::mpcd::check_lines, narrows::mpcd::make_engine},
+    {narrows::scene::Engine::lgca, narrows::lgca::check_lines, narrows::lgca::make_engine},
+    {narrows::scene::Engine::kmc, narrows::kmc::check_lines, narrows::kmc::make_engine},
+    {narrows::scene::Engine::continuum, narrows::continuum::check_lines,
+     narrows::continuum::make_engine},
+};
+
+const EngineEntry &engine_of(narrows::scene::Engine engine) {
+  for (const auto &e : engines)
+    if (e.engine == engine)
+      return e;
+  throw std::logic_error("no entry in the table of engines for run.engine");
 }
 
 int main_inner(int argc, char **argv) {
@@ -148,28 +173,21 @@ int main_inner(int argc, char **argv) {
   const auto scene = (*run && scene_file.empty())
                          ? narrows::run::scene_of_checkpoint(run_opt, sets, MPI_COMM_WORLD)
                          : narrows::scene::load_scene(scene_file, sets);
-  if (scene.run.engine == narrows::scene::Engine::kmc)
-    return narrows::kmc::command(scene, static_cast<bool>(*check), static_cast<bool>(*info),
-                                 run_opt, MPI_COMM_WORLD);
-  if (scene.run.engine == narrows::scene::Engine::continuum)
-    return narrows::continuum::command(scene, static_cast<bool>(*check), static_cast<bool>(*info),
-                                       run_opt, MPI_COMM_WORLD);
-  if (scene.run.engine == narrows::scene::Engine::lgca)
-    return narrows::lgca::command(scene, static_cast<bool>(*check), static_cast<bool>(*info),
-                                  run_opt, MPI_COMM_WORLD);
+  const EngineEntry &engine = engine_of(scene.run.engine);
   if (*check || *info) {
-    narrows::mpcd::check_colloid_placement(scene);
+    // Every rank computes the lines (a check may be collective), rank 0 prints them.
+    const auto lines = engine.check(scene, MPI_COMM_WORLD);
     if (root) {
       if (*check)
-        std::cout << scene_file << ": scene is valid\n";
-      for (const auto &line : narrows::mpcd::describe_scene(scene, MPI_COMM_WORLD))
+        std::cout << scene.file << ": scene is valid\n";
+      for (const auto &line : lines)
         std::cout << line << '\n';
-      for (const auto &w : narrows::mpcd::regime_warnings(scene))
-        std::cout << "warning: " << w << '\n';
     }
     return 0;
   }
-  narrows::mpcd::run_scene(scene, run_opt, MPI_COMM_WORLD);
+  const auto run_engine = engine.make(scene, run_opt, MPI_COMM_WORLD);
+  narrows::run::Shell shell(scene, run_opt, MPI_COMM_WORLD, run_engine->span());
+  narrows::run::drive(*run_engine, shell);
   return 0;
 }
 

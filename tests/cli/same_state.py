@@ -1,9 +1,11 @@
-"""Exit 0 when two checkpoints hold bitwise the same particles, else name what differs.
+"""Exit 0 when two checkpoints hold bitwise the same state, else name what differs.
 
-Usage: same_state.py A.h5 B.h5 SPECIES:FIELD,FIELD,... [SPECIES:...]
-Each species' rows are put in the order of their key (`id`; `owner_id`, `partner_id` for the
-contact history) before its fields are compared bit for bit (and by shape). The command-line
-tests' 1-vs-N-ranks and restart checks share this one comparison.
+Usage: same_state.py A.h5 B.h5 SPEC [SPEC ...]
+A SPEC `SPECIES:FIELD,FIELD,...` compares particles: each species' rows are put in the order of
+their key (`id`; `owner_id`, `partner_id` for the contact history) before its fields are
+compared bit for bit (and by shape). A SPEC `/PATH` compares one dataset as written, bit for bit
+(a lattice's words, kmc's running sums, continuum fields). The command-line tests' 1-vs-N-ranks
+and restart checks share this one comparison.
 """
 import sys
 
@@ -19,9 +21,19 @@ def rows(path, species, fields):
         return [p[name + "/value"][:][order] for name in fields]
 
 
+def bits(x):
+    return np.ascontiguousarray(x).reshape(-1).view(np.uint8)
+
+
 def main():
     a, b, *specs = sys.argv[1:]
     for spec in specs:
+        if spec.startswith("/"):
+            with h5py.File(a, "r") as fa, h5py.File(b, "r") as fb:
+                x, y = np.asarray(fa[spec][()]), np.asarray(fb[spec][()])
+            if x.shape != y.shape or x.dtype != y.dtype or not np.array_equal(bits(x), bits(y)):
+                sys.exit(f"{spec} differ")
+            continue
         species, fields = spec.split(":")
         fields = fields.split(",")
         for name, x, y in zip(fields, rows(a, species, fields), rows(b, species, fields)):

@@ -6,7 +6,8 @@
 // Order of a run, so that a refusal writes nothing: Shell(...) checks the command line and the
 // restart's header and scene (collectively: every rank ends with the same one line); the
 // engine builds or reads its state (wrap reading in run::collectively); open() creates the
-// folder and the log; the loop; the last checkpoint and the Loop time line.
+// folder and the log; the loop; the last checkpoint and the Loop time line. run::drive
+// (run/drive.hpp) keeps this order for every engine.
 #pragma once
 
 #include "narrows/core/timer.hpp"

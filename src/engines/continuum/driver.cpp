@@ -1,4 +1,4 @@
-// Engine "continuum": describe, run (over the run shell), check/info (see continuum/driver.hpp).
+// Engine "continuum": describe, check/info, the engine of the run loop (see continuum/driver.hpp).
 #include "narrows/engines/continuum/driver.hpp"
 
 #include "narrows/core/error.hpp"
@@ -98,83 +98,85 @@ std::vector<std::string> describe(const scene::Scene &scene) {
   return out;
 }
 
-void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm comm) {
-  if (scene.continuum->model == scene::ContinuumModel::jamming) {
-    run_jamming(scene, options, comm);
-    return;
-  }
-  if (scene.continuum->model == scene::ContinuumModel::segregation) {
-    run_segregation(scene, options, comm);
-    return;
-  }
-  const scene::Continuum &m = *scene.continuum;
-  const Plan p = plan_of(scene, make_plan);
-  const Flux flux(m);
-  std::vector<double> u = initial_cells(m);
-  Scheme scheme(flux, p.grid, m.diffusion, m.limiter);
-  const std::vector<double> bins = cell_centres(p.grid);
-  std::vector<double> shock_t, shock_x;
+namespace {
 
-  FieldModel model;
-  model.dt = p.dt;
-  model.steps = p.steps;
-  model.per_sample = p.per_sample;
-  model.points = u.size();
-  model.lines = describe(scene);
-  model.fields = {{"density", &u}};
-  model.step = [&](double dt) { scheme.step(u, dt); };
-  model.check = [&](std::int64_t step) {
-    for (std::size_t i = 0; i < u.size(); ++i)
-      if (!std::isfinite(u[i]))
-        throw invariant_error(scene.file + ": density of cell " + std::to_string(i) +
+// The conservation law rho_t + J(rho)_x = D rho_xx on its finite-volume scheme.
+class ConservationLaw final : public FieldModel {
+public:
+  explicit ConservationLaw(const scene::Scene &scene)
+      : scene_(scene), m_(*scene.continuum), p_(plan_of(scene, make_plan)), flux_(m_),
+        u_(initial_cells(m_)), scheme_(flux_, p_.grid, m_.diffusion, m_.limiter),
+        bins_(cell_centres(p_.grid)) {
+    dt = p_.dt;
+    steps = p_.steps;
+    per_sample = p_.per_sample;
+    points = u_.size();
+    lines = describe(scene);
+    fields = {{"density", &u_}};
+  }
+
+  void step(double dt) override { scheme_.step(u_, dt); }
+  void check(std::int64_t step) const override {
+    for (std::size_t i = 0; i < u_.size(); ++i)
+      if (!std::isfinite(u_[i]))
+        throw invariant_error(scene_.file + ": density of cell " + std::to_string(i) +
                               " is not finite at step " + std::to_string(step) +
                               "; the scheme is unstable (report it)");
-  };
-  model.sample = [&](io::ObservablesWriter *writer, std::int64_t s, double t) {
-    const double x = shock_position(u, p.grid.dx, p.grid.periodic);
-    shock_t.push_back(t);
-    shock_x.push_back(x);
+  }
+  void sample(io::ObservablesWriter *writer, std::int64_t s, double t) override {
+    const double x = shock_position(u_, p_.grid.dx, p_.grid.periodic);
+    shock_t_.push_back(t);
+    shock_x_.push_back(x);
     if (writer == nullptr)
       return;
-    if (wants(scene, "density"))
-      writer->append_profile("density", s, t, bins, u, 1);
-    if (wants(scene, "shock_position"))
+    if (wants(scene_, "density"))
+      writer->append_profile("density", s, t, bins_, u_, 1);
+    if (wants(scene_, "shock_position"))
       writer->append_scalar("shock_position", s, t, x);
-  };
-  model.summary = [&](run::Log &log, std::int64_t step) {
+  }
+  void summary(run::Log &log, std::int64_t step) const override {
     Riemann rp;
-    if (shock_t.size() >= 3 && riemann_of(m, flux, rp) && rp.shock) {
+    if (shock_t_.size() >= 3 && riemann_of(m_, flux_, rp) && rp.shock) {
       // Speed over the second half of this run's samples (the profile has settled by then).
-      const std::size_t a = shock_t.size() / 2, b = shock_t.size() - 1;
-      const double v = (shock_x[b] - shock_x[a]) / (shock_t[b] - shock_t[a]);
+      const std::size_t a = shock_t_.size() / 2, b = shock_t_.size() - 1;
+      const double v = (shock_x_[b] - shock_x_[a]) / (shock_t_[b] - shock_t_[a]);
       log.line(format("shock: at x = %.6g at t = %.6g, speed %.6g (Rankine-Hugoniot %.6g)",
-                      shock_x[b], shock_t[b], v, rp.speed));
+                      shock_x_[b], shock_t_[b], v, rp.speed));
     }
     double mass = 0.0;
-    for (const double x : u)
+    for (const double x : u_)
       mass += x;
-    log.line(format("total density (mass) at t = %.6g: %.12g", static_cast<double>(step) * p.dt,
-                    mass * p.grid.dx));
-  };
-  run_fields(scene, options, comm, model);
+    log.line(format("total density (mass) at t = %.6g: %.12g", static_cast<double>(step) * p_.dt,
+                    mass * p_.grid.dx));
+  }
+
+private:
+  const scene::Scene &scene_;
+  const scene::Continuum &m_;
+  const Plan p_;
+  const Flux flux_;
+  std::vector<double> u_;
+  Scheme scheme_;
+  const std::vector<double> bins_;
+  std::vector<double> shock_t_, shock_x_;
+};
+
+} // namespace
+
+std::vector<std::string> check_lines(const scene::Scene &scene, MPI_Comm) {
+  return describe(scene);
 }
 
-int command(const scene::Scene &scene, bool check, bool info, const run::Options &options,
-            MPI_Comm comm) {
-  int rank = 0;
-  MPI_Comm_rank(comm, &rank);
-  if (check || info) {
-    const auto lines = describe(scene);
-    if (rank == 0) {
-      if (check)
-        std::cout << scene.file << ": scene is valid\n";
-      for (const auto &line : lines)
-        std::cout << line << '\n';
-    }
-    return 0;
+std::unique_ptr<run::Engine> make_engine(const scene::Scene &scene, const run::Options &,
+                                         MPI_Comm comm) {
+  switch (scene.continuum->model) {
+  case scene::ContinuumModel::jamming:
+    return field_engine(scene, comm, make_jamming(scene));
+  case scene::ContinuumModel::segregation:
+    return field_engine(scene, comm, make_segregation(scene));
+  default:
+    return field_engine(scene, comm, std::make_unique<ConservationLaw>(scene));
   }
-  run_scene(scene, options, comm);
-  return 0;
 }
 
 } // namespace narrows::continuum

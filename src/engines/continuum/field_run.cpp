@@ -1,4 +1,4 @@
-// The run loop of the continuum models.
+// The engine of the continuum models in the run loop.
 #include "narrows/engines/continuum/field_run.hpp"
 
 #include "narrows/core/error.hpp"
@@ -23,91 +23,110 @@ bool wants(const scene::Scene &scene, const char *name) {
   return std::find(o.begin(), o.end(), name) != o.end();
 }
 
-void run_fields(const scene::Scene &scene, const run::Options &options, MPI_Comm comm,
-                FieldModel &model) {
-  const scene::Continuum &m = *scene.continuum;
-  const std::size_t n = model.points;
-  run::Shell shell(scene, options, comm, {model.steps, "continuum.time", {}});
-  const int rank = shell.rank();
-  std::int64_t step = 0;
-  const bool restarting = shell.restarting();
-  if (restarting)
-    run::collectively(comm, [&] {
+namespace {
+
+class FieldEngine final : public run::Engine {
+public:
+  FieldEngine(const scene::Scene &scene, MPI_Comm comm, std::unique_ptr<FieldModel> model)
+      : scene_(scene), comm_(comm), model_(std::move(model)),
+        per_step_(std::string(model_->point) + "-steps"), rate_(per_step_ + "/s") {}
+
+  run::RunSpan span() const override { return {model_->steps, "continuum.time", {}}; }
+
+  void start(run::Shell &shell) override {
+    if (!shell.restarting())
+      return;
+    FieldModel &model = *model_;
+    const std::size_t n = model.points;
+    run::collectively(comm_, [&] {
       const std::string &file = shell.restart_file();
-      const auto dt = io::read_checkpoint_array(file, "continuum/time_step", 1, comm);
+      const auto dt = io::read_checkpoint_array(file, "continuum/time_step", 1, comm_);
       if (dt[0] != model.dt)
         throw input_error(file + ": /continuum/time_step = " + format("%.17g", dt[0]) +
                           " but this scene's time step is " + format("%.17g", model.dt) +
                           "; allowed: the checkpoint of this scene");
       for (auto &[name, field] : model.fields) {
-        *field = io::read_checkpoint_array(file, "continuum/" + name, n, comm);
+        *field = io::read_checkpoint_array(file, "continuum/" + name, n, comm_);
         for (std::size_t i = 0; i < n; ++i)
           if (!std::isfinite((*field)[i]))
             throw input_error(file + ": /continuum/" + name + "[" + std::to_string(i) +
                               "] is not finite; allowed: finite values");
       }
-      step = shell.restart_info().step;
+      step_ = shell.restart_info().step;
     });
-
-  run::Log &log = shell.open(restarting ? step : -1);
-  for (const auto &line : model.lines)
-    log.line(line);
-  const auto time_of = [&](std::int64_t s) { return static_cast<double>(s) * model.dt; };
-  if (restarting)
-    log.line("restarted from " + shell.restart_file() + " at step " + std::to_string(step) +
-             format(" (t = %.6g)", time_of(step)));
-
-  std::unique_ptr<io::ObservablesWriter> writer;
-  if (rank == 0)
-    writer = std::make_unique<io::ObservablesWriter>(shell.output_file("observables"), scene.text);
-  const auto sample = [&](std::int64_t s) {
-    model.sample(writer.get(), s, time_of(s));
-    if (writer)
-      writer->flush();
-  };
-  const auto save = [&](std::int64_t s) {
-    return shell.checkpoint(s, [&](const std::string &path) {
-      io::CheckpointInfo info = shell.checkpoint_info(s, time_of(s));
-      info.dimensions = 1;
-      info.box = {m.length, 1.0, 1.0};
-      std::vector<io::CheckpointArray> arrays{{"continuum/time_step", {model.dt}}};
-      for (const auto &[name, field] : model.fields)
-        arrays.push_back({"continuum/" + name, *field});
-      io::write_checkpoint(path, info, {}, comm, arrays);
-      return "step " + std::to_string(s) + format(", t = %.6g", time_of(s));
-    });
-  };
-
-  if (!restarting)
-    sample(0);
-  const std::int64_t first = step;
-  const std::string per_step = std::string(model.point) + "-steps";
-  const std::string rate = per_step + "/s";
-  shell.start_loop(first);
-  while (step < model.steps) {
-    model.step(model.dt);
-    ++step;
-    if (step % model.per_sample == 0) {
-      model.check(step);
-      sample(step);
-    }
-    if (shell.checkpoint_due(step))
-      save(step);
-    if ((step % 64 == 0 || step % model.per_sample == 0) && step < model.steps &&
-        shell.stop_requested())
-      break;
-    shell.progress(step, static_cast<double>(n), rate.c_str());
   }
-  const double seconds = shell.loop_seconds();
-  const std::string last = save(step);
-  if (shell.stopped()) {
-    shell.finish("step " + std::to_string(step), last);
-    return;
+
+  void open(run::Shell &shell, run::Log &log) override {
+    for (const auto &line : model_->lines)
+      log.line(line);
+    if (shell.restarting())
+      log.line("restarted from " + shell.restart_file() + " at step " + std::to_string(step_) +
+               format(" (t = %.6g)", time_of(step_)));
+    if (shell.rank() == 0)
+      writer_ =
+          std::make_unique<io::ObservablesWriter>(shell.output_file("observables"), scene_.text);
+    if (!shell.restarting())
+      sample();
   }
-  model.summary(log, step);
-  const auto steps_done = static_cast<std::uint64_t>(step - first);
-  shell.loop_time(seconds, steps_done, "steps", std::to_string(n) + " " + model.point + "s",
-                  static_cast<double>(steps_done) * static_cast<double>(n), per_step.c_str());
+
+  std::int64_t step() const override { return step_; }
+  bool advance() override {
+    model_->step(model_->dt);
+    ++step_;
+    return true;
+  }
+  // At the model's samples, which fall on steps (its plan), not at output.every.
+  bool observe_due(const run::Shell &) const override { return step_ % model_->per_sample == 0; }
+  void observe() override {
+    model_->check(step_);
+    sample();
+  }
+
+  std::string write_checkpoint(run::Shell &shell, const std::string &path) override {
+    io::CheckpointInfo info = shell.checkpoint_info(step_, time_of(step_));
+    info.dimensions = 1;
+    info.box = {scene_.continuum->length, 1.0, 1.0};
+    std::vector<io::CheckpointArray> arrays{{"continuum/time_step", {model_->dt}}};
+    for (const auto &[name, field] : model_->fields)
+      arrays.push_back({"continuum/" + name, *field});
+    io::write_checkpoint(path, info, {}, comm_, arrays);
+    return "step " + std::to_string(step_) + format(", t = %.6g", time_of(step_));
+  }
+
+  run::Progress progress() const override {
+    return {static_cast<double>(model_->points), rate_.c_str()};
+  }
+
+  void summary(run::Log &log, const run::Loop &) override { model_->summary(log, step_); }
+
+  run::LoopTime loop_time(const run::Loop &loop) const override {
+    const auto steps = static_cast<std::uint64_t>(loop.steps);
+    const std::size_t n = model_->points;
+    return {steps, "steps", std::to_string(n) + " " + model_->point + "s",
+            static_cast<double>(steps) * static_cast<double>(n), per_step_.c_str()};
+  }
+
+private:
+  double time_of(std::int64_t s) const { return static_cast<double>(s) * model_->dt; }
+  void sample() {
+    model_->sample(writer_.get(), step_, time_of(step_));
+    if (writer_)
+      writer_->flush();
+  }
+
+  const scene::Scene &scene_;
+  MPI_Comm comm_;
+  std::unique_ptr<FieldModel> model_;
+  std::string per_step_, rate_; // "cell-steps", "cell-steps/s"
+  std::int64_t step_ = 0;
+  std::unique_ptr<io::ObservablesWriter> writer_;
+};
+
+} // namespace
+
+std::unique_ptr<run::Engine> field_engine(const scene::Scene &scene, MPI_Comm comm,
+                                          std::unique_ptr<FieldModel> model) {
+  return std::make_unique<FieldEngine>(scene, comm, std::move(model));
 }
 
 } // namespace narrows::continuum

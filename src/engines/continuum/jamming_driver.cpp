@@ -104,47 +104,62 @@ std::vector<std::string> describe_jamming(const scene::Scene &scene) {
   return out;
 }
 
-void run_jamming(const scene::Scene &scene, const run::Options &options, MPI_Comm comm) {
-  const scene::Continuum &m = *scene.continuum;
-  const JammingPlan p = plan_of(scene, make_jamming_plan);
-  const JammingModel jamming(m);
-  const std::size_t n = static_cast<std::size_t>(m.cells);
-  std::vector<double> phi, v;
-  jamming_initial(m, phi, v);
-  JammingSolver solver(jamming, n, m.length);
-  const std::vector<double> bins = jamming_points(p);
+namespace {
 
-  FieldModel model;
-  model.dt = p.dt;
-  model.steps = p.steps;
-  model.per_sample = p.per_sample;
-  model.points = n;
-  model.point = "point";
-  model.lines = describe_jamming(scene);
-  model.fields = {{"density", &phi}, {"velocity", &v}};
-  model.step = [&](double dt) { solver.step(phi, v, dt); };
-  model.check = [&](std::int64_t step) {
-    for (std::size_t i = 0; i < n; ++i)
-      if (!std::isfinite(phi[i]) || !std::isfinite(v[i]) || std::abs(v[i]) * p.dt > p.dx)
-        throw invariant_error(scene.file + ": phi or v at point " + std::to_string(i) +
+// The jamming model's fields phi, v on the pseudo-spectral solver.
+class Jamming final : public FieldModel {
+public:
+  explicit Jamming(const scene::Scene &scene)
+      : scene_(scene), p_(plan_of(scene, make_jamming_plan)), jamming_(*scene.continuum),
+        n_(static_cast<std::size_t>(scene.continuum->cells)),
+        solver_(jamming_, n_, scene.continuum->length), bins_(jamming_points(p_)) {
+    jamming_initial(*scene.continuum, phi_, v_);
+    dt = p_.dt;
+    steps = p_.steps;
+    per_sample = p_.per_sample;
+    points = n_;
+    point = "point";
+    lines = describe_jamming(scene);
+    fields = {{"density", &phi_}, {"velocity", &v_}};
+  }
+
+  void step(double dt) override { solver_.step(phi_, v_, dt); }
+  void check(std::int64_t step) const override {
+    for (std::size_t i = 0; i < n_; ++i)
+      if (!std::isfinite(phi_[i]) || !std::isfinite(v_[i]) || std::abs(v_[i]) * p_.dt > p_.dx)
+        throw invariant_error(scene_.file + ": phi or v at point " + std::to_string(i) +
                               " is not finite or beyond the Courant limit at step " +
-                              std::to_string(step) + format(" (phi = %g, v = %g)", phi[i], v[i]) +
+                              std::to_string(step) + format(" (phi = %g, v = %g)", phi_[i], v_[i]) +
                               "; allowed: a smaller continuum.cfl or more continuum.cells");
-  };
-  model.sample = [&](io::ObservablesWriter *writer, std::int64_t s, double t) {
+  }
+  void sample(io::ObservablesWriter *writer, std::int64_t s, double t) override {
     if (writer == nullptr)
       return;
-    if (wants(scene, "density"))
-      writer->append_profile("density", s, t, bins, phi, 1);
-    if (wants(scene, "velocity"))
-      writer->append_profile("velocity", s, t, bins, v, 1);
-  };
-  model.summary = [&](run::Log &log, std::int64_t step) {
-    const auto [lo, hi] = std::minmax_element(phi.begin(), phi.end());
+    if (wants(scene_, "density"))
+      writer->append_profile("density", s, t, bins_, phi_, 1);
+    if (wants(scene_, "velocity"))
+      writer->append_profile("velocity", s, t, bins_, v_, 1);
+  }
+  void summary(run::Log &log, std::int64_t step) const override {
+    const auto [lo, hi] = std::minmax_element(phi_.begin(), phi_.end());
     log.line(format("phi at t = %.6g: mean %.12g (mass / length), min %.6g, max %.6g",
-                    static_cast<double>(step) * p.dt, mean_of(phi), *lo, *hi));
-  };
-  run_fields(scene, options, comm, model);
+                    static_cast<double>(step) * p_.dt, mean_of(phi_), *lo, *hi));
+  }
+
+private:
+  const scene::Scene &scene_;
+  const JammingPlan p_;
+  const JammingModel jamming_;
+  const std::size_t n_;
+  std::vector<double> phi_, v_;
+  JammingSolver solver_;
+  const std::vector<double> bins_;
+};
+
+} // namespace
+
+std::unique_ptr<FieldModel> make_jamming(const scene::Scene &scene) {
+  return std::make_unique<Jamming>(scene);
 }
 
 } // namespace narrows::continuum

@@ -100,87 +100,104 @@ std::vector<std::string> describe_segregation(const scene::Scene &scene) {
   return out;
 }
 
-void run_segregation(const scene::Scene &scene, const run::Options &options, MPI_Comm comm) {
-  const scene::Continuum &m = *scene.continuum;
-  const scene::Segregation &s = m.segregation;
-  const SegregationPlan p = plan_of(scene, make_segregation_plan);
-  const SegregationModel segregation(s);
-  const std::size_t n = segregation.kinds(), cells = static_cast<std::size_t>(m.cells);
-  SegregationSolver solver(segregation, cells);
-  std::vector<std::vector<double>> phi(n);
-  for (std::size_t i = 0; i < n; ++i)
-    phi[i].assign(cells, s.kinds[i].fraction);
-  const std::vector<double> &bins = solver.centres();
-  std::vector<double> steady;
-  if (p.steady.ok)
-    steady = steady_at(p.steady, bins);
-  std::vector<double> row(cells * n), c0(cells);
-  for (std::size_t j = 0; j < cells; ++j) {
-    double x[max_segregation_kinds];
-    for (std::size_t i = 0; i < n; ++i)
-      x[i] = s.kinds[i].fraction;
-    c0[j] = number_density(s, x);
-  }
-  bool steady_written = false;
+namespace {
 
-  FieldModel model;
-  model.dt = p.dt;
-  model.steps = p.steps;
-  model.per_sample = p.per_sample;
-  model.points = cells;
-  model.lines = describe_segregation(scene);
-  for (std::size_t i = 0; i < n; ++i)
-    model.fields.push_back({"fraction_" + std::to_string(i), &phi[i]});
-  model.step = [&](double dt) { solver.step(phi, dt); };
-  model.check = [&](std::int64_t step) {
-    for (std::size_t j = 0; j < cells; ++j) {
+// The segregation model's fractions phi_i of every kind on its RK4 solver.
+class Segregation final : public FieldModel {
+public:
+  explicit Segregation(const scene::Scene &scene)
+      : scene_(scene), s_(scene.continuum->segregation), p_(plan_of(scene, make_segregation_plan)),
+        segregation_(s_), n_(segregation_.kinds()),
+        cells_(static_cast<std::size_t>(scene.continuum->cells)), solver_(segregation_, cells_),
+        phi_(n_), bins_(solver_.centres()), row_(cells_ * n_), c0_(cells_) {
+    for (std::size_t i = 0; i < n_; ++i)
+      phi_[i].assign(cells_, s_.kinds[i].fraction);
+    if (p_.steady.ok)
+      steady_ = steady_at(p_.steady, bins_);
+    for (std::size_t j = 0; j < cells_; ++j) {
       double x[max_segregation_kinds];
-      for (std::size_t i = 0; i < n; ++i)
-        x[i] = phi[i][j];
-      if (!segregation.admissible(x))
-        throw invariant_error(scene.file + ": the fractions in cell " + std::to_string(j) +
+      for (std::size_t i = 0; i < n_; ++i)
+        x[i] = s_.kinds[i].fraction;
+      c0_[j] = number_density(s_, x);
+    }
+    dt = p_.dt;
+    steps = p_.steps;
+    per_sample = p_.per_sample;
+    points = cells_;
+    lines = describe_segregation(scene);
+    for (std::size_t i = 0; i < n_; ++i)
+      fields.push_back({"fraction_" + std::to_string(i), &phi_[i]});
+  }
+
+  void step(double dt) override { solver_.step(phi_, dt); }
+  void check(std::int64_t step) const override {
+    for (std::size_t j = 0; j < cells_; ++j) {
+      double x[max_segregation_kinds];
+      for (std::size_t i = 0; i < n_; ++i)
+        x[i] = phi_[i][j];
+      if (!segregation_.admissible(x))
+        throw invariant_error(scene_.file + ": the fractions in cell " + std::to_string(j) +
                               " are negative, not finite or at close packing (phi_M = " +
-                              format("%g", s.max_packing) + ") at step " + std::to_string(step) +
+                              format("%g", s_.max_packing) + ") at step " + std::to_string(step) +
                               "; allowed: a smaller continuum.cfl or more continuum.cells");
     }
-  };
-  model.sample = [&](io::ObservablesWriter *writer, std::int64_t st, double t) {
+  }
+  void sample(io::ObservablesWriter *writer, std::int64_t st, double t) override {
     if (writer == nullptr)
       return;
+    const std::size_t n = n_, cells = cells_;
     for (std::size_t j = 0; j < cells; ++j)
       for (std::size_t i = 0; i < n; ++i)
-        row[j * n + i] = phi[i][j];
-    if (wants(scene, "density"))
-      writer->append_profile("density", st, t, bins, row, n);
-    if (wants(scene, "evolution")) {
+        row_[j * n + i] = phi_[i][j];
+    if (wants(scene_, "density"))
+      writer->append_profile("density", st, t, bins_, row_, n);
+    if (wants(scene_, "evolution")) {
       double num = 0.0, den = 0.0;
       for (std::size_t j = 0; j < cells; ++j) {
-        const double c = number_density(s, &row[j * n]);
-        num += (c - c0[j]) * (c - c0[j]);
-        den += c0[j] * c0[j];
+        const double c = number_density(s_, &row_[j * n]);
+        num += (c - c0_[j]) * (c - c0_[j]);
+        den += c0_[j] * c0_[j];
       }
       writer->append_scalar("evolution", st, t, num / den);
     }
-    if (wants(scene, "steady_density") && p.steady.ok && !steady_written) {
-      writer->write_result("steady_density", st, t, steady, {{"bins", bins}}, {cells, n});
-      steady_written = true;
+    if (wants(scene_, "steady_density") && p_.steady.ok && !steady_written_) {
+      writer->write_result("steady_density", st, t, steady_, {{"bins", bins_}}, {cells, n});
+      steady_written_ = true;
     }
-  };
-  model.summary = [&](run::Log &log, std::int64_t step) {
-    for (std::size_t i = 0; i < n; ++i) {
+  }
+  void summary(run::Log &log, std::int64_t step) const override {
+    for (std::size_t i = 0; i < n_; ++i) {
       double mean = 0.0, off = 0.0;
-      for (std::size_t j = 0; j < cells; ++j) {
-        mean += phi[i][j] / static_cast<double>(cells);
-        if (p.steady.ok)
-          off = std::max(off, std::abs(phi[i][j] - steady[j * n + i]));
+      for (std::size_t j = 0; j < cells_; ++j) {
+        mean += phi_[i][j] / static_cast<double>(cells_);
+        if (p_.steady.ok)
+          off = std::max(off, std::abs(phi_[i][j] - steady_[j * n_ + i]));
       }
       log.line("kind " + std::to_string(i) +
                format(" at t = %.6g: mean phi %.12g (fraction %g)",
-                      static_cast<double>(step) * p.dt, mean, s.kinds[i].fraction) +
-               (p.steady.ok ? format(", largest |phi - steady| %.3g", off) : std::string()));
+                      static_cast<double>(step) * p_.dt, mean, s_.kinds[i].fraction) +
+               (p_.steady.ok ? format(", largest |phi - steady| %.3g", off) : std::string()));
     }
-  };
-  run_fields(scene, options, comm, model);
+  }
+
+private:
+  const scene::Scene &scene_;
+  const scene::Segregation &s_;
+  const SegregationPlan p_;
+  const SegregationModel segregation_;
+  const std::size_t n_, cells_;
+  SegregationSolver solver_;
+  std::vector<std::vector<double>> phi_;
+  const std::vector<double> &bins_;
+  std::vector<double> steady_;
+  std::vector<double> row_, c0_;
+  bool steady_written_ = false;
+};
+
+} // namespace
+
+std::unique_ptr<FieldModel> make_segregation(const scene::Scene &scene) {
+  return std::make_unique<Segregation>(scene);
 }
 
 } // namespace narrows::continuum

@@ -1,4 +1,5 @@
-// Engine "kmc": replicas over ranks, reduction with error bars, output, check/info, bench.
+// Engine "kmc": replicas over ranks, reduction with error bars, the engine of the run loop,
+// output, check/info, bench.
 #include "narrows/engines/kmc/driver.hpp"
 
 #include "narrows/core/error.hpp"
@@ -10,6 +11,7 @@
 #include "narrows/models/three_state/rates.hpp"
 #include "narrows/models/three_state/shock.hpp"
 #include "narrows/run/collective.hpp"
+#include "narrows/run/engine.hpp"
 #include "narrows/run/shell.hpp"
 #include "narrows/scene/parse.hpp"
 
@@ -19,6 +21,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <time.h>
 #include <tuple>
 
@@ -68,106 +71,108 @@ std::size_t replica_width(const scene::Kmc &model, ReplicaOptions options) {
          (options.charge ? samples * L : 0);
 }
 
-Summary run_replicas(const scene::Kmc &model, std::uint64_t seed, MPI_Comm comm,
-                     ReplicaOptions options, ReplicaSums start, const ReplicaHooks &hooks) {
-  int rank = 0, ranks = 1;
-  MPI_Comm_rank(comm, &rank);
-  MPI_Comm_size(comm, &ranks);
+ReplicaRounds::ReplicaRounds(const scene::Kmc &model, std::uint64_t seed, MPI_Comm comm,
+                             ReplicaOptions options, ReplicaSums start)
+    : model_(model), seed_(seed), comm_(comm), options_(options),
+      width_(replica_width(model, options)), events0_(start.events), tries0_(start.tries),
+      sums_(std::move(start)) {
+  MPI_Comm_rank(comm, &rank_);
+  MPI_Comm_size(comm, &ranks_);
+  const std::size_t samples = model.samples > 0 ? static_cast<std::size_t>(model.samples) + 1 : 0;
+  for (std::size_t i = 0; i < samples; ++i)
+    shock_time_.push_back(model.time * static_cast<double>(i) / static_cast<double>(samples - 1));
+  // Rank 0 takes the replicas in replica order (Welford's running mean and squared
+  // deviations), so the sums are done in one order whatever the number of ranks or restarts.
+  if (rank_ == 0 && sums_.mean.empty()) {
+    sums_.mean.assign(width_, 0.0);
+    sums_.m2.assign(width_, 0.0);
+  }
+  buf_.resize(width_);
+}
+
+// One replica's numbers, or nothing if `stop` interrupted it.
+std::vector<double> ReplicaRounds::run_one(std::int64_t r, const std::function<bool()> &stop) {
+  const scene::Kmc &model = model_;
+  LatticeOptions lo;
+  lo.pair_histogram = options_.pairs;
+  Lattice lattice(model, seed_, static_cast<std::uint64_t>(r), lo);
+  if (!lattice.run_until(model.warmup, stop))
+    return {};
+  lattice.start_observing(model.time);
+  std::vector<double> shock, charge;
+  charge.reserve(options_.charge ? shock_time_.size() * static_cast<std::size_t>(model.length) : 0);
+  for (std::size_t i = 0; i < shock_time_.size(); ++i) {
+    if (!lattice.run_until(model.warmup + shock_time_[i], stop))
+      return {};
+    shock.push_back(
+        static_cast<double>(shock_position(lattice.state(), model.initial, model.initial_right)));
+    if (options_.charge)
+      for (const auto n : lattice.state())
+        charge.push_back(model.charge[n]);
+  }
+  if (!lattice.run_until(model.warmup + model.time, stop))
+    return {};
+  const ReplicaResult res = lattice.result();
+  round_counts_[0] = res.events;
+  round_counts_[1] = res.tries;
+  return pack(res, shock, charge);
+}
+
+bool ReplicaRounds::round(const std::function<bool()> &stop) {
+  const std::int64_t base = sums_.done;
+  const std::int64_t r = base + rank_;
+  round_counts_[0] = round_counts_[1] = 0;
+  std::vector<double> mine;
+  int dropped = 0;
+  if (r < model_.replicas) {
+    mine = run_one(r, stop);
+    dropped = mine.empty() ? 1 : 0;
+  }
+  int any_dropped = 0;
+  MPI_Allreduce(&dropped, &any_dropped, 1, MPI_INT, MPI_MAX, comm_);
+  if (any_dropped)
+    return false;
+  if (rank_ != 0 && r < model_.replicas)
+    MPI_Send(mine.data(), static_cast<int>(width_), MPI_DOUBLE, 0, 0, comm_);
+  for (int q = 0; rank_ == 0 && q < ranks_ && base + q < model_.replicas; ++q) {
+    if (q != 0)
+      MPI_Recv(buf_.data(), static_cast<int>(width_), MPI_DOUBLE, q, 0, comm_, MPI_STATUS_IGNORE);
+    const double *x = q == 0 ? mine.data() : buf_.data();
+    const double n = static_cast<double>(base + q + 1);
+    for (std::size_t i = 0; i < width_; ++i) {
+      const double d = x[i] - sums_.mean[i];
+      sums_.mean[i] += d / n;
+      sums_.m2[i] += d * (x[i] - sums_.mean[i]);
+    }
+  }
+  std::uint64_t counts[2] = {0, 0};
+  MPI_Allreduce(round_counts_, counts, 2, MPI_UINT64_T, MPI_SUM, comm_);
+  sums_.events += counts[0];
+  sums_.tries += counts[1];
+  sums_.done = std::min<std::int64_t>(base + ranks_, model_.replicas);
+  return true;
+}
+
+Summary ReplicaRounds::summary() const {
+  const scene::Kmc &model = model_;
   Summary s;
   s.replicas = model.replicas;
+  s.shock_time = shock_time_;
   const std::size_t L = static_cast<std::size_t>(model.length);
   const std::size_t bonds = model.boundary == scene::KmcBoundary::periodic ? L : L - 1;
-  const std::size_t samples = model.samples > 0 ? static_cast<std::size_t>(model.samples) + 1 : 0;
-  const std::size_t n_pair = options.pairs ? 9 * bonds : 0;
-  const std::size_t n_charge = options.charge ? samples * L : 0;
-  const std::size_t width = replica_width(model, options);
-  for (std::size_t i = 0; i < samples; ++i)
-    s.shock_time.push_back(model.time * static_cast<double>(i) / static_cast<double>(samples - 1));
-
-  Stopwatch clock;
-  LatticeOptions lo;
-  lo.pair_histogram = options.pairs;
-  // One replica's numbers, or nothing if hooks.stop interrupted it.
-  std::uint64_t round_counts[2] = {0, 0}; // events, tries of this rank in this round
-  const auto run_one = [&](std::int64_t r) -> std::vector<double> {
-    Lattice lattice(model, seed, static_cast<std::uint64_t>(r), lo);
-    if (!lattice.run_until(model.warmup, hooks.stop))
-      return {};
-    lattice.start_observing(model.time);
-    std::vector<double> shock, charge;
-    charge.reserve(n_charge);
-    for (std::size_t i = 0; i < samples; ++i) {
-      if (!lattice.run_until(model.warmup + s.shock_time[i], hooks.stop))
-        return {};
-      shock.push_back(
-          static_cast<double>(shock_position(lattice.state(), model.initial, model.initial_right)));
-      if (options.charge)
-        for (const auto n : lattice.state())
-          charge.push_back(model.charge[n]);
-    }
-    if (!lattice.run_until(model.warmup + model.time, hooks.stop))
-      return {};
-    const ReplicaResult res = lattice.result();
-    round_counts[0] = res.events;
-    round_counts[1] = res.tries;
-    return pack(res, shock, charge);
-  };
-
-  // Rank 0 takes the replicas in replica order (Welford's running mean and squared deviations),
-  // so the sums are done in one order whatever the number of ranks or restarts.
-  const std::uint64_t events0 = start.events, tries0 = start.tries;
-  ReplicaSums sums = std::move(start);
-  if (rank == 0 && sums.mean.empty()) {
-    sums.mean.assign(width, 0.0);
-    sums.m2.assign(width, 0.0);
-  }
-  std::vector<double> buf(width);
-  for (std::int64_t base = sums.done; base < model.replicas; base += ranks) {
-    const std::int64_t r = base + rank;
-    round_counts[0] = round_counts[1] = 0;
-    std::vector<double> mine;
-    int dropped = 0;
-    if (r < model.replicas) {
-      mine = run_one(r);
-      dropped = mine.empty() ? 1 : 0;
-    }
-    int any_dropped = 0;
-    MPI_Allreduce(&dropped, &any_dropped, 1, MPI_INT, MPI_MAX, comm);
-    if (any_dropped) {
-      s.complete = false;
-      break;
-    }
-    if (rank != 0 && r < model.replicas)
-      MPI_Send(mine.data(), static_cast<int>(width), MPI_DOUBLE, 0, 0, comm);
-    for (int q = 0; rank == 0 && q < ranks && base + q < model.replicas; ++q) {
-      if (q != 0)
-        MPI_Recv(buf.data(), static_cast<int>(width), MPI_DOUBLE, q, 0, comm, MPI_STATUS_IGNORE);
-      const double *x = q == 0 ? mine.data() : buf.data();
-      const double n = static_cast<double>(base + q + 1);
-      for (std::size_t i = 0; i < width; ++i) {
-        const double d = x[i] - sums.mean[i];
-        sums.mean[i] += d / n;
-        sums.m2[i] += d * (x[i] - sums.mean[i]);
-      }
-    }
-    std::uint64_t counts[2] = {0, 0};
-    MPI_Allreduce(round_counts, counts, 2, MPI_UINT64_T, MPI_SUM, comm);
-    sums.events += counts[0];
-    sums.tries += counts[1];
-    sums.done = std::min<std::int64_t>(base + ranks, model.replicas);
-    if (hooks.after_round && hooks.after_round(sums)) {
-      s.complete = sums.done == model.replicas;
-      break;
-    }
-  }
-  double seconds = clock.seconds();
-  MPI_Allreduce(&seconds, &s.seconds, 1, MPI_DOUBLE, MPI_MAX, comm);
-  s.events = sums.events - events0;
-  s.tries = sums.tries - tries0;
-  s.sums = sums;
-  if (rank != 0 || !s.complete)
+  const std::size_t samples = shock_time_.size();
+  const std::size_t n_pair = options_.pairs ? 9 * bonds : 0;
+  const std::size_t n_charge = options_.charge ? samples * L : 0;
+  const std::size_t width = width_;
+  double seconds = clock_.seconds();
+  MPI_Allreduce(&seconds, &s.seconds, 1, MPI_DOUBLE, MPI_MAX, comm_);
+  s.complete = finished();
+  s.events = sums_.events - events0_;
+  s.tries = sums_.tries - tries0_;
+  s.sums = sums_;
+  if (rank_ != 0 || !s.complete)
     return s;
-  const std::vector<double> &mean = sums.mean, &m2 = sums.m2;
+  const std::vector<double> &mean = sums_.mean, &m2 = sums_.m2;
   const double R = static_cast<double>(model.replicas);
   std::vector<double> err(width, 0.0);
   if (model.replicas > 1)
@@ -201,6 +206,14 @@ Summary run_replicas(const scene::Kmc &model, std::uint64_t seed, MPI_Comm comm,
   s.charge = slice(mean, sh + samples, n_charge);
   s.charge_error = slice(err, sh + samples, n_charge);
   return s;
+}
+
+Summary run_replicas(const scene::Kmc &model, std::uint64_t seed, MPI_Comm comm,
+                     ReplicaOptions options, ReplicaSums start) {
+  ReplicaRounds rounds(model, seed, comm, options, std::move(start));
+  while (!rounds.finished())
+    rounds.round();
+  return rounds.summary();
 }
 
 std::vector<std::string> describe(const scene::Scene &scene) {
@@ -287,97 +300,146 @@ void check_replica_observables(const scene::Scene &given, const std::string &sto
 
 } // namespace
 
-void run_scene(const scene::Scene &scene, const run::Options &run_options, MPI_Comm comm) {
-  const scene::Kmc &k = *scene.kmc;
-  const ReplicaOptions options = replica_options(scene);
-  const std::size_t width = replica_width(k, options);
+namespace {
+
+// The kmc engine in the run loop: a step is one round of replicas (one per rank), the
+// checkpoints hold the running sums over the finished replicas, the observables are written
+// once every replica is done.
+class KmcEngine final : public run::Engine {
+public:
+  KmcEngine(const scene::Scene &scene, MPI_Comm comm)
+      : scene_(scene), comm_(comm), options_(replica_options(scene)),
+        width_(replica_width(*scene.kmc, options_)) {
+    MPI_Comm_rank(comm, &rank_);
+    MPI_Comm_size(comm, &ranks_);
+  }
 
   // The step of a kmc run is the number of finished replicas.
-  run::Shell shell(scene, run_options, comm, {k.replicas, "kmc.replicas", {"kmc.replicas"}});
-  const int rank = shell.rank(), ranks = shell.ranks();
-  ReplicaSums start;
-  const bool restarting = shell.restarting();
-  const std::string &restart_file = shell.restart_file();
-  if (restarting)
-    run::collectively(comm, [&] {
-      const io::CheckpointInfo &info = shell.restart_info();
-      check_replica_observables(scene, info.scene_text, restart_file);
-      const auto counters = io::read_checkpoint_array(restart_file, "kmc/counters", 3, comm);
-      start.done = static_cast<std::int64_t>(counters[0]);
-      start.events = static_cast<std::uint64_t>(counters[1]);
-      start.tries = static_cast<std::uint64_t>(counters[2]);
-      start.mean = io::read_checkpoint_array(restart_file, "kmc/mean", width, comm);
-      start.m2 = io::read_checkpoint_array(restart_file, "kmc/m2", width, comm);
-      if (rank != 0)
-        start.mean.clear(), start.m2.clear();
-      if (start.done != info.step)
-        throw input_error(restart_file + ": /kmc/counters[0] = " + std::to_string(start.done) +
-                          " but /parameters/step = " + std::to_string(info.step) +
-                          "; allowed: the replicas done, the same in both");
-    });
+  run::RunSpan span() const override {
+    return {scene_.kmc->replicas, "kmc.replicas", {"kmc.replicas"}};
+  }
+
+  void start(run::Shell &shell) override {
+    shell_ = &shell;
+    ReplicaSums start;
+    if (shell.restarting()) {
+      const std::string &restart_file = shell.restart_file();
+      run::collectively(comm_, [&] {
+        const io::CheckpointInfo &info = shell.restart_info();
+        check_replica_observables(scene_, info.scene_text, restart_file);
+        const auto counters = io::read_checkpoint_array(restart_file, "kmc/counters", 3, comm_);
+        start.done = static_cast<std::int64_t>(counters[0]);
+        start.events = static_cast<std::uint64_t>(counters[1]);
+        start.tries = static_cast<std::uint64_t>(counters[2]);
+        start.mean = io::read_checkpoint_array(restart_file, "kmc/mean", width_, comm_);
+        start.m2 = io::read_checkpoint_array(restart_file, "kmc/m2", width_, comm_);
+        if (rank_ != 0)
+          start.mean.clear(), start.m2.clear();
+        if (start.done != info.step)
+          throw input_error(restart_file + ": /kmc/counters[0] = " + std::to_string(start.done) +
+                            " but /parameters/step = " + std::to_string(info.step) +
+                            "; allowed: the replicas done, the same in both");
+      });
+    }
+    events0_ = start.events;
+    rounds_.emplace(*scene_.kmc, scene_.run.seed, comm_, options_, std::move(start));
+  }
 
   // A continuation's files carry the replicas done before it (log-0000000008.txt, ...).
-  run::Log &log = shell.open(restarting ? start.done : -1);
-  for (const auto &line : describe(scene))
-    log.line(line);
-  for (const auto &w : analyse(k).warnings)
-    log.warn(w);
-  if (k.replicas == 1)
-    log.warn("kmc.replicas = 1: no error bars (the *_error series are zero)");
-  if ((k.replicas - start.done) % ranks != 0)
-    log.warn(std::to_string(k.replicas - start.done) + " replicas on " + std::to_string(ranks) +
-             " ranks: some ranks idle at the end");
-  if (restarting)
-    log.line("restarted from " + restart_file + " with " + std::to_string(start.done) + " of " +
-             std::to_string(k.replicas) + " replicas done");
+  void open(run::Shell &shell, run::Log &log) override {
+    const scene::Kmc &k = *scene_.kmc;
+    const std::int64_t done = rounds_->sums().done;
+    for (const auto &line : describe(scene_))
+      log.line(line);
+    for (const auto &w : analyse(k).warnings)
+      log.warn(w);
+    if (k.replicas == 1)
+      log.warn("kmc.replicas = 1: no error bars (the *_error series are zero)");
+    if ((k.replicas - done) % ranks_ != 0)
+      log.warn(std::to_string(k.replicas - done) + " replicas on " + std::to_string(ranks_) +
+               " ranks: some ranks idle at the end");
+    if (shell.restarting())
+      log.line("restarted from " + shell.restart_file() + " with " + std::to_string(done) + " of " +
+               std::to_string(k.replicas) + " replicas done");
+    // Rank 0 opens the output first, so a bad directory fails before the work.
+    if (rank_ == 0)
+      writer_ =
+          std::make_unique<io::ObservablesWriter>(shell.output_file("observables"), scene_.text);
+  }
 
-  // Rank 0 opens the output first, so a bad directory fails before the work.
-  std::unique_ptr<io::ObservablesWriter> writer;
-  if (rank == 0)
-    writer = std::make_unique<io::ObservablesWriter>(shell.output_file("observables"), scene.text);
+  std::int64_t step() const override { return rounds_->sums().done; }
+
+  // On SIGTERM/SIGUSR1 the unfinished round of replicas is dropped (each rank asks about every
+  // 2^20 tries).
+  bool advance() override {
+    return rounds_->round([this] { return shell_->stop_received() != 0; });
+  }
+  void observe() override {} // the observables are means over every replica: summary()
+
+  // Rounds advance by the rank count: at least output.checkpoint_every replicas since the last.
+  bool checkpoint_due(const run::Shell &shell, std::int64_t last) const override {
+    return shell.checkpoint_due(step(), last);
+  }
 
   // Checkpoints hold the running sums over the finished replicas: every
-  // output.checkpoint_every replicas, at the end, and on SIGTERM/SIGUSR1 (the unfinished round
-  // of replicas is dropped; each rank checks about every 2^20 tries).
-  const auto save_checkpoint = [&](const ReplicaSums &sums) {
-    return shell.checkpoint(sums.done, [&](const std::string &path) {
-      io::CheckpointInfo info = shell.checkpoint_info(sums.done, k.time);
-      info.dimensions = 1;
-      info.box = {static_cast<double>(k.length), 1.0, 1.0};
-      io::write_checkpoint(
-          path, info, {}, comm,
-          {{"kmc/counters", rank == 0 ? std::vector<double>{static_cast<double>(sums.done),
-                                                            static_cast<double>(sums.events),
-                                                            static_cast<double>(sums.tries)}
-                                      : std::vector<double>{}},
-           {"kmc/mean", sums.mean},
-           {"kmc/m2", sums.m2}});
-      return std::to_string(sums.done) + " of " + std::to_string(k.replicas) + " replicas";
-    });
-  };
-  std::int64_t last_checkpoint = start.done;
-  shell.start_loop(start.done);
-  ReplicaHooks hooks;
-  hooks.stop = [&] { return shell.stop_received(); };
-  hooks.after_round = [&](const ReplicaSums &sums) {
-    if (shell.stop_requested())
-      return true;
-    if (shell.checkpoint_due(sums.done, last_checkpoint)) {
-      save_checkpoint(sums);
-      last_checkpoint = sums.done;
-    }
-    shell.progress(sums.done, 0.0, nullptr, "replica");
-    return false;
-  };
-  const Summary s = run_replicas(k, scene.run.seed, comm, options, std::move(start), hooks);
-  if (!shell.stopped() && !s.complete)
-    shell.stop_requested();
-  const std::string last = save_checkpoint(s.sums);
-  if (!s.complete) {
-    shell.finish(std::to_string(s.sums.done) + " of " + std::to_string(k.replicas) + " replicas",
-                 last);
-    return;
+  // output.checkpoint_every replicas, at the end, and on SIGTERM/SIGUSR1.
+  std::string write_checkpoint(run::Shell &shell, const std::string &path) override {
+    const scene::Kmc &k = *scene_.kmc;
+    const ReplicaSums &sums = rounds_->sums();
+    io::CheckpointInfo info = shell.checkpoint_info(sums.done, k.time);
+    info.dimensions = 1;
+    info.box = {static_cast<double>(k.length), 1.0, 1.0};
+    io::write_checkpoint(
+        path, info, {}, comm_,
+        {{"kmc/counters", rank_ == 0 ? std::vector<double>{static_cast<double>(sums.done),
+                                                           static_cast<double>(sums.events),
+                                                           static_cast<double>(sums.tries)}
+                                     : std::vector<double>{}},
+         {"kmc/mean", sums.mean},
+         {"kmc/m2", sums.m2}});
+    return std::to_string(sums.done) + " of " + std::to_string(k.replicas) + " replicas";
   }
+
+  run::Progress progress() const override { return {0.0, nullptr, "replica"}; }
+
+  std::string where() const override {
+    return std::to_string(step()) + " of " + std::to_string(scene_.kmc->replicas) + " replicas";
+  }
+
+  // The means over every replica: observables and log lines.
+  void summary(run::Log &log, const run::Loop &) override {
+    const Summary s = rounds_->summary();
+    write_results(s, log);
+  }
+
+  run::LoopTime loop_time(const run::Loop &) const override {
+    const scene::Kmc &k = *scene_.kmc;
+    const std::uint64_t events = rounds_->sums().events - events0_;
+    return {events, "events",
+            std::to_string(k.length) + " sites x " + std::to_string(k.replicas) + " replicas",
+            static_cast<double>(events), "events"};
+  }
+
+private:
+  void write_results(const Summary &s, run::Log &log);
+
+  const scene::Scene &scene_;
+  MPI_Comm comm_;
+  ReplicaOptions options_;
+  std::size_t width_;
+  int rank_ = 0, ranks_ = 1;
+  run::Shell *shell_ = nullptr;
+  std::optional<ReplicaRounds> rounds_;
+  std::uint64_t events0_ = 0;
+  std::unique_ptr<io::ObservablesWriter> writer_;
+};
+
+void KmcEngine::write_results(const Summary &s, run::Log &log) {
+  const scene::Scene &scene = scene_;
+  const scene::Kmc &k = *scene.kmc;
+  const int rank = rank_;
+  const ReplicaOptions &options = options_;
+  io::ObservablesWriter *writer = writer_.get();
   const auto wants = [&](const char *name) {
     const auto &o = scene.output.observables;
     return std::find(o.begin(), o.end(), name) != o.end();
@@ -497,28 +559,20 @@ void run_scene(const scene::Scene &scene, const run::Options &run_options, MPI_C
                 static_cast<unsigned long long>(s.events),
                 s.events ? static_cast<double>(s.tries) / static_cast<double>(s.events) : 0.0);
   log.line(buf);
-  shell.loop_time(s.seconds, s.events, "events",
-                  std::to_string(k.length) + " sites x " + std::to_string(k.replicas) + " replicas",
-                  static_cast<double>(s.events), "events");
 }
 
-int command(const scene::Scene &scene, bool check, bool info, const run::Options &options,
-            MPI_Comm comm) {
-  int rank = 0;
-  MPI_Comm_rank(comm, &rank);
-  if (check || info) {
-    if (rank == 0) {
-      if (check)
-        std::cout << scene.file << ": scene is valid\n";
-      for (const auto &line : describe(scene))
-        std::cout << line << '\n';
-      for (const auto &w : analyse(*scene.kmc).warnings)
-        std::cout << "warning: " << w << '\n';
-    }
-    return 0;
-  }
-  run_scene(scene, options, comm);
-  return 0;
+} // namespace
+
+std::vector<std::string> check_lines(const scene::Scene &scene, MPI_Comm) {
+  std::vector<std::string> lines = describe(scene);
+  for (const auto &w : analyse(*scene.kmc).warnings)
+    lines.push_back("warning: " + w);
+  return lines;
+}
+
+std::unique_ptr<run::Engine> make_engine(const scene::Scene &scene, const run::Options &,
+                                         MPI_Comm comm) {
+  return std::make_unique<KmcEngine>(scene, comm);
 }
 
 namespace {

@@ -1,5 +1,6 @@
-// Engine "lgca": scene -> lattice, check/info text, the run loop with observables,
-// checkpoints and restarts, and the lattice benchmark.
+// Engine "lgca": scene -> lattice, check/info text, the engines of the run loop (FHP lattices
+// with observables, checkpoints and restarts; the d'Humieres model's replicas), and the lattice
+// benchmark.
 #include "narrows/engines/lgca/driver.hpp"
 
 #include "narrows/core/error.hpp"
@@ -15,6 +16,7 @@
 #include "narrows/io/checkpoint.hpp"
 #include "narrows/io/observables_writer.hpp"
 #include "narrows/run/collective.hpp"
+#include "narrows/run/engine.hpp"
 #include "narrows/run/shell.hpp"
 #include "narrows/scene/parse.hpp"
 
@@ -26,7 +28,9 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <thread>
 
 namespace narrows::lgca {
@@ -349,59 +353,88 @@ std::vector<std::string> describe(const scene::Scene &scene, MPI_Comm comm) {
   return out;
 }
 
+namespace {
+
 // The 1D model: independent replicas (own initial state and collision seed) spread over the
 // ranks, each `steps / max_lag` successive VACF curves; rank 0 averages the normalised curves
 // in replica order (bitwise the same on any number of ranks), the error is the spread of the
-// replicas.
-void run_dhumieres(const scene::Scene &scene, const run::Options &options, MPI_Comm comm) {
-  int rank = 0, ranks = 1;
-  MPI_Comm_rank(comm, &rank);
-  MPI_Comm_size(comm, &ranks);
-  const scene::Lgca &g = *scene.lgca;
-  if (!options.restart.empty())
-    throw input_error(scene.file + ": --restart is not available for lattice.model = "
-                                   "\"dhumieres-1d\" (no checkpoints); allowed: a fresh run");
-  const std::int64_t L = g.size.at(0);
-  const int max_lag = static_cast<int>(scene.tagged->max_lag);
-  const int replicas = static_cast<int>(scene.tagged->replicas);
-  const int curves = static_cast<int>(scene.run.steps / max_lag);
-  if (curves < 1)
-    throw input_error(scene.file + ": run.steps = " + std::to_string(scene.run.steps) +
-                      " is shorter than tagged.max_lag = " + std::to_string(max_lag) +
-                      "; allowed: run.steps >= tagged.max_lag");
-  run::Shell shell(scene, options, comm, {scene.run.steps, "run.steps", {}});
-  run::Log &log = shell.open(-1);
-  for (const auto &line : describe(scene, comm))
-    log.line(line);
-  const auto ensemble = g.initial == scene::LgcaInitial::zero_momentum
-                            ? dhumieres::Ensemble::zero_momentum
-                            : dhumieres::Ensemble::independent;
-  // Row k of `all`: Z(0..max_lag) of replica k, then N and P.
-  const std::size_t row = static_cast<std::size_t>(max_lag) + 3;
-  std::vector<double> mine(row * replicas, 0.0), all(row * replicas, 0.0);
-  Stopwatch clock;
-  const auto stop = [&] { return shell.stop_received(); };
-  for (int k = rank; k < replicas && !shell.stop_received(); k += ranks) {
-    const auto r = dhumieres::measure_vacf(L, g.density, ensemble, dhumieres::Rule::swap,
-                                           scene.run.seed + 1000 * static_cast<std::uint64_t>(k),
-                                           max_lag, curves, stop);
-    if (r.stopped)
-      break;
-    for (int t = 0; t <= max_lag; ++t)
-      mine[k * row + t] = r.vacf[t] / r.vacf[0];
-    mine[k * row + max_lag + 1] = static_cast<double>(r.particles);
-    mine[k * row + max_lag + 2] = static_cast<double>(r.momentum);
+// replicas. Its one step is the whole measurement of this rank's replicas (asking for stop
+// signals every 4096 lattice steps); it keeps no checkpoints.
+class DhumieresEngine final : public run::Engine {
+public:
+  DhumieresEngine(const scene::Scene &scene, const run::Options &options, MPI_Comm comm)
+      : scene_(scene), comm_(comm), g_(*scene.lgca), L_(g_.size.at(0)),
+        max_lag_(static_cast<int>(scene.tagged->max_lag)),
+        replicas_(static_cast<int>(scene.tagged->replicas)),
+        curves_(static_cast<int>(scene.run.steps / max_lag_)),
+        row_(static_cast<std::size_t>(max_lag_) + 3) {
+    MPI_Comm_rank(comm, &rank_);
+    MPI_Comm_size(comm, &ranks_);
+    if (!options.restart.empty())
+      throw input_error(scene.file + ": --restart is not available for lattice.model = "
+                                     "\"dhumieres-1d\" (no checkpoints); allowed: a fresh run");
+    if (curves_ < 1)
+      throw input_error(scene.file + ": run.steps = " + std::to_string(scene.run.steps) +
+                        " is shorter than tagged.max_lag = " + std::to_string(max_lag_) +
+                        "; allowed: run.steps >= tagged.max_lag");
   }
-  if (shell.stop_requested()) { // collective; this model keeps no checkpoints
-    log.line("stopped by a signal before every curve was measured: lattice.model = "
-             "\"dhumieres-1d\" keeps no checkpoints, so no result is written; exit 0 (run it "
-             "again, or with fewer tagged.replicas or run.steps)");
-    return;
+
+  run::RunSpan span() const override { return {scene_.run.steps, "run.steps", {}}; }
+  void start(run::Shell &shell) override { shell_ = &shell; }
+  void open(run::Shell &, run::Log &log) override {
+    for (const auto &line : describe(scene_, comm_))
+      log.line(line);
   }
+  std::int64_t step() const override { return step_; }
+
+  // Row k of mine_: Z(0..max_lag) of replica k, then N and P.
+  bool advance() override {
+    const auto ensemble = ensemble_of();
+    mine_.assign(row_ * replicas_, 0.0);
+    const auto stop = [&] { return shell_->stop_received(); };
+    int interrupted = 0;
+    for (int k = rank_; k < replicas_ && !shell_->stop_received(); k += ranks_) {
+      const auto r = dhumieres::measure_vacf(L_, g_.density, ensemble, dhumieres::Rule::swap,
+                                             scene_.run.seed + 1000 * static_cast<std::uint64_t>(k),
+                                             max_lag_, curves_, stop);
+      if (r.stopped)
+        break;
+      for (int t = 0; t <= max_lag_; ++t)
+        mine_[k * row_ + t] = r.vacf[t] / r.vacf[0];
+      mine_[k * row_ + max_lag_ + 1] = static_cast<double>(r.particles);
+      mine_[k * row_ + max_lag_ + 2] = static_cast<double>(r.momentum);
+    }
+    interrupted = shell_->stop_received() != 0 ? 1 : 0;
+    int any = 0;
+    MPI_Allreduce(&interrupted, &any, 1, MPI_INT, MPI_MAX, comm_);
+    if (any)
+      return false;
+    step_ = scene_.run.steps;
+    return true;
+  }
+  void observe() override {}
+  std::string write_checkpoint(run::Shell &, const std::string &) override {
+    throw std::logic_error("lattice.model = \"dhumieres-1d\" keeps no checkpoints");
+  }
+  bool keeps_checkpoints() const override { return false; }
+  run::Progress progress() const override { return {}; }
+
+  void finish(run::Log &log, const run::Loop &loop) override {
+    if (loop.stopped)
+      log.line("stopped by a signal before every curve was measured: lattice.model = "
+               "\"dhumieres-1d\" keeps no checkpoints, so no result is written; exit 0 (run it "
+               "again, or with fewer tagged.replicas or run.steps)");
+  }
+
   // Every entry has one non-zero contribution: the sum is exact.
-  MPI_Reduce(mine.data(), all.data(), static_cast<int>(all.size()), MPI_DOUBLE, MPI_SUM, 0, comm);
-  const double seconds = clock.seconds();
-  if (rank == 0) {
+  void summary(run::Log &log, const run::Loop &) override {
+    const int max_lag = max_lag_, replicas = replicas_;
+    const std::size_t row = row_;
+    std::vector<double> all(row * replicas, 0.0);
+    MPI_Reduce(mine_.data(), all.data(), static_cast<int>(all.size()), MPI_DOUBLE, MPI_SUM, 0,
+               comm_);
+    if (rank_ != 0)
+      return;
     std::vector<double> z(max_lag + 1, 0.0), e(max_lag + 1, 0.0), lags;
     double n = 0.0;
     for (int k = 0; k < replicas; ++k)
@@ -415,12 +448,12 @@ void run_dhumieres(const scene::Scene &scene, const run::Options &options, MPI_C
       e[t] = replicas > 1 ? std::sqrt(v / (replicas - 1) / replicas) : 0.0;
       lags.push_back(t);
     }
-    const bool p0 = ensemble == dhumieres::Ensemble::zero_momentum;
-    const double plateau = p0 ? -theory::finite_size_correction(g.density, n) : 0.0;
+    const bool p0 = ensemble_of() == dhumieres::Ensemble::zero_momentum;
+    const double plateau = p0 ? -theory::finite_size_correction(g_.density, n) : 0.0;
     // the plateau window: after the tagged particle's own decay (t ~ 20), before the sound
     // pulses come back around the ring (t < L / c_s, c_s = sqrt 2)
     const int t1 = std::min(20, max_lag),
-              t2 = std::max(t1, std::min(max_lag, static_cast<int>(0.6 * L / std::sqrt(2.0))));
+              t2 = std::max(t1, std::min(max_lag, static_cast<int>(0.6 * L_ / std::sqrt(2.0))));
     double w = 0.0, we = 0.0;
     for (int t = t1; t <= t2; ++t) {
       w += z[t] / (t2 - t1 + 1);
@@ -431,184 +464,230 @@ void run_dhumieres(const scene::Scene &scene, const run::Options &options, MPI_C
                   "tagged VACF: %d replica(s) x %d curves of %d lags, N = %.0f; Z(1) = %.6f +- "
                   "%.2g, eq 19 (b = 5): %.6f; plateau over lags %d..%d: %.4g (eq 22: %.4g), "
                   "error of one lag about %.2g",
-                  replicas, curves, max_lag, n, z[1], e[1],
-                  theory::one_step_vacf(dhumieres::link_velocities(), g.density), t1, t2, w,
+                  replicas, curves_, max_lag, n, z[1], e[1],
+                  theory::one_step_vacf(dhumieres::link_velocities(), g_.density), t1, t2, w,
                   plateau, we);
     log.line(line);
-    io::ObservablesWriter writer(shell.output_file("observables"), scene.text);
-    const std::int64_t steps = static_cast<std::int64_t>(curves) * max_lag;
+    io::ObservablesWriter writer(shell_->output_file("observables"), scene_.text);
+    const std::int64_t steps = measured_steps();
     writer.write_result("vacf", steps, static_cast<double>(steps), z,
                         {{"lags", lags},
                          {"error", e},
                          {"particles", {n}},
-                         {"density", {g.density}},
-                         {"L", {static_cast<double>(L)}},
+                         {"density", {g_.density}},
+                         {"L", {static_cast<double>(L_)}},
                          {"replicas", {static_cast<double>(replicas)}},
                          {"plateau_theory", {plateau}},
                          {"plateau", {w}},
                          {"window", {static_cast<double>(t1), static_cast<double>(t2)}}});
     writer.flush();
-    const double updates = static_cast<double>(steps) * static_cast<double>(L) * replicas;
-    shell.loop_time(seconds, static_cast<std::uint64_t>(steps), "steps",
-                    std::to_string(L * replicas) + " sites", updates, "site-updates");
   }
-}
 
-void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm comm) {
-  if (scene.lgca->model == scene::LgcaModel::dhumieres_1d) {
-    run_dhumieres(scene, options, comm);
-    return;
+  run::LoopTime loop_time(const run::Loop &loop) const override {
+    const std::int64_t steps = loop.stopped ? 0 : measured_steps();
+    const double updates = static_cast<double>(steps) * static_cast<double>(L_) * replicas_;
+    return {static_cast<std::uint64_t>(steps), "steps", std::to_string(L_ * replicas_) + " sites",
+            updates, "site-updates"};
   }
+
+private:
+  dhumieres::Ensemble ensemble_of() const {
+    return g_.initial == scene::LgcaInitial::zero_momentum ? dhumieres::Ensemble::zero_momentum
+                                                           : dhumieres::Ensemble::independent;
+  }
+  std::int64_t measured_steps() const { return static_cast<std::int64_t>(curves_) * max_lag_; }
+
+  const scene::Scene &scene_;
+  MPI_Comm comm_;
+  const scene::Lgca &g_;
+  std::int64_t L_;
+  int max_lag_, replicas_, curves_;
+  std::size_t row_;
+  int rank_ = 0, ranks_ = 1;
+  run::Shell *shell_ = nullptr;
+  std::int64_t step_ = 0;
+  std::vector<double> mine_;
+};
+
+// An FHP lattice (with a colloid, tagged particles) in the run loop.
+class FhpEngine final : public run::Engine {
+public:
   // The lattice first: a decomposition the lattice cannot take is refused before any output.
-  FhpLattice lattice(fhp_params(scene), comm);
-  std::unique_ptr<FhpColloid> colloid;
-  if (scene.colloid)
-    colloid = std::make_unique<FhpColloid>(colloid_params(scene), lattice);
-  run::Shell shell(scene, options, comm, {scene.run.steps, "run.steps", {}});
-  const bool restarting = shell.restarting();
-  const std::string &restart_file = shell.restart_file();
+  FhpEngine(const scene::Scene &scene, MPI_Comm comm)
+      : scene_(scene), comm_(comm), lattice_(fhp_params(scene), comm),
+        sites_(static_cast<std::int64_t>(lattice_.size_x()) * lattice_.size_y()) {
+    if (scene.colloid)
+      colloid_ = std::make_unique<FhpColloid>(colloid_params(scene), lattice_);
+  }
+
+  run::RunSpan span() const override { return {scene_.run.steps, "run.steps", {}}; }
+
   // The state, from the scene or the checkpoint (every rank agrees on a refusal) before
   // anything is written.
-  ColloidCheckpoint stored_colloid;
-  if (restarting) {
-    run::collectively(comm, [&] {
-      read_lattice_checkpoint(restart_file, shell.restart_info(), lattice);
-      if (colloid) {
-        stored_colloid = read_colloid_checkpoint(restart_file, lattice, colloid->params());
-        colloid->set_state(stored_colloid.momentum, stored_colloid.omega, stored_colloid.position,
-                           stored_colloid.angle);
-      }
-    });
-  } else {
-    lattice.initialise(scene.lgca->density, scene.lgca->amplitude);
-  }
-  run::Log &log = shell.open(restarting ? lattice.time() : -1);
-  for (const auto &line : describe(scene, comm))
-    log.line(line);
-  if (restarting)
-    log.line("restarted from " + restart_file + " at step " + std::to_string(lattice.time()));
-  std::unique_ptr<io::ObservablesWriter> writer;
-  if (shell.rank() == 0)
-    writer = std::make_unique<io::ObservablesWriter>(shell.output_file("observables"), scene.text);
-  io::ObservablesWriter *raw_writer = writer.get();
-  Observer observer(scene, lattice, std::move(writer));
-  if (!restarting)
-    observer.sample(lattice); // the initial shear wave belongs to the decay curve
-  // The tagged VACF starts afresh at the first step of this run (also after a restart).
-  std::unique_ptr<FhpTagged> tagged;
-  if (scene.tagged) {
-    tagged = std::make_unique<FhpTagged>(lattice, static_cast<int>(scene.tagged->max_lag));
-    tagged->feed(lattice);
+  void start(run::Shell &shell) override {
+    if (shell.restarting()) {
+      const std::string &restart_file = shell.restart_file();
+      run::collectively(comm_, [&] {
+        read_lattice_checkpoint(restart_file, shell.restart_info(), lattice_);
+        if (colloid_) {
+          stored_colloid_ = read_colloid_checkpoint(restart_file, lattice_, colloid_->params());
+          colloid_->set_state(stored_colloid_.momentum, stored_colloid_.omega,
+                              stored_colloid_.position, stored_colloid_.angle);
+        }
+      });
+    } else {
+      lattice_.initialise(scene_.lgca->density, scene_.lgca->amplitude);
+    }
   }
 
-  const std::int64_t mass = total_mass(lattice);
-  // Fluid + colloid momentum is conserved exactly without walls, obstacles and body force.
-  const bool closed = colloid && !scene.lgca->walls && scene.lgca->obstacles.empty() &&
-                      scene.lgca->body_force == 0.0;
-  const auto total_momentum = [&] {
-    MomentumUnits p = fluid_momentum(lattice);
-    p[0] += colloid->momentum()[0];
-    p[1] += colloid->momentum()[1];
-    return p;
-  };
-  const MomentumUnits momentum0 = closed ? total_momentum() : MomentumUnits{};
-  // The colloid averages are of U - V, V the conserved centre-of-mass velocity (see
-  // colloid_correlations.hpp); V is not conserved with walls, obstacles or a force: then V = 0.
-  std::unique_ptr<ColloidCorrelations> colloid_stats;
-  if (colloid)
-    colloid_stats = std::make_unique<ColloidCorrelations>(
-        static_cast<int>(scene.colloid->max_lag), static_cast<int>(scene.colloid->displacement_lag),
-        static_cast<int>(scene.colloid->displacement_every), scene.run.steps - lattice.time(),
-        closed ? colloid->centre_of_mass_velocity(lattice) : std::array<double, 2>{0.0, 0.0});
-  // A restart with the checkpoint's run.steps continues the colloid averages of the checkpoint
-  // (the same as one long run); another run.steps starts a new averaging run (e.g. after an
-  // equilibration job), as does a checkpoint without averages or of other lags.
-  if (colloid_stats && restarting) {
-    const std::int64_t stored_steps =
-        scene::parse_scene(shell.restart_info().scene_text, restart_file + ":/parameters/scene")
-            .run.steps;
-    if (stored_steps != scene.run.steps)
-      log.line(
-          "colloid VACF and D(t) start afresh (run.steps = " + std::to_string(scene.run.steps) +
-          ", the checkpoint's run had " + std::to_string(stored_steps) + ": a new averaging run)");
-    else if (colloid_stats->restore(stored_colloid.correlations))
-      log.line("colloid VACF and D(t) continue the averages of the checkpoint");
-    else
-      log.line("colloid VACF and D(t) start afresh (the checkpoint has no averages of these "
-               "lags)");
-  }
-  const std::int64_t sites = static_cast<std::int64_t>(lattice.size_x()) * lattice.size_y();
-  auto save_checkpoint = [&] {
-    return shell.checkpoint(lattice.time(), [&](const std::string &path) {
-      Stopwatch watch;
-      const double bytes = write_lattice_checkpoint(path, lattice, scene.text, scene.canonical);
-      if (colloid && shell.rank() == 0)
-        write_colloid_checkpoint(path, *colloid, colloid_stats.get());
-      char text[120];
-      std::snprintf(text, sizeof text, "%.1f MB of lattice in %.3g s", bytes / 1e6,
-                    watch.seconds());
-      return std::string(text);
-    });
-  };
-  const std::int64_t first = lattice.time();
-  shell.start_loop(first);
-  while (lattice.time() < scene.run.steps) {
-    if (colloid)
-      colloid->apply(lattice);
-    lattice.step();
-    if (colloid_stats)
-      colloid_stats->add(colloid->composite_velocity(lattice));
-    observer.every_step(lattice);
-    if (tagged)
-      tagged->feed(lattice);
-    if (shell.observe_due(lattice.time())) {
-      const std::int64_t now = total_mass(lattice);
-      if (now != mass)
-        throw invariant_error("lattice mass changed from " + std::to_string(mass) + " to " +
-                              std::to_string(now) + " at step " + std::to_string(lattice.time()));
-      if (closed && total_momentum() != momentum0)
-        throw invariant_error("fluid + colloid momentum changed at step " +
-                              std::to_string(lattice.time()));
-      observer.sample(lattice);
+  void open(run::Shell &shell, run::Log &log) override {
+    const scene::Scene &scene = scene_;
+    const bool restarting = shell.restarting();
+    const std::string &restart_file = shell.restart_file();
+    for (const auto &line : describe(scene, comm_))
+      log.line(line);
+    if (restarting)
+      log.line("restarted from " + restart_file + " at step " + std::to_string(lattice_.time()));
+    std::unique_ptr<io::ObservablesWriter> writer;
+    if (shell.rank() == 0)
+      writer =
+          std::make_unique<io::ObservablesWriter>(shell.output_file("observables"), scene.text);
+    writer_ = writer.get();
+    observer_.emplace(scene, lattice_, std::move(writer));
+    if (!restarting)
+      observer_->sample(lattice_); // the initial shear wave belongs to the decay curve
+    // The tagged VACF starts afresh at the first step of this run (also after a restart).
+    if (scene.tagged) {
+      tagged_ = std::make_unique<FhpTagged>(lattice_, static_cast<int>(scene.tagged->max_lag));
+      tagged_->feed(lattice_);
     }
-    if (shell.stop_requested())
-      break;
-    if (shell.checkpoint_due(lattice.time()))
-      save_checkpoint();
-    shell.progress(lattice.time(), static_cast<double>(sites), "site-updates/s");
+
+    mass_ = total_mass(lattice_);
+    // Fluid + colloid momentum is conserved exactly without walls, obstacles and body force.
+    closed_ = colloid_ && !scene.lgca->walls && scene.lgca->obstacles.empty() &&
+              scene.lgca->body_force == 0.0;
+    if (closed_)
+      momentum0_ = total_momentum();
+    // The colloid averages are of U - V, V the conserved centre-of-mass velocity (see
+    // colloid_correlations.hpp); V is not conserved with walls, obstacles or a force: then V
+    // = 0.
+    if (colloid_)
+      colloid_stats_ = std::make_unique<ColloidCorrelations>(
+          static_cast<int>(scene.colloid->max_lag),
+          static_cast<int>(scene.colloid->displacement_lag),
+          static_cast<int>(scene.colloid->displacement_every), scene.run.steps - lattice_.time(),
+          closed_ ? colloid_->centre_of_mass_velocity(lattice_) : std::array<double, 2>{0.0, 0.0});
+    // A restart with the checkpoint's run.steps continues the colloid averages of the
+    // checkpoint (the same as one long run); another run.steps starts a new averaging run (e.g.
+    // after an equilibration job), as does a checkpoint without averages or of other lags.
+    if (colloid_stats_ && restarting) {
+      const std::int64_t stored_steps =
+          scene::parse_scene(shell.restart_info().scene_text, restart_file + ":/parameters/scene")
+              .run.steps;
+      if (stored_steps != scene.run.steps)
+        log.line("colloid VACF and D(t) start afresh (run.steps = " +
+                 std::to_string(scene.run.steps) + ", the checkpoint's run had " +
+                 std::to_string(stored_steps) + ": a new averaging run)");
+      else if (colloid_stats_->restore(stored_colloid_.correlations))
+        log.line("colloid VACF and D(t) continue the averages of the checkpoint");
+      else
+        log.line("colloid VACF and D(t) start afresh (the checkpoint has no averages of these "
+                 "lags)");
+    }
   }
-  const double seconds = shell.loop_seconds();
-  const auto steps = static_cast<std::uint64_t>(lattice.time() - first);
-  if (tagged)
-    finish_vacf(scene, lattice, *tagged, log, raw_writer);
-  if (colloid_stats)
-    finish_colloid(*colloid, *colloid_stats, lattice, closed, log, raw_writer);
-  const std::string last = save_checkpoint();
-  shell.finish("step " + std::to_string(lattice.time()), last);
-  shell.loop_time(seconds, steps, "steps", std::to_string(sites) + " sites",
-                  static_cast<double>(steps) * static_cast<double>(sites), "site-updates");
+
+  std::int64_t step() const override { return lattice_.time(); }
+
+  bool advance() override {
+    if (colloid_)
+      colloid_->apply(lattice_);
+    lattice_.step();
+    if (colloid_stats_)
+      colloid_stats_->add(colloid_->composite_velocity(lattice_));
+    observer_->every_step(lattice_);
+    if (tagged_)
+      tagged_->feed(lattice_);
+    return true;
+  }
+
+  void observe() override {
+    const std::int64_t now = total_mass(lattice_);
+    if (now != mass_)
+      throw invariant_error("lattice mass changed from " + std::to_string(mass_) + " to " +
+                            std::to_string(now) + " at step " + std::to_string(lattice_.time()));
+    if (closed_ && total_momentum() != momentum0_)
+      throw invariant_error("fluid + colloid momentum changed at step " +
+                            std::to_string(lattice_.time()));
+    observer_->sample(lattice_);
+  }
+
+  std::string write_checkpoint(run::Shell &shell, const std::string &path) override {
+    Stopwatch watch;
+    const double bytes = write_lattice_checkpoint(path, lattice_, scene_.text, scene_.canonical);
+    if (colloid_ && shell.rank() == 0)
+      write_colloid_checkpoint(path, *colloid_, colloid_stats_.get());
+    char text[120];
+    std::snprintf(text, sizeof text, "%.1f MB of lattice in %.3g s", bytes / 1e6, watch.seconds());
+    return text;
+  }
+
+  run::Progress progress() const override {
+    return {static_cast<double>(sites_), "site-updates/s"};
+  }
+
+  void finish(run::Log &log, const run::Loop &) override {
+    if (tagged_)
+      finish_vacf(scene_, lattice_, *tagged_, log, writer_);
+    if (colloid_stats_)
+      finish_colloid(*colloid_, *colloid_stats_, lattice_, closed_, log, writer_);
+  }
+
+  run::LoopTime loop_time(const run::Loop &loop) const override {
+    const auto steps = static_cast<std::uint64_t>(loop.steps);
+    return {steps, "steps", std::to_string(sites_) + " sites",
+            static_cast<double>(steps) * static_cast<double>(sites_), "site-updates"};
+  }
+
+private:
+  MomentumUnits total_momentum() const {
+    MomentumUnits p = fluid_momentum(lattice_);
+    p[0] += colloid_->momentum()[0];
+    p[1] += colloid_->momentum()[1];
+    return p;
+  }
+
+  const scene::Scene &scene_;
+  MPI_Comm comm_;
+  FhpLattice lattice_;
+  std::int64_t sites_;
+  std::unique_ptr<FhpColloid> colloid_;
+  ColloidCheckpoint stored_colloid_;        // a restart's colloid, for its averages
+  io::ObservablesWriter *writer_ = nullptr; // rank 0's, owned by the observer
+  std::optional<Observer> observer_;
+  std::unique_ptr<FhpTagged> tagged_;
+  std::int64_t mass_ = 0;
+  bool closed_ = false;
+  MomentumUnits momentum0_{};
+  std::unique_ptr<ColloidCorrelations> colloid_stats_;
+};
+
+} // namespace
+
+std::vector<std::string> check_lines(const scene::Scene &scene, MPI_Comm comm) {
+  refuse_unavailable(scene);
+  // The decomposition is checked here too, so `check` refuses what `run` would.
+  if (scene.lgca->model != scene::LgcaModel::dhumieres_1d) {
+    const parallel::Slabs slabs(comm, static_cast<int>(scene.lgca->size.at(0)), 2);
+  }
+  return describe(scene, comm);
 }
 
-int command(const scene::Scene &scene, bool check, bool info, const run::Options &options,
-            MPI_Comm comm) {
-  int rank = 0;
-  MPI_Comm_rank(comm, &rank);
+std::unique_ptr<run::Engine> make_engine(const scene::Scene &scene, const run::Options &options,
+                                         MPI_Comm comm) {
   refuse_unavailable(scene);
-  if (check || info) {
-    // The decomposition is checked here too, so `check` refuses what `run` would.
-    if (scene.lgca->model != scene::LgcaModel::dhumieres_1d) {
-      const parallel::Slabs slabs(comm, static_cast<int>(scene.lgca->size.at(0)), 2);
-    }
-    if (rank == 0) {
-      if (check)
-        std::cout << scene.file << ": scene is valid\n";
-      for (const auto &line : describe(scene, comm))
-        std::cout << line << '\n';
-    }
-    return 0;
-  }
-  run_scene(scene, options, comm);
-  return 0;
+  if (scene.lgca->model == scene::LgcaModel::dhumieres_1d)
+    return std::make_unique<DhumieresEngine>(scene, options, comm);
+  return std::make_unique<FhpEngine>(scene, comm);
 }
 
 void run_bench(std::ostream &out, int n, int steps, bool json, MPI_Comm comm) {

@@ -1,4 +1,5 @@
-// The run loop: step the pipeline, observe on a schedule, check invariants, report progress.
+// The MPCD engine of the run loop: the simulation's step, observables on a schedule, invariant
+// checks, trajectory frames, checkpoints of fluid, colloids and contacts, the closing lines.
 #include "narrows/engines/mpcd/driver.hpp"
 
 #include "narrows/analysis/fluid_observables.hpp"
@@ -19,6 +20,7 @@
 #include "narrows/io/observables_writer.hpp"
 #include "narrows/parallel/slabs.hpp"
 #include "narrows/run/collective.hpp"
+#include "narrows/run/engine.hpp"
 #include "narrows/run/shell.hpp"
 
 #include <algorithm>
@@ -162,201 +164,259 @@ void check_fluid_count(const scene::Scene &scene, const io::CheckpointInfo &info
                       "; allowed: a checkpoint of this scene");
 }
 
-void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm comm) {
-  // Refuse a decomposition the box cannot take before anything is written.
-  check_ranks(scene, comm);
-  run::Shell shell(scene, options, comm, {scene.run.steps, "run.steps", {}});
-  const bool restarting = shell.restarting();
-  // A packing is made once, by the simulation below (it takes seconds to minutes).
-  if (!restarting &&
-      !(scene.colloids && scene.colloids->placement == scene::ColloidPlacement::packing))
-    check_colloid_placement(scene);
+namespace {
 
-  // The state, from the scene or the checkpoint (every rank agrees on a refusal) before
-  // anything is written.
-  MpcdSimulation sim(scene, comm, !restarting);
-  if (restarting) {
-    const std::string &file = shell.restart_file();
-    run::collectively(comm, [&] {
-      const io::CheckpointInfo info = io::read_checkpoint_info(file, comm);
-      check_fluid_count(scene, info, file);
-      sim.restore(read_fluid(file, info, comm), info.step);
-    });
-    if (scene.colloids) {
+// The MPCD engine in the run loop (run/drive.hpp): the simulation's step, the observables, the
+// trajectory and the checkpoints of fluid, colloids and contacts.
+class MpcdEngine final : public run::Engine {
+public:
+  MpcdEngine(const scene::Scene &scene, MPI_Comm comm) : scene_(scene), comm_(comm) {
+    // Refuse a decomposition the box cannot take before anything is written.
+    check_ranks(scene, comm);
+  }
+
+  run::RunSpan span() const override { return {scene_.run.steps, "run.steps", {}}; }
+
+  void start(run::Shell &shell) override {
+    const scene::Scene &scene = scene_;
+    const MPI_Comm comm = comm_;
+    const bool restarting = shell.restarting();
+    // A packing is made once, by the simulation below (it takes seconds to minutes).
+    if (!restarting &&
+        !(scene.colloids && scene.colloids->placement == scene::ColloidPlacement::packing))
+      check_colloid_placement(scene);
+    // The state, from the scene or the checkpoint (every rank agrees on a refusal) before
+    // anything is written.
+    MpcdSimulation &sim = sim_.emplace(scene, comm, !restarting);
+    if (restarting) {
+      const std::string &file = shell.restart_file();
       run::collectively(comm, [&] {
-        sim.restore_colloids(read_colloids(file, *scene.colloids, scene.run.dimensions,
-                                           scene.fluid.density, scene.run.seed, comm));
-        if (scene.colloids->contacts == scene::ColloidContacts::spring)
-          sim.restore_contacts(read_contacts(file, scene.colloids->count, scene.run.dimensions,
-                                             scene.walls.has_value(), comm));
+        const io::CheckpointInfo info = io::read_checkpoint_info(file, comm);
+        check_fluid_count(scene, info, file);
+        sim.restore(read_fluid(file, info, comm), info.step);
       });
-      // Every colloid (gathered from the owners) against this rank's fluid.
-      check_fluid_outside_colloids(sim.fluid(), sim.gather_colloids(), sim.box(),
-                                   scene.colloids->epsilon, scene.fluid.kT, file, comm);
+      if (scene.colloids) {
+        run::collectively(comm, [&] {
+          sim.restore_colloids(read_colloids(file, *scene.colloids, scene.run.dimensions,
+                                             scene.fluid.density, scene.run.seed, comm));
+          if (scene.colloids->contacts == scene::ColloidContacts::spring)
+            sim.restore_contacts(read_contacts(file, scene.colloids->count, scene.run.dimensions,
+                                               scene.walls.has_value(), comm));
+        });
+        // Every colloid (gathered from the owners) against this rank's fluid.
+        check_fluid_outside_colloids(sim.fluid(), sim.gather_colloids(), sim.box(),
+                                     scene.colloids->epsilon, scene.fluid.kT, file, comm);
+      }
     }
+    // The colloid statistics, on a restart with the sums of the run chain so far.
+    ColloidStatistics &colloid_stats = colloid_stats_.emplace(sim);
+    if (restarting)
+      run::collectively(comm, [&] { colloid_stats.restore(shell.restart_file(), comm); });
   }
-  // The colloid statistics, on a restart with the sums of the run chain so far.
-  ColloidStatistics colloid_stats(sim);
-  if (restarting)
-    run::collectively(comm, [&] { colloid_stats.restore(shell.restart_file(), comm); });
-  run::Log &log = shell.open(restarting ? sim.step() : -1);
-  for (const auto &line : describe_scene(scene, comm))
-    log.line(line);
-  for (const auto &w : regime_warnings(scene))
-    log.warn(w);
-  if (restarting)
-    log.line("restarted from " + shell.restart_file() + " at step " + std::to_string(sim.step()));
-  if (const auto &p = sim.packing()) {
-    char line[256];
-    std::snprintf(line, sizeof line,
-                  "packing: %lld colloids at fraction %.4f, deepest overlap %.2e of the smallest "
-                  "radius, %lld growth stages, %lld relaxation steps, %.2f s",
-                  static_cast<long long>(scene.colloids->count), p->fraction, p->max_overlap,
-                  static_cast<long long>(p->stages), static_cast<long long>(p->iterations),
-                  p->seconds);
-    log.line(line);
+
+  void open(run::Shell &shell, run::Log &log) override {
+    const scene::Scene &scene = scene_;
+    const MPI_Comm comm = comm_;
+    MpcdSimulation &sim = *sim_;
+    for (const auto &line : describe_scene(scene, comm))
+      log.line(line);
+    for (const auto &w : regime_warnings(scene))
+      log.warn(w);
+    if (shell.restarting())
+      log.line("restarted from " + shell.restart_file() + " at step " + std::to_string(sim.step()));
+    if (const auto &p = sim.packing()) {
+      char line[256];
+      std::snprintf(line, sizeof line,
+                    "packing: %lld colloids at fraction %.4f, deepest overlap %.2e of the "
+                    "smallest radius, %lld growth stages, %lld relaxation steps, %.2f s",
+                    static_cast<long long>(scene.colloids->count), p->fraction, p->max_overlap,
+                    static_cast<long long>(p->stages), static_cast<long long>(p->iterations),
+                    p->seconds);
+      log.line(line);
+    }
+    std::unique_ptr<io::ObservablesWriter> writer;
+    if (shell.rank() == 0)
+      writer =
+          std::make_unique<io::ObservablesWriter>(shell.output_file("observables"), scene.text);
+    observer_.emplace(sim, std::move(writer), std::move(*colloid_stats_));
+    // The trajectory and checkpoints hold every colloid: gathered from their owners when
+    // written.
+    if (scene.colloids) {
+      colloids_ = &all_colloids_;
+      all_colloids_ = sim.gather_colloids();
+    }
+    springs_ = scene.colloids && scene.colloids->contacts == scene::ColloidContacts::spring;
+    if (scene.output.trajectory_every > 0) {
+      const std::string file = shell.output_file("trajectory");
+      trajectory_.emplace(file, scene.text, sim.box(), particle_count(scene),
+                          static_cast<std::uint64_t>(scene.output.trajectory_subsample), comm,
+                          colloids_);
+      log.line("trajectory: " + std::to_string(trajectory_->tracked()) + " fluid particles" +
+               (colloids_ ? " and " + std::to_string(colloids_->size()) + " colloids" : "") +
+               " every " + std::to_string(scene.output.trajectory_every) + " steps to " + file +
+               " (ParaView: trajectory" + shell.suffix() + ".xdmf)");
+      if (!shell.restarting())
+        trajectory_->write_frame(sim.step(), sim.time(), sim.fluid(), colloids_);
+    }
+    invariants_.emplace(sim);
+    n_particles_ = analysis::total_momentum(sim.fluid(), comm).count;
   }
-  std::unique_ptr<io::ObservablesWriter> writer;
-  if (shell.rank() == 0)
-    writer = std::make_unique<io::ObservablesWriter>(shell.output_file("observables"), scene.text);
-  Observer observer(sim, std::move(writer), std::move(colloid_stats));
-  std::optional<TrajectoryWriter> trajectory;
-  // The trajectory and checkpoints hold every colloid: gathered from their owners when written.
-  colloids::Colloids all_colloids;
-  const colloids::Colloids *colloids = scene.colloids ? &all_colloids : nullptr;
-  if (colloids)
-    all_colloids = sim.gather_colloids();
-  // The spring contacts' history, gathered in key order for checkpoints.
-  const bool springs = scene.colloids && scene.colloids->contacts == scene::ColloidContacts::spring;
-  colloids::ContactHistory all_contacts;
-  if (scene.output.trajectory_every > 0) {
-    const std::string file = shell.output_file("trajectory");
-    trajectory.emplace(file, scene.text, sim.box(), particle_count(scene),
-                       static_cast<std::uint64_t>(scene.output.trajectory_subsample), comm,
-                       colloids);
-    log.line("trajectory: " + std::to_string(trajectory->tracked()) + " fluid particles" +
-             (colloids ? " and " + std::to_string(colloids->size()) + " colloids" : "") +
-             " every " + std::to_string(scene.output.trajectory_every) + " steps to " + file +
-             " (ParaView: trajectory" + shell.suffix() + ".xdmf)");
-    if (!restarting)
-      trajectory->write_frame(sim.step(), sim.time(), sim.fluid(), colloids);
+
+  std::int64_t step() const override { return sim_->step(); }
+
+  bool advance() override {
+    sim_->advance();
+    observer_->every_step();
+    return true;
   }
-  const InvariantCheck invariants(sim);
-  const auto n_particles = analysis::total_momentum(sim.fluid(), comm).count;
+
+  void observe() override {
+    invariants_->check(*sim_);
+    observer_->sample();
+  }
+
+  void write_frame() override {
+    if (!trajectory_)
+      return;
+    if (colloids_)
+      all_colloids_ = sim_->gather_colloids();
+    trajectory_->write_frame(sim_->step(), sim_->time(), sim_->fluid(), colloids_);
+  }
 
   // Checkpoints: every output.checkpoint_every steps, at the end, and on SIGTERM/SIGUSR1.
-  auto save_checkpoint = [&] {
-    return shell.checkpoint(sim.step(), [&](const std::string &path) {
-      Stopwatch watch;
-      io::CheckpointInfo info = shell.checkpoint_info(sim.step(), sim.time());
-      info.dimensions = sim.box().dim;
-      info.box = sim.box().length;
-      info.walls_y = sim.box().walls_y;
-      std::vector<io::SpeciesFields> species{fluid_fields(sim.fluid())};
-      colloids::Colloids none;
-      colloids::ContactHistory no_contacts;
-      if (colloids) {
-        all_colloids = sim.gather_colloids();
-        species.push_back(colloid_fields(all_colloids, none, comm));
-      }
-      if (springs) { // (none in contact: no species, as a checkpoint without a history)
-        all_contacts = sim.gather_contacts();
-        if (all_contacts.size() > 0)
-          species.push_back(contact_fields(all_contacts, no_contacts, comm));
-      }
-      const double bytes =
-          io::write_checkpoint(path, info, species, comm, observer.checkpoint_arrays());
-      const double s = watch.seconds();
-      char text[200];
-      std::snprintf(text, sizeof text, "%.1f MB of particles in %.3g s (%.1f MB/s)", bytes / 1e6, s,
-                    s > 0 ? bytes / 1e6 / s : 0.0);
-      return std::string(text);
-    });
-  };
-
-  const std::int64_t first = sim.step();
-  shell.start_loop(first);
-  while (sim.step() < scene.run.steps) {
-    sim.advance();
-    observer.every_step();
-    if (shell.observe_due(sim.step())) {
-      invariants.check(sim);
-      observer.sample();
+  std::string write_checkpoint(run::Shell &shell, const std::string &path) override {
+    MpcdSimulation &sim = *sim_;
+    Stopwatch watch;
+    io::CheckpointInfo info = shell.checkpoint_info(sim.step(), sim.time());
+    info.dimensions = sim.box().dim;
+    info.box = sim.box().length;
+    info.walls_y = sim.box().walls_y;
+    std::vector<io::SpeciesFields> species{fluid_fields(sim.fluid())};
+    colloids::Colloids none;
+    colloids::ContactHistory no_contacts;
+    if (colloids_) {
+      all_colloids_ = sim.gather_colloids();
+      species.push_back(colloid_fields(all_colloids_, none, comm_));
     }
-    if (trajectory && shell.trajectory_due(sim.step())) {
-      if (colloids)
-        all_colloids = sim.gather_colloids();
-      trajectory->write_frame(sim.step(), sim.time(), sim.fluid(), colloids);
+    if (springs_) { // (none in contact: no species, as a checkpoint without a history)
+      all_contacts_ = sim.gather_contacts();
+      if (all_contacts_.size() > 0)
+        species.push_back(contact_fields(all_contacts_, no_contacts, comm_));
     }
-    if (shell.stop_requested())
-      break;
-    if (shell.checkpoint_due(sim.step()))
-      save_checkpoint();
-    shell.progress(sim.step(), static_cast<double>(n_particles), "particle-steps/s");
+    const double bytes =
+        io::write_checkpoint(path, info, species, comm_, observer_->checkpoint_arrays());
+    const double s = watch.seconds();
+    char text[200];
+    std::snprintf(text, sizeof text, "%.1f MB of particles in %.3g s (%.1f MB/s)", bytes / 1e6, s,
+                  s > 0 ? bytes / 1e6 / s : 0.0);
+    return text;
   }
-  const double seconds = shell.loop_seconds();
-  const auto steps = static_cast<std::uint64_t>(sim.step() - first);
-  // The largest of every rank's figure (on rank 0, which writes the log).
-  const auto busiest = [&](double mine) {
-    double most = 0.0;
-    MPI_Reduce(&mine, &most, 1, MPI_DOUBLE, MPI_MAX, 0, comm);
-    return most;
-  };
-  char text[200];
-  // Bytes per step of a kind of message from the busiest rank, for scaling models of cluster runs.
-  const auto messages = [&](const char *what, std::uint64_t bytes, const char *which) {
-    std::snprintf(text, sizeof text, "%s messages: %.4g bytes per step from the busiest rank (%s)",
-                  what, busiest(static_cast<double>(bytes)) / static_cast<double>(steps), which);
-    log.line(text);
-  };
-  if (sim.slabs().ranks() > 1 && steps > 0)
-    messages("fluid", sim.fluid_bytes_sent(), "particles migrating to the slab of their cell");
-  if (scene.colloids && steps > 0) { // the cost of colloids owned by slabs
-    messages("colloid", sim.colloid_bytes_sent(), "ghosts, their forces, migration");
-    if (const auto *ns = sim.no_slip(); ns && seconds > 0.0) { // the coupling's share
-      const double most = busiest(ns->seconds());
+
+  run::Progress progress() const override {
+    return {static_cast<double>(n_particles_), "particle-steps/s"};
+  }
+
+  // What the messages and the coupling cost, then the colloid statistics of the whole run.
+  void finish(run::Log &log, const run::Loop &loop) override {
+    const MpcdSimulation &sim = *sim_;
+    const MPI_Comm comm = comm_;
+    const double seconds = loop.seconds;
+    const auto steps = static_cast<std::uint64_t>(loop.steps);
+    // The largest of every rank's figure (on rank 0, which writes the log).
+    const auto busiest = [&](double mine) {
+      double most = 0.0;
+      MPI_Reduce(&mine, &most, 1, MPI_DOUBLE, MPI_MAX, 0, comm);
+      return most;
+    };
+    char text[200];
+    // Bytes per step of a kind of message from the busiest rank, for scaling models of cluster
+    // runs.
+    const auto messages = [&](const char *what, std::uint64_t bytes, const char *which) {
       std::snprintf(text, sizeof text,
-                    "no-slip coupling: %.4g s of the loop (%.1f %%) on the busiest rank (colloid "
-                    "motion, bounce-back, ghost particles made and taken back)",
-                    most, 100.0 * most / seconds);
+                    "%s messages: %.4g bytes per step from the busiest rank (%s)", what,
+                    busiest(static_cast<double>(bytes)) / static_cast<double>(steps), which);
       log.line(text);
-      if (sim.slabs().ranks() > 1) { // how much of it is messages and waiting
-        const double talk = busiest(ns->message_seconds());
+    };
+    if (sim.slabs().ranks() > 1 && steps > 0)
+      messages("fluid", sim.fluid_bytes_sent(), "particles migrating to the slab of their cell");
+    if (scene_.colloids && steps > 0) { // the cost of colloids owned by slabs
+      messages("colloid", sim.colloid_bytes_sent(), "ghosts, their forces, migration");
+      if (const auto *ns = sim.no_slip(); ns && seconds > 0.0) { // the coupling's share
+        const double most = busiest(ns->seconds());
         std::snprintf(text, sizeof text,
-                      "no-slip coupling messages: %.4g s of the loop (%.1f %%) on the busiest "
-                      "rank (ghost colloids, impulse sums, migration; waiting for the other "
-                      "ranks included)",
-                      talk, 100.0 * talk / seconds);
+                      "no-slip coupling: %.4g s of the loop (%.1f %%) on the busiest rank "
+                      "(colloid motion, bounce-back, ghost particles made and taken back)",
+                      most, 100.0 * most / seconds);
+        log.line(text);
+        if (sim.slabs().ranks() > 1) { // how much of it is messages and waiting
+          const double talk = busiest(ns->message_seconds());
+          std::snprintf(text, sizeof text,
+                        "no-slip coupling messages: %.4g s of the loop (%.1f %%) on the busiest "
+                        "rank (ghost colloids, impulse sums, migration; waiting for the other "
+                        "ranks included)",
+                        talk, 100.0 * talk / seconds);
+          log.line(text);
+        }
+      }
+      if (const auto *ns = sim.no_slip();
+          ns && sim.scene().colloids->contacts == scene::ColloidContacts::hard) {
+        // Rank 0's count: every collision of a colloid it owned, and those of its ghosts.
+        std::snprintf(text, sizeof text,
+                      "colloid contacts: %llu colloid-colloid and %llu colloid-wall collisions "
+                      "resolved on rank 0 (ghosts included)",
+                      static_cast<unsigned long long>(ns->contacts().pair_collisions),
+                      static_cast<unsigned long long>(ns->contacts().wall_collisions));
+        log.line(text);
+      }
+      if (const auto *ns = sim.no_slip(); ns && ns->springs()) {
+        const double mine[2] = {static_cast<double>(ns->springs()->contact_updates()),
+                                static_cast<double>(ns->springs()->sliding_updates())};
+        double all[2] = {0.0, 0.0};
+        MPI_Reduce(mine, all, 2, MPI_DOUBLE, MPI_SUM, 0, comm);
+        std::snprintf(text, sizeof text,
+                      "spring contacts: %.4g contact updates (sub-steps times contacts), %.1f %% "
+                      "of them sliding",
+                      all[0], all[0] > 0.0 ? 100.0 * all[1] / all[0] : 0.0);
         log.line(text);
       }
     }
-    if (const auto *ns = sim.no_slip();
-        ns && sim.scene().colloids->contacts == scene::ColloidContacts::hard) {
-      // Rank 0's count: every collision of a colloid it owned, and those of its ghosts.
-      std::snprintf(text, sizeof text,
-                    "colloid contacts: %llu colloid-colloid and %llu colloid-wall collisions "
-                    "resolved on rank 0 (ghosts included)",
-                    static_cast<unsigned long long>(ns->contacts().pair_collisions),
-                    static_cast<unsigned long long>(ns->contacts().wall_collisions));
-      log.line(text);
-    }
-    if (const auto *ns = sim.no_slip(); ns && ns->springs()) {
-      const double mine[2] = {static_cast<double>(ns->springs()->contact_updates()),
-                              static_cast<double>(ns->springs()->sliding_updates())};
-      double all[2] = {0.0, 0.0};
-      MPI_Reduce(mine, all, 2, MPI_DOUBLE, MPI_SUM, 0, comm);
-      std::snprintf(text, sizeof text,
-                    "spring contacts: %.4g contact updates (sub-steps times contacts), %.1f %% "
-                    "of them sliding",
-                    all[0], all[0] > 0.0 ? 100.0 * all[1] / all[0] : 0.0);
-      log.line(text);
-    }
+    observer_->finish();
   }
-  observer.finish();
-  const std::string last = save_checkpoint();
-  shell.finish("step " + std::to_string(sim.step()), last);
-  shell.loop_time(seconds, steps, "steps", std::to_string(n_particles) + " particles",
-                  static_cast<double>(steps) * static_cast<double>(n_particles), "particle-steps");
+
+  run::LoopTime loop_time(const run::Loop &loop) const override {
+    const auto steps = static_cast<std::uint64_t>(loop.steps);
+    return {steps, "steps", std::to_string(n_particles_) + " particles",
+            static_cast<double>(steps) * static_cast<double>(n_particles_), "particle-steps"};
+  }
+
+private:
+  const scene::Scene &scene_;
+  MPI_Comm comm_;
+  std::optional<MpcdSimulation> sim_;
+  std::optional<ColloidStatistics> colloid_stats_; // until open() hands it to the observer
+  std::optional<Observer> observer_;
+  std::optional<TrajectoryWriter> trajectory_;
+  std::optional<InvariantCheck> invariants_;
+  colloids::Colloids all_colloids_;
+  const colloids::Colloids *colloids_ = nullptr; // &all_colloids_ with [colloids]
+  bool springs_ = false;                         // the spring contacts' history, in key order
+  colloids::ContactHistory all_contacts_;
+  std::uint64_t n_particles_ = 0;
+};
+
+} // namespace
+
+std::vector<std::string> check_lines(const scene::Scene &scene, MPI_Comm comm) {
+  check_colloid_placement(scene);
+  std::vector<std::string> lines = describe_scene(scene, comm);
+  for (const auto &w : regime_warnings(scene))
+    lines.push_back("warning: " + w);
+  return lines;
+}
+
+std::unique_ptr<run::Engine> make_engine(const scene::Scene &scene, const run::Options &,
+                                         MPI_Comm comm) {
+  return std::make_unique<MpcdEngine>(scene, comm);
 }
 
 } // namespace narrows::mpcd

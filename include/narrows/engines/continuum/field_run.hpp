@@ -1,26 +1,30 @@
-// The run loop every continuum model shares, over the run shell (run/shell.hpp): restart of its
-// fields from a checkpoint (with the time step checked), the log's description, observables at
-// each sample, checkpoints, the stop signals, the progress and Loop time lines. A model gives
-// its fields, its step, its check of the fields and what it writes at a sample and at the end.
+// The engine every continuum model shares in the run loop (run/drive.hpp): restart of its fields
+// from a checkpoint (with the time step checked), the log's description, observables at each
+// sample, checkpoints of the fields, the summary and Loop time lines. A model gives its fields,
+// its step, its check of the fields and what it writes at a sample and at the end.
 #pragma once
 
 #include "narrows/core/error.hpp"
 #include "narrows/io/observables_writer.hpp"
+#include "narrows/run/engine.hpp"
 #include "narrows/run/log.hpp"
-#include "narrows/run/shell.hpp"
 #include "narrows/scene/scene.hpp"
 
 #include <mpi.h>
 
 #include <cstdint>
-#include <functional>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace narrows::continuum {
 
-struct FieldModel {
+// One continuum model: its numerics, its state and what it writes (one virtual call per step).
+class FieldModel {
+public:
+  virtual ~FieldModel() = default;
+
   double dt = 0.0;                // time step
   std::int64_t steps = 0;         // steps of the whole run
   std::int64_t per_sample = 1;    // steps between samples
@@ -29,17 +33,20 @@ struct FieldModel {
   std::vector<std::string> lines; // the description the log opens with
   // The state, checkpointed as /continuum/<name> and restored on a restart (names in order).
   std::vector<std::pair<std::string, std::vector<double> *>> fields;
-  std::function<void(double dt)> step;
+
+  virtual void step(double dt) = 0;
   // Throws invariant_error if the fields are no longer sound at this step.
-  std::function<void(std::int64_t step)> check;
+  virtual void check(std::int64_t step) const = 0;
   // At a sample, on every rank; `writer` is rank 0's (nullptr elsewhere).
-  std::function<void(io::ObservablesWriter *writer, std::int64_t step, double t)> sample;
+  virtual void sample(io::ObservablesWriter *writer, std::int64_t step, double t) = 0;
   // The lines the log ends with after the last step (not after a stop signal).
-  std::function<void(run::Log &log, std::int64_t step)> summary;
+  virtual void summary(run::Log &log, std::int64_t step) const = 0;
 };
 
-void run_fields(const scene::Scene &scene, const run::Options &options, MPI_Comm comm,
-                FieldModel &model);
+// The engine of `narrows run` over a continuum model. Every rank advances the same points (1D,
+// no decomposition) and rank 0 writes.
+std::unique_ptr<run::Engine> field_engine(const scene::Scene &scene, MPI_Comm comm,
+                                          std::unique_ptr<FieldModel> model);
 
 // Small helpers of the model drivers: printf-style text of up to four numbers; whether
 // output.observables lists `name`; the model's plan, its refusal naming the scene file.

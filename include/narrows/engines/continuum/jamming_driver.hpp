@@ -1,12 +1,11 @@
-// Engine "continuum", model "jamming": check/info lines and the run over the run shell
+// Engine "continuum", model "jamming": check/info lines and the model of the continuum engine
 // (observables density = phi and velocity = v, checkpoints of both, bitwise restarts).
 #pragma once
 
-#include "narrows/run/shell.hpp"
+#include "narrows/engines/continuum/field_run.hpp"
 #include "narrows/scene/scene.hpp"
 
-#include <mpi.h>
-
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -16,7 +15,7 @@ namespace narrows::continuum {
 // band and fastest mode, eq 6.11), the scheme and its time step.
 std::vector<std::string> describe_jamming(const scene::Scene &scene);
 
-// Every rank advances the same points (1D, no decomposition) and rank 0 writes.
-void run_jamming(const scene::Scene &scene, const run::Options &options, MPI_Comm comm);
+// The model for the continuum engine (continuum/field_run.hpp): fields phi and v.
+std::unique_ptr<FieldModel> make_jamming(const scene::Scene &scene);
 
 } // namespace narrows::continuum

@@ -1,13 +1,12 @@
-// Engine "continuum", model "segregation": check/info lines and the run over the run shell
+// Engine "continuum", model "segregation": check/info lines and the model of the continuum engine
 // (observables density = phi_i per kind, evolution = Delta(t) of eq 5.31, steady_density = the
 // steady profile; checkpoints of the fractions, bitwise restarts).
 #pragma once
 
-#include "narrows/run/shell.hpp"
+#include "narrows/engines/continuum/field_run.hpp"
 #include "narrows/scene/scene.hpp"
 
-#include <mpi.h>
-
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -18,7 +17,7 @@ namespace narrows::continuum {
 // the scheme and its time step.
 std::vector<std::string> describe_segregation(const scene::Scene &scene);
 
-// Every rank advances the same cells (1D, no decomposition) and rank 0 writes.
-void run_segregation(const scene::Scene &scene, const run::Options &options, MPI_Comm comm);
+// The model for the continuum engine (continuum/field_run.hpp): the fraction of every kind.
+std::unique_ptr<FieldModel> make_segregation(const scene::Scene &scene);
 
 } // namespace narrows::continuum

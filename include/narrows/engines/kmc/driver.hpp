@@ -1,14 +1,16 @@
-// Engine "kmc": replicas spread over MPI ranks and reduced with error bars, the run/check/info
-// commands for kmc scenes, and the kmc benchmark.
+// Engine "kmc": replicas spread over MPI ranks and reduced with error bars, the check/info text
+// and the engine of `narrows run` for kmc scenes, and the kmc benchmark.
 #pragma once
 
-#include "narrows/run/shell.hpp"
+#include "narrows/core/timer.hpp"
+#include "narrows/run/engine.hpp"
 #include "narrows/scene/scene.hpp"
 
 #include <mpi.h>
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -53,32 +55,58 @@ struct ReplicaOptions {
 // positions, charges), the width of the running sums.
 std::size_t replica_width(const scene::Kmc &model, ReplicaOptions options);
 
-// Hooks of run_replicas, called on every rank. `after_round`: after each round (one replica
-// per rank) with the sums complete on rank 0; returning true stops the run there. `stop`:
-// asked about every 2^20 tries inside a replica (this rank only); true drops the unfinished round.
-struct ReplicaHooks {
-  std::function<bool(const ReplicaSums &)> after_round;
-  std::function<bool()> stop;
+// Replicas run in rounds: round k runs replica done + q on rank q (done: the replicas finished
+// before it); rank 0 reduces in replica order, so the numbers are bitwise the same on any number
+// of ranks, and the same whether or not the run was resumed from `start` (the sums of an earlier
+// run with the same model and seed). The kmc engine advances one round per step of the run
+// loop (run/drive.hpp).
+class ReplicaRounds {
+public:
+  ReplicaRounds(const scene::Kmc &model, std::uint64_t seed, MPI_Comm comm,
+                ReplicaOptions options = {}, ReplicaSums start = {});
+  // Collective: one round. `stop` (this rank only) is asked about every 2^20 tries inside a
+  // replica; if it answers true on any rank, the unfinished round is dropped: false on every
+  // rank, the sums as they were.
+  bool round(const std::function<bool()> &stop = nullptr);
+  bool finished() const { return sums_.done >= model_.replicas; }
+  // Where the run stands (for its checkpoint): complete on rank 0.
+  const ReplicaSums &sums() const { return sums_; }
+  // Collective: the means and errors (rank 0, if finished), the events and tries of this
+  // object's rounds, and its wall time.
+  Summary summary() const;
+
+private:
+  std::vector<double> run_one(std::int64_t replica, const std::function<bool()> &stop);
+
+  const scene::Kmc &model_;
+  std::uint64_t seed_;
+  MPI_Comm comm_;
+  ReplicaOptions options_;
+  int rank_ = 0, ranks_ = 1;
+  std::size_t width_;
+  std::vector<double> shock_time_;
+  std::uint64_t events0_, tries0_;
+  ReplicaSums sums_;
+  std::vector<double> buf_;
+  std::uint64_t round_counts_[2] = {0, 0}; // events, tries of this rank in this round
+  Stopwatch clock_;
 };
 
-// Replicas run in rounds: replica start + k P + q on rank q; rank 0 reduces in replica order,
-// so the numbers are bitwise the same on any number of ranks, and the same whether or not
-// the run was resumed from `start` (the sums of an earlier run with the same model and seed).
+// Every round of replicas from `start` to model.replicas (ReplicaRounds).
 Summary run_replicas(const scene::Kmc &model, std::uint64_t seed, MPI_Comm comm,
-                     ReplicaOptions options = {}, ReplicaSums start = {},
-                     const ReplicaHooks &hooks = {});
+                     ReplicaOptions options = {}, ReplicaSums start = {});
 
 // What `check` / `info` print for a kmc scene.
 std::vector<std::string> describe(const scene::Scene &scene);
 
-// `narrows run` for a kmc scene: DIR/log.txt, DIR/observables.h5, the "Loop time" line,
-// checkpoints (the running sums over finished replicas), in the run shell (run/shell.hpp); a
-// restart continues such a run, bitwise as if never interrupted.
-void run_scene(const scene::Scene &scene, const run::Options &options, MPI_Comm comm);
+// `narrows check|info`: describe()'s lines and the preset's warnings ("warning: ...").
+std::vector<std::string> check_lines(const scene::Scene &scene, MPI_Comm comm);
 
-// `narrows check|info|run` for a kmc scene (called by main once the scene is parsed).
-int command(const scene::Scene &scene, bool check, bool info, const run::Options &options,
-            MPI_Comm comm);
+// `narrows run`: the engine of a kmc scene for run::drive: DIR/log.txt, DIR/observables.h5,
+// the "Loop time" line, checkpoints (the running sums over finished replicas); a restart
+// continues such a run, bitwise as if never interrupted.
+std::unique_ptr<run::Engine> make_engine(const scene::Scene &scene, const run::Options &options,
+                                         MPI_Comm comm);
 
 // `narrows bench --kmc`: events per second on one core for L = sites.
 void run_bench(std::ostream &out, double sites, bool json);
