@@ -1,4 +1,4 @@
-// The narrows command line: run, check, info, bench (DESIGN.md, "The user-facing contract").
+// The narrows command line: run, check, info, bench (README.md, "Using it"; docs/architecture.md).
 #include "narrows/colloids/dem_bench.hpp"
 #include "narrows/core/error.hpp"
 #include "narrows/engines/continuum/bench.hpp"

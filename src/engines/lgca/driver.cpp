@@ -104,7 +104,8 @@ private:
   bool shear_ = false, density_ = false, velocity_ = false;
 };
 
-// Kinetic theory beside the measured VACF (seed 002 eq 19-22), for N expected particles.
+// Kinetic theory beside the measured VACF (van der Hoef & Frenkel eq 19-22), for N expected
+// particles.
 struct TaggedTheory {
   double z1, d0, t0, correction, particles;
 };

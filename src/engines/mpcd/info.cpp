@@ -270,14 +270,14 @@ std::vector<std::string> regime_warnings(const scene::Scene &s) {
                 fmt("%g", smallest) + ": particles cross the box in one step");
   if (r.mach > 0.2)
     w.push_back("Ma = " + fmt("%.3g", r.mach) +
-                " > 0.2: compressibility effects are not negligible (seed 001 section 4.3)");
+                " > 0.2: compressibility effects are not negligible (Kanehl (thesis) §4.3)");
   if (r.kolmogorov_re > 1.0 && s.domain.size[0] > s.domain.size[1])
     w.push_back("Re_k = u0/(k nu) = " + fmt("%.3g", r.kolmogorov_re) +
                 " > 1 in a box longer than wide: the laminar Kolmogorov flow becomes unstable "
                 "near sqrt(2) and the profile no longer measures nu");
   if (r.poiseuille && r.reynolds > 0.2)
     w.push_back("Re = " + fmt("%.3g", r.reynolds) +
-                " > 0.2: inertia is not negligible for colloid flows (seed 001 section 4.3)");
+                " > 0.2: inertia is not negligible for colloid flows (Kanehl (thesis) §4.3)");
   if (s.body_force && s.body_force->kind == scene::ForceKind::constant && !s.walls) {
     double g2 = 0.0;
     for (int k = 0; k < s.run.dimensions; ++k)

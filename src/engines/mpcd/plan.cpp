@@ -116,9 +116,9 @@ std::string no_slip_text(const scene::Scene &s, const MpcdPlan &p) {
   std::string t =
       "no-slip colloids: " + std::to_string(c.count) + " (" + size + ") move " +
       (p.no_slip_params.hard_contacts
-           ? "with event-driven rough hard-sphere contacts (seed 001 eq 4.19-4.30)"
+           ? "with event-driven rough hard-sphere contacts (Kanehl (thesis) eq 4.19-4.30)"
        : p.no_slip_params.spring_contacts
-           ? "with linear springs and Coulomb friction (seed 001 eq 4.39-4.42: kn " +
+           ? "with linear springs and Coulomb friction (Kanehl (thesis) eq 4.39-4.42: kn " +
                  format_number(c.spring.kn) + ", kt " + format_number(c.spring.kt) + ", mu_cc " +
                  format_number(c.spring.mu_cc) + ", mu_cw " + format_number(c.spring.mu_cw) + ", " +
                  std::to_string(c.spring.substeps) + " sub-steps per step)"

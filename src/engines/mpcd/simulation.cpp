@@ -83,9 +83,9 @@ std::size_t estimate_memory(const scene::Scene &scene) {
 
 parallel::Slabs check_ranks(const scene::Scene &scene, MPI_Comm comm) {
   parallel::Slabs slabs(comm, make_box(scene).cells[0]);
-  // The seed's random solvent (a) interchanges the velocities of all fluid particles; here
-  // they are permuted within the array of each rank, which on several ranks would be another
-  // stream than on one (and not a permutation of all).
+  // Tabatabaei's random solvent (a) (Tabatabaei (2008) §4.3) interchanges the velocities of all
+  // fluid particles; here they are permuted within the array of each rank, which on several ranks
+  // would be another stream than on one (and not a permutation of all).
   if (scene.fluid.collision == scene::Collision::random_permute && slabs.ranks() > 1)
     throw input_error((scene.file.empty() ? "" : scene.file + ": ") +
                       "fluid.collision = \"random-permute\" permutes the velocities of all "

@@ -1,4 +1,5 @@
-// One replica of the three-state stochastic lattice gas (seed 000 ch.2) in continuous time.
+// One replica of the three-state stochastic lattice gas (Tabatabaei (2008) ch.2) in continuous
+// time.
 //
 // Algorithm (exact, random-sequential, by uniformisation): tries come as a Poisson process of
 // rate Lambda = slots * R_max in time. A try picks a slot (a bulk bond, or a boundary site)

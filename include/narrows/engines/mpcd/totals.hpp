@@ -15,7 +15,7 @@ std::array<double, 3> total_momentum(const MpcdSimulation &sim);
 // next step recomputes anyway.
 double total_energy(MpcdSimulation &sim);
 
-// The colloids' mean velocity in the frame co-moving with the centre of mass (seed 000 eq
+// The colloids' mean velocity in the frame co-moving with the centre of mass (Tabatabaei (2008) eq
 // 4.8-4.10: v_c - P_t / (N_f m_f + N_c M_c)), averaged over the steps added (collective).
 class SettlingSum {
 public:

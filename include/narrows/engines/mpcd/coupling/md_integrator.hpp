@@ -1,4 +1,4 @@
-// MD of colloids and fluid (seed 000 §3.4.5): over one collision step dt, k sub-steps of
+// MD of colloids and fluid (Tabatabaei (2008) §3.4.5): over one collision step dt, k sub-steps of
 // velocity Verlet with tau_MD = dt / k for the colloids and the fluid particles near them, with
 // the forces of forces.hpp. Each rank moves the colloids it owns (ownership.hpp) with ghost
 // copies of the others it can meet (ghosts.hpp). Its stages in the MPCD step (the hooks of

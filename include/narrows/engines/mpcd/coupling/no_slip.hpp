@@ -1,5 +1,5 @@
-// No-slip colloids in the MPCD fluid (seed 001 §4.2.1): rigid disks (2D) and spheres (3D) that
-// move by their own velocity U and spin Omega, bounce fluid particles back at their surface
+// No-slip colloids in the MPCD fluid (Kanehl (thesis) §4.2.1): rigid disks (2D) and spheres (3D)
+// that move by their own velocity U and spin Omega, bounce fluid particles back at their surface
 // with the rigid-body velocity there, and fill the cells they cut with ghost particles that
 // take part in the collision. Every momentum and angular momentum the fluid loses goes to the
 // colloids (summed in fixed point, so the result does not depend on the order of particles or
