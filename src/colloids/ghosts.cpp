@@ -62,7 +62,7 @@ void ColloidGhosts::add(Colloids &c, std::vector<double> *margin, double own_ext
       }
     }
   }
-  parallel::SoaView view = colloid_view(c);
+  parallel::SoaView view = parallel::view(table(c), species::ghost);
   if (margin)
     view.reals.push_back(margin);
   halo_ = exchange_.copy(view, list_);
@@ -141,7 +141,7 @@ void ColloidGhosts::reverse(std::vector<std::int64_t> &per_row, int k) {
 }
 
 void ColloidGhosts::remove(Colloids &c, std::vector<double> *margin) {
-  colloid_view(c).resize(owned_);
+  table(c).resize(owned_);
   if (margin)
     margin->resize(owned_);
 }

@@ -78,6 +78,7 @@ void number_along_x(Colloids &c) {
   };
   std::stable_sort(rows.begin(), rows.end(), kind_before); // (a kind's rows in row order)
   const Colloids was = c;
+  const species::Table into = table(c), out_of = table(was);
   for (std::size_t g0 = 0, g1 = 0; g0 < n; g0 = g1) {
     g1 = g0 + 1;
     while (g1 < n && !kind_before(rows[g0], rows[g1]))
@@ -87,15 +88,11 @@ void number_along_x(Colloids &c) {
     std::stable_sort(by_x.begin(), by_x.end(),
                      [&](std::size_t a, std::size_t b) { return was.x[0][a] < was.x[0][b]; });
     for (std::size_t t = 0; t < by_x.size(); ++t) {
+      // The state moves to the row `to` (every field: radius and mass are equal within a
+      // kind); the id stays with the row.
       const std::size_t to = rows[g0 + t], from = by_x[t];
-      for (int k = 0; k < c.dim; ++k) {
-        c.x[k][to] = was.x[k][from];
-        c.v[k][to] = was.v[k][from];
-      }
-      for (int k = 0; k < 3; ++k)
-        c.omega[k][to] = was.omega[k][from];
-      for (int k = 0; k < 4; ++k)
-        c.q[k][to] = was.q[k][from];
+      into.copy_row(to, out_of, from);
+      c.id[to] = was.id[to];
     }
   }
 }

@@ -16,7 +16,9 @@ std::size_t SoaView::size() const {
     return reals[0]->size();
   if (!words.empty())
     return words[0]->size();
-  return halfwords.empty() ? 0 : halfwords[0]->size();
+  if (!halfwords.empty())
+    return halfwords[0]->size();
+  return kept.empty() ? 0 : kept[0].size();
 }
 
 void SoaView::resize(std::size_t n) const {
@@ -26,6 +28,31 @@ void SoaView::resize(std::size_t n) const {
     a->resize(n);
   for (auto *a : halfwords)
     a->resize(n);
+  for (const auto &c : kept)
+    c.resize(n);
+}
+
+SoaView view(const species::Table &table, species::Flag flag) {
+  SoaView v;
+  for (const species::Field &f : table.fields())
+    for (const species::Column &c : f.columns()) {
+      if (!f.has(flag)) {
+        v.kept.push_back(c);
+        continue;
+      }
+      std::visit(
+          [&](auto *a) {
+            using T = typename std::remove_pointer_t<decltype(a)>::value_type;
+            if constexpr (std::is_same_v<T, double>)
+              v.reals.push_back(a);
+            else if constexpr (std::is_same_v<T, std::uint64_t>)
+              v.words.push_back(a);
+            else
+              v.halfwords.push_back(a);
+          },
+          c.array);
+    }
+  return v;
 }
 
 Exchange::Exchange(MPI_Comm comm) : comm_(comm) {
@@ -153,11 +180,15 @@ void Exchange::migrate(const SoaView &s, const std::vector<std::size_t> &leavers
         (*a)[*it] = (*a)[n];
       for (auto *a : s.halfwords)
         (*a)[*it] = (*a)[n];
+      for (const auto &c : s.kept)
+        c.move_row(*it, n);
     }
   }
   exchange_rows(comm_, ranks_, F, send_counts_, recv_counts_, send_words_, recv_words_,
                 send_displs_, recv_displs_, send_, recv_, requests_, bytes_sent_);
   const std::size_t arrived = recv_.size() / (F ? F : 1);
+  for (const auto &c : s.kept) // (arrivals get the fill, not what the last rows held)
+    c.resize(n);
   s.resize(n + arrived);
   for (std::size_t j = 0; j < arrived; ++j) {
     const std::uint64_t *row = &recv_[j * F];

@@ -19,7 +19,7 @@ namespace {
 struct Toy {
   std::vector<double> x, y, radius;
   std::vector<std::uint64_t> id;
-  parallel::SoaView view() { return {{&x, &y, &radius}, {&id}, {}}; }
+  parallel::SoaView view() { return {{&x, &y, &radius}, {&id}, {}, {}}; }
   void add(double px, double py, double r, std::uint64_t i) {
     x.push_back(px);
     y.push_back(py);

@@ -2,6 +2,8 @@
 // velocity and orientation (no-slip colloids spin), radius, mass, global id.
 #pragma once
 
+#include "narrows/species/table.hpp"
+
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -10,7 +12,8 @@
 namespace narrows::colloids {
 
 // Between MPCD steps a rank holds the colloids it owns (ownership.hpp), in id order; within a
-// step ghost copies of other ranks' colloids follow them (ghosts.hpp).
+// step ghost copies of other ranks' colloids follow them (ghosts.hpp). Every field is declared in
+// table() (colloids.cpp); what moves, copies, stores or gathers whole rows goes through it.
 struct Colloids {
   int dim = 2;
   std::array<std::vector<double>, 3> x, v, omega; // components k < dim (omega: all 3, zero)
@@ -20,22 +23,16 @@ struct Colloids {
   std::array<std::vector<double>, 4> q;
   std::vector<double> radius, mass;
   std::vector<std::uint64_t> id;
+  species::Extra extra; // fields added at run time (none in a plain run)
 
   std::size_t size() const { return id.size(); }
-  void resize(std::size_t n) {
-    for (int k = 0; k < 3; ++k) {
-      x[k].resize(k < dim ? n : 0);
-      v[k].resize(k < dim ? n : 0);
-      omega[k].resize(n);
-    }
-    q[0].resize(n, 1.0); // new rows: the identity
-    for (int k = 1; k < 4; ++k)
-      q[k].resize(n, 0.0);
-    radius.resize(n);
-    mass.resize(n);
-    id.resize(n);
-  }
+  void resize(std::size_t n); // every field; new rows: at rest, the identity orientation
 };
+
+// The colloid species' fields, one line each (the checkpoint's /particles/colloids/...).
+species::Table table(Colloids &c);
+// The same for reading only (gathering, writing).
+species::Table table(const Colloids &c);
 
 // Volume (2D: area) of a colloid of radius r: pi r^2 or 4/3 pi r^3.
 double colloid_volume(int dim, double r);

@@ -30,18 +30,15 @@ struct ContactHistory {
   std::array<std::vector<double>, 3> xi; // tangential displacement, components k < dim
 
   std::size_t size() const { return owner.size(); }
-  void resize(std::size_t n) {
-    owner.resize(n);
-    partner.resize(n);
-    for (int k = 0; k < 3; ++k)
-      xi[k].resize(k < dim ? n : 0);
-  }
+  void resize(std::size_t n); // every field of table()
   // Sorts the rows by (owner, partner).
   void sort();
 };
 
-// Every array of h (what migrates and what a checkpoint holds).
-parallel::SoaView contact_view(ContactHistory &h);
+// The contact species' fields, one line each (the checkpoint's /particles/contacts/...).
+species::Table table(ContactHistory &h);
+// The same for reading only.
+species::Table table(const ContactHistory &h);
 
 // Sends each contact to the rank that will own its owner colloid (call before the colloids of
 // c, which this rank owns, in id order, migrate); collective.

@@ -1,7 +1,8 @@
 // Colloids as a species owned by slabs (issue 16 item 4): each colloid belongs to the rank
 // whose slab holds its centre, by the unshifted cell column of x; between MPCD steps a rank
-// holds exactly the colloids it owns, in id order. Every per-colloid array travels with the
-// colloid (colloid_view); observables and checkpoints gather all of them in id order.
+// holds exactly the colloids it owns, in id order. Every per-colloid field that migrates (the
+// colloid table: colloids.hpp) travels with the colloid; observables and checkpoints gather all
+// of them in id order.
 #pragma once
 
 #include "narrows/colloids/colloids.hpp"
@@ -12,11 +13,6 @@
 #include <mpi.h>
 
 namespace narrows::colloids {
-
-// Every per-colloid array of c (position, velocity, angular velocity, orientation, radius,
-// mass, id): what
-// migrates with a colloid and what a ghost copy carries.
-parallel::SoaView colloid_view(Colloids &c);
 
 // The rank that owns colloid a: the owner of the cell column of its centre.
 inline int owner_of(const Colloids &c, std::size_t a, const parallel::Slabs &slabs) {

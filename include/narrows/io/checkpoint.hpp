@@ -16,13 +16,13 @@
 //                              older checkpoints lack it: their scene is canonicalised)
 //   /<engine>/<name>           engine-specific small arrays (CheckpointArray), e.g. /kmc/...
 //
-// Species are generic: a species is a name plus its vector and word fields (SpeciesFields),
-// and the writer/reader loop over whatever a run has. The fluid is the species "fluid".
-// Colloids will be the species "colloids" with more fields (orientation, angular_velocity,
-// ...), and their contact history a further group /particles/colloids/contacts/... with its
-// own row count: readers look up only the groups their scene needs and ignore others, so
-// adding a species or a field does not change format version 1. The version changes only if
-// the meaning or shape of an existing dataset does.
+// Species are generic: a species is a name plus its vector, word and scalar fields
+// (SpeciesFields, derived from the species' table: io/species_fields.hpp), and the writer/reader
+// loop over whatever a run has: the fluid "fluid", the colloids "colloids" (with radius, mass,
+// angular_velocity_*, orientation_*), their contact history "contacts" with its own row count.
+// Readers look up only the groups their scene needs and ignore others, so adding a species or a
+// field does not change format version 1. The version changes only if the meaning or shape of
+// an existing dataset does.
 #pragma once
 
 #include <mpi.h>

@@ -4,6 +4,8 @@
 // exact).
 #pragma once
 
+#include "narrows/species/table.hpp"
+
 #include <mpi.h>
 
 #include <cstdint>
@@ -12,15 +14,22 @@
 namespace narrows::parallel {
 
 // The arrays of one species, all of the same length. A particle travels as one row of 8-byte
-// words (a 4-byte field takes a whole word).
+// words (a 4-byte field takes a whole word). Made from the species' table by view().
 struct SoaView {
   std::vector<std::vector<double> *> reals;
   std::vector<std::vector<std::uint64_t> *> words;
   std::vector<std::vector<std::uint32_t> *> halfwords;
+  // Arrays of the species that are not sent: they stay row-aligned with the others (a row that
+  // leaves leaves them too; a row that arrives, or a ghost row, gets their fill).
+  std::vector<species::Column> kept;
   std::size_t size() const;
   std::size_t fields() const { return reals.size() + words.size() + halfwords.size(); }
   void resize(std::size_t n) const;
 };
+
+// The arrays of a species' table for an exchange: those of the fields with `flag`
+// (species::migrates for migrate(), species::ghost for copy()) are sent, the others kept.
+SoaView view(const species::Table &table, species::Flag flag);
 
 // Where each ghost copy made by copy() came from, so reverse() can send per-copy sums back.
 struct Halo {

@@ -3,6 +3,7 @@
 
 #include "narrows/colloids/placement.hpp"
 #include "narrows/core/error.hpp"
+#include "narrows/io/species_fields.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -17,32 +18,6 @@ namespace {
 const char *const spin_names[3] = {"angular_velocity_x", "angular_velocity_y",
                                    "angular_velocity_z"};
 int first_spin(int dim) { return dim == 2 ? 2 : 0; }
-// The orientation quaternion (w, x, y, z).
-const char *const orientation_names[4] = {"orientation_w", "orientation_x", "orientation_y",
-                                          "orientation_z"};
-
-// The stored fields of c: position, velocity, id, and (sizes) radius and mass, (spins) the
-// angular velocity.
-io::SpeciesFields fields_of(colloids::Colloids &c, bool sizes = true, bool spins = true,
-                            bool orientations = true) {
-  io::SpeciesFields s;
-  s.name = "colloids";
-  s.dim = c.dim;
-  s.vectors.push_back({"position", {&c.x[0], &c.x[1], &c.x[2]}});
-  s.vectors.push_back({"velocity", {&c.v[0], &c.v[1], &c.v[2]}});
-  s.words.push_back({"id", &c.id});
-  if (sizes) {
-    s.scalars.push_back({"radius", &c.radius});
-    s.scalars.push_back({"mass", &c.mass});
-  }
-  if (spins)
-    for (int k = first_spin(c.dim); k < 3; ++k)
-      s.scalars.push_back({spin_names[k], &c.omega[k]});
-  if (orientations)
-    for (int k = 0; k < 4; ++k)
-      s.scalars.push_back({orientation_names[k], &c.q[k]});
-  return s;
-}
 
 } // namespace
 
@@ -50,83 +25,74 @@ io::SpeciesFields colloid_fields(colloids::Colloids &c, colloids::Colloids &empt
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   if (rank == 0)
-    return fields_of(c);
+    return io::checkpoint_fields(table(c));
   empty.dim = c.dim;
+  empty.extra = c.extra.same_fields();
   empty.resize(0);
-  return fields_of(empty);
+  return io::checkpoint_fields(table(empty));
 }
 
 colloids::Colloids read_colloids(const std::string &path, const scene::Colloids &spec, int dim,
-                                 double density, std::uint64_t seed, MPI_Comm comm) {
+                                 double density, std::uint64_t seed, MPI_Comm comm,
+                                 const colloids::Colloids *like) {
   colloids::Colloids block;
   block.dim = dim;
+  if (like != nullptr)
+    block.extra = like->extra.same_fields();
   block.resize(0);
-  // Checkpoints written before radius and mass were stored: both follow from the scene.
-  const bool sizes = io::has_species_field(path, "colloids", "radius", comm) &&
-                     io::has_species_field(path, "colloids", "mass", comm);
-  // Checkpoints written before colloids could spin: they did not.
-  const bool spins = io::has_species_field(path, "colloids", "angular_velocity_z", comm);
-  // ... nor orientations: the identity.
-  const bool orientations = io::has_species_field(path, "colloids", "orientation_w", comm);
-  io::SpeciesFields s = fields_of(block, sizes, spins, orientations);
+  const species::Table fields = table(block);
+  // Fields older checkpoints lack keep their fill: at rest, the identity orientation. Radius and
+  // mass (both, or neither is used) then follow from the scene.
+  std::vector<const species::Field *> absent;
+  for (const species::Field &f : fields.fields())
+    if (f.has(species::checkpoint | species::added_later) &&
+        !io::has_checkpoint_field(path, fields, f, comm))
+      absent.push_back(&f);
+  const auto lacks = [&](std::string_view name) {
+    return std::any_of(absent.begin(), absent.end(),
+                       [&](const species::Field *f) { return f->name == name; });
+  };
+  const bool sizes = !lacks("radius") && !lacks("mass");
+  io::SpeciesFields s = io::checkpoint_fields(fields, [&](const species::Field &f) {
+    return lacks(f.name) || (!sizes && (f.name == "radius" || f.name == "mass"));
+  });
   io::read_species(path, s, comm);
+  block.resize(block.id.size()); // (the fields left out: their fill)
 
-  // Gather every rank's block everywhere: rows of 2 dim + 3 words (id, radius, mass), 3 spins
-  // and 4 orientation components.
-  int ranks = 1;
-  MPI_Comm_size(comm, &ranks);
-  const int row = 2 * dim + 10;
-  const int mine = static_cast<int>(block.id.size());
-  std::vector<int> counts(ranks), displs(ranks, 0);
-  MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
-  std::vector<double> send(static_cast<std::size_t>(mine) * row);
-  for (int i = 0; i < mine; ++i) {
-    double *r = &send[static_cast<std::size_t>(i) * row];
-    for (int k = 0; k < dim; ++k) {
-      r[k] = block.x[k][i];
-      r[dim + k] = block.v[k][i];
-    }
-    r[2 * dim] = static_cast<double>(block.id[i]); // ids < 2^53
-    r[2 * dim + 1] = sizes ? block.radius[i] : 0.0;
-    r[2 * dim + 2] = sizes ? block.mass[i] : 0.0;
-    for (int k = 0; k < 3; ++k)
-      r[2 * dim + 3 + k] = spins && k >= first_spin(dim) ? block.omega[k][i] : 0.0;
-    for (int k = 0; k < 4; ++k)
-      r[2 * dim + 6 + k] = orientations ? block.q[k][i] : (k == 0 ? 1.0 : 0.0);
-  }
-  int total = 0;
-  for (int r = 0; r < ranks; ++r) {
-    displs[r] = total * row;
-    total += counts[r];
-    counts[r] *= row;
-  }
+  // Every rank's block everywhere, in file order.
+  colloids::Colloids all;
+  all.dim = dim;
+  all.extra = block.extra.same_fields();
+  species::Table gathered = table(all);
+  species::gather(fields, gathered, comm);
+  const int total = static_cast<int>(all.size());
   if (total != spec.count)
     throw input_error(path + ": holds " + std::to_string(total) + " colloids, the scene has " +
                       std::to_string(spec.count) + "; allowed: a checkpoint of this scene");
-  std::vector<double> all(static_cast<std::size_t>(total) * row);
-  MPI_Allgatherv(send.data(), mine * row, MPI_DOUBLE, all.data(), counts.data(), displs.data(),
-                 MPI_DOUBLE, comm);
   colloids::Colloids c;
   c.dim = dim;
+  c.extra = block.extra.same_fields();
   c.resize(static_cast<std::size_t>(total));
   colloids::set_radii_and_masses(c, spec, density, seed);
+  const std::vector<double> scene_radius = c.radius, scene_mass = c.mass;
+  const species::Table by_id = table(c);
   // Every rank holds all rows: the same refusal everywhere, naming the first bad row.
   const auto edges = io::read_box_edges(path, "colloids", dim, comm);
   std::vector<bool> seen(static_cast<std::size_t>(total), false);
   for (int i = 0; i < total; ++i) {
-    const double *r = &all[static_cast<std::size_t>(i) * row];
     const std::string at = " row " + std::to_string(i);
     for (int k = 0; k < dim; ++k) {
-      if (!(r[k] >= 0.0 && r[k] <= edges[k]))
+      const double x = all.x[k][i], v = all.v[k][i];
+      if (!(x >= 0.0 && x <= edges[k]))
         throw input_error(path + ": /particles/colloids/position/value" + at + " component " +
-                          std::to_string(k) + " = " + std::to_string(r[k]) +
+                          std::to_string(k) + " = " + std::to_string(x) +
                           "; allowed: inside the box, 0 to " + std::to_string(edges[k]));
-      if (!std::isfinite(r[dim + k]))
+      if (!std::isfinite(v))
         throw input_error(path + ": /particles/colloids/velocity/value" + at + " component " +
-                          std::to_string(k) + " = " + std::to_string(r[dim + k]) +
+                          std::to_string(k) + " = " + std::to_string(v) +
                           "; allowed: a finite number");
     }
-    const auto id = static_cast<std::uint64_t>(r[2 * dim]);
+    const std::uint64_t id = all.id[i];
     if (id >= static_cast<std::uint64_t>(total))
       throw input_error(path + ": /particles/colloids/id/value" + at + " holds id " +
                         std::to_string(id) + "; allowed: 0 to " + std::to_string(total - 1));
@@ -137,64 +103,44 @@ colloids::Colloids read_colloids(const std::string &path, const scene::Colloids 
                         "to " +
                         std::to_string(total - 1) + " once");
     seen[id] = true;
-    for (int k = 0; k < dim; ++k) {
-      c.x[k][id] = r[k];
-      c.v[k][id] = r[dim + k];
-    }
-    c.id[id] = id;
+    by_id.copy_row(id, gathered, static_cast<std::size_t>(i)); // every field, the row of its id
     for (int k = first_spin(dim); k < 3; ++k) {
-      const double w = r[2 * dim + 3 + k];
+      const double w = c.omega[k][id];
       if (!std::isfinite(w))
         throw input_error(path + ": /particles/colloids/" + spin_names[k] + "/value" + at + " = " +
                           std::to_string(w) + "; allowed: a finite number");
-      c.omega[k][id] = w;
     }
     double norm2 = 0.0;
-    for (int k = 0; k < 4; ++k) {
-      c.q[k][id] = r[2 * dim + 6 + k];
+    for (int k = 0; k < 4; ++k)
       norm2 += c.q[k][id] * c.q[k][id];
-    }
     if (!(std::abs(norm2 - 1.0) < 1e-6))
       throw input_error(path + ": /particles/colloids/orientation_*" + at +
                         " is not a unit "
                         "quaternion (|q|^2 = " +
                         std::to_string(norm2) + "); allowed: w^2 + x^2 + y^2 + z^2 = 1");
     if (sizes) { // restored exactly as they were written
-      const double radius = r[2 * dim + 1], mass = r[2 * dim + 2];
+      const double radius = c.radius[id], mass = c.mass[id];
       if (!(radius > 0.0 && std::isfinite(radius) && mass > 0.0 && std::isfinite(mass)))
         throw input_error(path + ": colloid id " + std::to_string(id) + " has radius " +
                           std::to_string(radius) + " and mass " + std::to_string(mass) +
                           "; allowed: finite numbers > 0");
-      c.radius[id] = radius;
-      c.mass[id] = mass;
+    } else { // an older checkpoint: from the scene
+      c.radius[id] = scene_radius[id];
+      c.mass[id] = scene_mass[id];
     }
   }
   return c;
 }
-
-namespace {
-
-io::SpeciesFields fields_of(colloids::ContactHistory &h) {
-  io::SpeciesFields s;
-  s.name = "contacts";
-  s.dim = h.dim;
-  s.words.push_back({"owner_id", &h.owner});
-  s.words.push_back({"partner_id", &h.partner});
-  s.vectors.push_back({"tangential_displacement", {&h.xi[0], &h.xi[1], &h.xi[2]}});
-  return s;
-}
-
-} // namespace
 
 io::SpeciesFields contact_fields(colloids::ContactHistory &all, colloids::ContactHistory &empty,
                                  MPI_Comm comm) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   if (rank == 0)
-    return fields_of(all);
+    return io::checkpoint_fields(table(all));
   empty.dim = all.dim;
   empty.resize(0);
-  return fields_of(empty);
+  return io::checkpoint_fields(table(empty));
 }
 
 colloids::ContactHistory read_contacts(const std::string &path, std::int64_t colloids, int dim,
@@ -203,7 +149,7 @@ colloids::ContactHistory read_contacts(const std::string &path, std::int64_t col
   block.dim = dim;
   if (!io::has_species_field(path, "contacts", "owner_id", comm))
     return block;
-  io::SpeciesFields s = fields_of(block);
+  io::SpeciesFields s = io::checkpoint_fields(table(block));
   io::read_species(path, s, comm);
   block.resize(block.owner.size());
   colloids::ContactHistory all = colloids::gather_contacts(block, comm);

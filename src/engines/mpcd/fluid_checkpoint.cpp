@@ -2,18 +2,11 @@
 #include "narrows/engines/mpcd/fluid_checkpoint.hpp"
 
 #include "narrows/core/error.hpp"
+#include "narrows/io/species_fields.hpp"
 
 namespace narrows::mpcd {
 
-io::SpeciesFields fluid_fields(mpcd::Fluid &f) {
-  io::SpeciesFields s;
-  s.name = "fluid";
-  s.dim = f.dim;
-  s.vectors.push_back({"position", {&f.x[0], &f.x[1], &f.x[2]}});
-  s.vectors.push_back({"velocity", {&f.v[0], &f.v[1], &f.v[2]}});
-  s.words.push_back({"id", &f.id});
-  return s;
-}
+io::SpeciesFields fluid_fields(mpcd::Fluid &f) { return io::checkpoint_fields(table(f)); }
 
 mpcd::Fluid read_fluid(const std::string &path, const io::CheckpointInfo &info, MPI_Comm comm) {
   mpcd::Fluid fluid;
@@ -21,7 +14,7 @@ mpcd::Fluid read_fluid(const std::string &path, const io::CheckpointInfo &info, 
   auto fields = fluid_fields(fluid);
   io::read_species(path, fields, comm);
   io::validate_particles(path, fields, info, info.fluid_particles, comm);
-  fluid.cell.assign(fluid.id.size(), 0);
+  fluid.resize(fluid.id.size()); // fields a checkpoint does not hold (the cell): their fill
   return fluid;
 }
 

@@ -36,16 +36,7 @@ std::uint64_t particle_count(const scene::Scene &scene) {
   return mpcd::fluid_particle_count(make_box(scene), scene.fluid.density);
 }
 
-parallel::SoaView fluid_view(mpcd::Fluid &f) {
-  parallel::SoaView v;
-  for (int k = 0; k < f.dim; ++k)
-    v.reals.push_back(&f.x[k]);
-  for (int k = 0; k < f.dim; ++k)
-    v.reals.push_back(&f.v[k]);
-  v.words.push_back(&f.id);
-  v.halfwords.push_back(&f.cell);
-  return v;
-}
+parallel::SoaView fluid_view(mpcd::Fluid &f) { return parallel::view(table(f), species::migrates); }
 
 namespace {
 

@@ -1,16 +1,27 @@
 // TrajectoryWriter: gathers the tracked fluid particles on rank 0 and appends H5MD frames.
 #include "narrows/engines/mpcd/trajectory_writer.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <fstream>
-#include <tuple>
 
 namespace narrows::mpcd {
 
 namespace h5 = io::h5;
 
 namespace {
+
+// The arrays of the trajectory fields of t, in table order (the writer checked they hold
+// doubles).
+std::vector<const std::vector<double> *> trajectory_columns(const species::Table &t) {
+  std::vector<const std::vector<double> *> columns;
+  for (const species::Field &f : t.fields())
+    if (f.has(species::trajectory))
+      for (const species::Column &c : f.columns())
+        columns.push_back(std::get<std::vector<double> *>(c.array));
+  return columns;
+}
 
 // A fixed-length string array attribute (H5MD's box/boundary).
 void write_strings_attribute(hid_t obj, const std::string &name,
@@ -52,10 +63,11 @@ TrajectoryWriter::TrajectoryWriter(const std::string &h5_path, const std::string
   h5::write_scalar<std::uint64_t>(parameters.get(), "subsample", subsample, path_);
 
   const h5::Group particles = h5::create_group(file_.get(), "particles", path_);
-  // A species group with its box and id; its position and velocity series go to the arrays.
-  auto species = [&](const char *name, std::span<const std::uint64_t> ids, h5::Dataset *step,
-                     h5::Dataset *time, h5::Dataset *value) {
-    h5::Group group = h5::create_group(particles.get(), name, path_);
+  // A species group with its box and id, and a series for each field of its table flagged
+  // species::trajectory ([T][M][columns], or [T][M] for one column).
+  auto species = [&](const species::Table &t, std::span<const std::uint64_t> ids,
+                     std::vector<Series> &series) {
+    h5::Group group = h5::create_group(particles.get(), std::string(t.species()), path_);
     const h5::Group box_group = h5::create_group(group.get(), "box", path_);
     const std::array<std::int32_t, 1> dimension{box.dim};
     h5::write_attribute<std::int32_t>(box_group.get(), "dimension", dimension, path_);
@@ -66,35 +78,58 @@ TrajectoryWriter::TrajectoryWriter(const std::string &h5_path, const std::string
     h5::write_dataset<double>(box_group.get(), "edges",
                               std::span<const double>(box.length.data(), box.dim), path_);
     h5::write_dataset<std::uint64_t>(group.get(), "id", ids, path_);
-    const std::vector<hsize_t> shape{ids.size(), static_cast<hsize_t>(dim_)};
-    const char *names[2] = {"position", "velocity"};
-    for (int f = 0; f < 2; ++f) {
-      const h5::Group g = h5::create_group(group.get(), names[f], path_);
-      step[f] = h5::create_series(g.get(), "step", H5T_STD_I64LE, {}, path_);
-      time[f] = h5::create_series(g.get(), "time", H5T_IEEE_F64LE, {}, path_);
-      value[f] = h5::create_series(g.get(), "value", H5T_IEEE_F64LE, shape, path_);
+    for (const species::Field &f : t.fields()) {
+      if (!f.has(species::trajectory))
+        continue;
+      for (const species::Column &c : f.columns())
+        if (!std::holds_alternative<std::vector<double> *>(c.array))
+          throw Error(ExitCode::other,
+                      path_ + ": trajectory field " + std::string(f.name) + " is not of doubles");
+      Series s;
+      s.prefix = "/particles/" + std::string(t.species()) + "/" + std::string(f.name) + "/";
+      s.width = f.count;
+      s.shape = {ids.size()};
+      if (f.shape != species::Shape::scalar)
+        s.shape.push_back(static_cast<hsize_t>(f.count));
+      const h5::Group g = h5::create_group(group.get(), std::string(f.name), path_);
+      s.step = h5::create_series(g.get(), "step", H5T_STD_I64LE, {}, path_);
+      s.time = h5::create_series(g.get(), "time", H5T_IEEE_F64LE, {}, path_);
+      s.value = h5::create_series(g.get(), "value", H5T_IEEE_F64LE, s.shape, path_);
+      series.push_back(std::move(s));
     }
     return group;
   };
   std::vector<std::uint64_t> ids(rows_);
   for (std::uint64_t j = 0; j < rows_; ++j)
     ids[j] = j * subsample;
-  species("fluid", ids, step_, time_, value_);
+  mpcd::Fluid fluid; // (its fields)
+  fluid.dim = dim_;
+  species(table(fluid), ids, fluid_series_);
   if (colloid_rows_ > 0) {
-    const h5::Group group =
-        species("colloids", colloids->id, colloid_step_, colloid_time_, colloid_value_);
+    const h5::Group group = species(table(*colloids), colloids->id, colloid_series_);
+    // Once: the radius does not change (the XDMF sizes the glyphs by it).
     h5::write_dataset<double>(group.get(), "radius", colloids->radius, path_);
-    for (auto [series, name, m] : {std::tuple{&spin_, "angular_velocity", hsize_t{3}},
-                                   std::tuple{&turn_, "orientation", hsize_t{4}}}) {
-      const h5::Group g = h5::create_group(group.get(), name, path_);
-      series->name = name;
-      series->step = h5::create_series(g.get(), "step", H5T_STD_I64LE, {}, path_);
-      series->time = h5::create_series(g.get(), "time", H5T_IEEE_F64LE, {}, path_);
-      series->value =
-          h5::create_series(g.get(), "value", H5T_IEEE_F64LE, {colloid_rows_, m}, path_);
-    }
   }
   h5::flush(file_, path_);
+}
+
+void TrajectoryWriter::write_series(std::vector<Series> &series, std::int64_t step, double time,
+                                    const std::vector<double> &rows, std::size_t n,
+                                    std::size_t width) {
+  // rows: n rows of `width` values, the series' columns one after the other.
+  const hsize_t frame = frame_times_.size();
+  std::size_t first = 0;
+  for (Series &s : series) {
+    buffer_.resize(n * s.width);
+    for (std::size_t a = 0; a < n; ++a)
+      for (int k = 0; k < s.width; ++k)
+        buffer_[a * s.width + k] = rows[a * width + first + k];
+    first += s.width;
+    h5::write_row(s.step, frame, H5T_NATIVE_INT64, {}, &step, path_, s.prefix + "step");
+    h5::write_row(s.time, frame, H5T_NATIVE_DOUBLE, {}, &time, path_, s.prefix + "time");
+    h5::write_row(s.value, frame, H5T_NATIVE_DOUBLE, s.shape, buffer_.data(), path_,
+                  s.prefix + "value");
+  }
 }
 
 void TrajectoryWriter::write_colloid_frame(std::int64_t step, double time,
@@ -103,40 +138,14 @@ void TrajectoryWriter::write_colloid_frame(std::int64_t step, double time,
     throw Error(ExitCode::other, path_ + ": frame at step " + std::to_string(step) + " has " +
                                      std::to_string(c.size()) + " colloids, expected " +
                                      std::to_string(colloid_rows_));
-  // The fluid's row buffers are free again (its frame is written): reuse them.
-  position_.assign(colloid_rows_ * dim_, 0.0);
-  velocity_.assign(colloid_rows_ * dim_, 0.0);
-  for (std::size_t a = 0; a < colloid_rows_; ++a)
-    for (int k = 0; k < dim_; ++k) {
-      position_[a * dim_ + k] = c.x[k][a];
-      velocity_[a * dim_ + k] = c.v[k][a];
-    }
-  const double *data[2] = {position_.data(), velocity_.data()};
-  const std::vector<hsize_t> shape{colloid_rows_, static_cast<hsize_t>(dim_)};
-  const hsize_t frame = frame_times_.size();
-  const char *names[2] = {"position", "velocity"};
-  for (int f = 0; f < 2; ++f) {
-    const std::string prefix = std::string("/particles/colloids/") + names[f] + "/";
-    h5::write_row(colloid_step_[f], frame, H5T_NATIVE_INT64, {}, &step, path_, prefix + "step");
-    h5::write_row(colloid_time_[f], frame, H5T_NATIVE_DOUBLE, {}, &time, path_, prefix + "time");
-    h5::write_row(colloid_value_[f], frame, H5T_NATIVE_DOUBLE, shape, data[f], path_,
-                  prefix + "value");
-  }
-  // Angular velocity (all three components) and orientation (w, x, y, z): a series each.
-  const auto rows = [&](ColloidSeries &series, const auto &components) {
-    const std::size_t m = components.size();
-    position_.assign(colloid_rows_ * m, 0.0);
-    for (std::size_t a = 0; a < colloid_rows_; ++a)
-      for (std::size_t k = 0; k < m; ++k)
-        position_[a * m + k] = components[k][a];
-    const std::string prefix = "/particles/colloids/" + series.name + "/";
-    h5::write_row(series.step, frame, H5T_NATIVE_INT64, {}, &step, path_, prefix + "step");
-    h5::write_row(series.time, frame, H5T_NATIVE_DOUBLE, {}, &time, path_, prefix + "time");
-    h5::write_row(series.value, frame, H5T_NATIVE_DOUBLE, {colloid_rows_, m}, position_.data(),
-                  path_, prefix + "value");
-  };
-  rows(spin_, c.omega);
-  rows(turn_, c.q);
+  // The rows of the trajectory fields (every colloid is here, in id order).
+  const std::vector<const std::vector<double> *> columns = trajectory_columns(table(c));
+  const std::size_t width = columns.size();
+  values_.assign(colloid_rows_ * width, 0.0);
+  for (std::size_t k = 0; k < width; ++k)
+    for (std::size_t i = 0; i < colloid_rows_; ++i)
+      values_[i * width + k] = (*columns[k])[i];
+  write_series(colloid_series_, step, time, values_, colloid_rows_, width);
 }
 
 void TrajectoryWriter::write_frame(std::int64_t step, double time, const mpcd::Fluid &fluid,
@@ -145,17 +154,17 @@ void TrajectoryWriter::write_frame(std::int64_t step, double time, const mpcd::F
     throw Error(ExitCode::other, path_ + ": write_frame " +
                                      (colloids ? "given colloids the file has no group for"
                                                : "without the colloids the file expects"));
-  // This rank's tracked particles: row, then position and velocity.
+  // This rank's tracked particles: row, then the values of the trajectory fields.
+  const std::vector<const std::vector<double> *> columns = trajectory_columns(table(fluid));
+  const std::size_t width = columns.size();
   send_rows_.clear();
   send_values_.clear();
   for (std::size_t i = 0; i < fluid.size(); ++i) {
     if (fluid.id[i] % subsample_ != 0)
       continue;
     send_rows_.push_back(fluid.id[i] / subsample_);
-    for (int k = 0; k < dim_; ++k)
-      send_values_.push_back(fluid.x[k][i]);
-    for (int k = 0; k < dim_; ++k)
-      send_values_.push_back(fluid.v[k][i]);
+    for (const auto *a : columns)
+      send_values_.push_back((*a)[i]);
   }
   int ranks = 1;
   MPI_Comm_size(comm_, &ranks);
@@ -170,13 +179,13 @@ void TrajectoryWriter::write_frame(std::int64_t step, double time, const mpcd::F
   recv_rows_.resize(rank_ == 0 ? all : 0);
   MPI_Gatherv(send_rows_.data(), mine, MPI_UINT64_T, recv_rows_.data(), counts.data(),
               offsets.data(), MPI_UINT64_T, 0, comm_);
-  const int width = 2 * dim_;
+  const int w = static_cast<int>(width);
   for (std::size_t r = 0; r < counts.size(); ++r) {
-    counts[r] *= width;
-    offsets[r] *= width;
+    counts[r] *= w;
+    offsets[r] *= w;
   }
   recv_values_.resize(rank_ == 0 ? static_cast<std::size_t>(all) * width : 0);
-  MPI_Gatherv(send_values_.data(), mine * width, MPI_DOUBLE, recv_values_.data(), counts.data(),
+  MPI_Gatherv(send_values_.data(), mine * w, MPI_DOUBLE, recv_values_.data(), counts.data(),
               offsets.data(), MPI_DOUBLE, 0, comm_);
   if (rank_ != 0)
     return;
@@ -185,8 +194,7 @@ void TrajectoryWriter::write_frame(std::int64_t step, double time, const mpcd::F
     throw Error(ExitCode::other, path_ + ": frame at step " + std::to_string(step) + " has " +
                                      std::to_string(all) + " tracked particles, expected " +
                                      std::to_string(rows_));
-  position_.assign(rows_ * dim_, 0.0);
-  velocity_.assign(rows_ * dim_, 0.0);
+  values_.assign(rows_ * width, 0.0);
   std::vector<char> seen(rows_, 0);
   for (std::size_t j = 0; j < recv_rows_.size(); ++j) {
     const std::uint64_t row = recv_rows_[j];
@@ -194,21 +202,9 @@ void TrajectoryWriter::write_frame(std::int64_t step, double time, const mpcd::F
       throw Error(ExitCode::other, path_ + ": frame at step " + std::to_string(step) +
                                        ": particle id " + std::to_string(row * subsample_) +
                                        " is missing or repeated");
-    for (int k = 0; k < dim_; ++k) {
-      position_[row * dim_ + k] = recv_values_[j * width + k];
-      velocity_[row * dim_ + k] = recv_values_[j * width + dim_ + k];
-    }
+    std::copy_n(&recv_values_[j * width], width, &values_[row * width]);
   }
-  const std::vector<hsize_t> shape{rows_, static_cast<hsize_t>(dim_)};
-  const hsize_t frame = frame_times_.size();
-  const double *data[2] = {position_.data(), velocity_.data()};
-  const char *names[2] = {"position", "velocity"};
-  for (int f = 0; f < 2; ++f) {
-    const std::string prefix = std::string("/particles/fluid/") + names[f] + "/";
-    h5::write_row(step_[f], frame, H5T_NATIVE_INT64, {}, &step, path_, prefix + "step");
-    h5::write_row(time_[f], frame, H5T_NATIVE_DOUBLE, {}, &time, path_, prefix + "time");
-    h5::write_row(value_[f], frame, H5T_NATIVE_DOUBLE, shape, data[f], path_, prefix + "value");
-  }
+  write_series(fluid_series_, step, time, values_, rows_, width);
   if (colloids != nullptr)
     write_colloid_frame(step, time, *colloids);
   h5::flush(file_, path_);

@@ -1,5 +1,6 @@
-// Colloids in checkpoints: the species "colloids" (position, velocity, id, radius, mass), all
-// rows in id order (gathered from their owners: MpcdSimulation::gather_colloids), so rank 0
+// Colloids in checkpoints: the species "colloids" (every field its table stores: position,
+// velocity, id, radius, mass, angular velocity, orientation, and any added ones), all rows in id
+// order (gathered from their owners: MpcdSimulation::gather_colloids), so rank 0
 // writes them and on reading every rank gets all of them back and keeps its own. Radius and mass
 // are stored so a restart restores them exactly; checkpoints from before they were stored get them
 // from the scene (colloids::set_radii_and_masses).
@@ -24,8 +25,10 @@ io::SpeciesFields colloid_fields(colloids::Colloids &c, colloids::Colloids &empt
 // All colloids of a checkpoint on every rank, in id order, radius and mass as stored (older
 // checkpoints: from the scene and `seed`) (collective). input_error if the species is missing,
 // its count differs from the scene's, or a stored radius or mass is not a finite number > 0.
+// With `like`, the colloids also have its added fields (species::Extra), read if stored.
 colloids::Colloids read_colloids(const std::string &path, const scene::Colloids &spec, int dim,
-                                 double density, std::uint64_t seed, MPI_Comm comm);
+                                 double density, std::uint64_t seed, MPI_Comm comm,
+                                 const colloids::Colloids *like = nullptr);
 
 // The contact history of spring contacts as the species "contacts" (owner_id, partner_id,
 // tangential_displacement; partner ids 2^64 - 1 and 2^64 - 2 are the walls at y = 0 and L_y),

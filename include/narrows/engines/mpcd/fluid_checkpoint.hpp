@@ -11,7 +11,7 @@
 
 namespace narrows::mpcd {
 
-// The fluid as a species: position, velocity, id.
+// The fluid as a checkpoint species: the fields its table stores (position, velocity, id).
 io::SpeciesFields fluid_fields(mpcd::Fluid &fluid);
 
 // The fluid of a checkpoint: this rank's block of rows, cell indices zero (recomputed by the

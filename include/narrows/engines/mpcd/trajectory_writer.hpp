@@ -7,6 +7,8 @@
 //   /particles/fluid/box                attributes dimension, boundary; dataset edges [d]
 //   /particles/fluid/position/{value [T][M][d], step [T], time [T]}
 //   /particles/fluid/velocity/{value [T][M][d], step [T], time [T]}
+//                                       (a series for each field of the species' table flagged
+//                                       species::trajectory)
 //   /particles/fluid/id                 [M]: row j holds the particle with id j * subsample
 //   /particles/colloids/...             with colloids: every colloid, the same box, position and
 //                                       velocity series, id [N_c] and radius [N_c], and
@@ -48,26 +50,31 @@ public:
   std::uint64_t tracked() const { return rows_; }
 
 private:
+  // A series /particles/<species>/<field>/{step, time, value} of a trajectory field.
+  struct Series {
+    std::string prefix;         // "/particles/<species>/<field>/"
+    int width = 1;              // values per row
+    std::vector<hsize_t> shape; // of one frame: [M] or [M][width]
+    io::h5::Dataset step, time, value;
+  };
+
   void write_xdmf() const;
   void write_colloid_frame(std::int64_t step, double time, const colloids::Colloids &c);
+  // Appends a frame to each series: `rows` holds n rows of `width` values, the series' values
+  // one after the other in the order of `series`.
+  void write_series(std::vector<Series> &series, std::int64_t step, double time,
+                    const std::vector<double> &rows, std::size_t n, std::size_t width);
 
   std::string path_, xdmf_path_;
   MPI_Comm comm_;
   int rank_ = 0, dim_ = 2;
   std::uint64_t subsample_ = 1, rows_ = 0;
   io::h5::File file_;
-  io::h5::Dataset step_[2], time_[2], value_[2]; // position, velocity
-  std::size_t colloid_rows_ = 0;                 // 0: no colloid species
-  io::h5::Dataset colloid_step_[2], colloid_time_[2], colloid_value_[2];
-  // A colloid series beside position and velocity: /particles/colloids/<name>/{step,time,value}.
-  struct ColloidSeries {
-    std::string name;
-    io::h5::Dataset step, time, value;
-  };
-  ColloidSeries spin_, turn_; // angular velocity [T][N_c][3], orientation [T][N_c][4]
+  std::size_t colloid_rows_ = 0; // 0: no colloid species
+  std::vector<Series> fluid_series_, colloid_series_;
   std::vector<double> frame_times_;
   std::vector<std::uint64_t> send_rows_, recv_rows_;
-  std::vector<double> send_values_, recv_values_, position_, velocity_;
+  std::vector<double> send_values_, recv_values_, values_, buffer_;
 };
 
 } // namespace narrows::mpcd

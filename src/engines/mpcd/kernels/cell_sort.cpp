@@ -1,6 +1,7 @@
 // Counting sort of the fluid arrays by cell.
 #include "narrows/engines/mpcd/kernels/cell_sort.hpp"
 
+#include <type_traits>
 #include <utility>
 
 namespace narrows::mpcd {
@@ -32,12 +33,21 @@ void sort_by_cell(Fluid &fluid, const CellGrid &grid, SortScratch &s) {
   s.dest.resize(n);
   for (std::size_t i = 0; i < n; ++i)
     s.dest[i] = s.start[fluid.cell[i]]++;
-  for (int k = 0; k < fluid.dim; ++k) {
-    scatter(fluid.x[k], s.dest, s.real);
-    scatter(fluid.v[k], s.dest, s.real);
-  }
-  scatter(fluid.id, s.dest, s.ids);
-  scatter(fluid.cell, s.dest, s.cells);
+  // Every field of the fluid (its table), each array through the spare array of its type.
+  const species::Table fields = table(fluid);
+  for (const species::Field &f : fields.fields())
+    for (const species::Column &c : f.columns())
+      std::visit(
+          [&](auto *a) {
+            using T = typename std::remove_pointer_t<decltype(a)>::value_type;
+            if constexpr (std::is_same_v<T, double>)
+              scatter(*a, s.dest, s.real);
+            else if constexpr (std::is_same_v<T, std::uint64_t>)
+              scatter(*a, s.dest, s.ids);
+            else
+              scatter(*a, s.dest, s.cells);
+          },
+          c.array);
 }
 
 } // namespace narrows::mpcd

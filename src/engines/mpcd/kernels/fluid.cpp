@@ -21,14 +21,26 @@ Box make_periodic_box(int dim, std::array<int, 3> cells) {
   return b;
 }
 
-void Fluid::resize(std::size_t n) {
-  for (int k = 0; k < 3; ++k) {
-    x[k].resize(k < dim ? n : 0);
-    v[k].resize(k < dim ? n : 0);
-  }
-  id.resize(n);
-  cell.resize(n);
+species::Table table(Fluid &f) {
+  using namespace species;
+  // The cell index travels with a particle, so a row moved within a rank keeps its binning
+  // (arrivals are binned again); it is recomputed every step, so never stored.
+  constexpr unsigned stored = migrates | checkpoint;
+  Table t("fluid", f.dim);
+  t.vector("position", f.x, stored | trajectory)
+      .vector("velocity", f.v, stored | trajectory)
+      .scalar("id", f.id, stored)
+      .scalar("cell", f.cell, migrates);
+  return t;
 }
+
+species::Table table(const Fluid &f) {
+  species::Table t = table(const_cast<Fluid &>(f));
+  t.read_only();
+  return t;
+}
+
+void Fluid::resize(std::size_t n) { table(*this).resize(n); }
 
 std::uint64_t fluid_particle_count(const Box &box, double density) {
   double volume = 1.0;
@@ -87,6 +99,7 @@ void init_fluid(Fluid &fluid, const Box &box, double kT, std::uint64_t seed, std
       local[k] += fixed::from_double(fluid.v[k].back());
     }
   }
+  fluid.resize(fluid.id.size()); // (fields not drawn here: their fill)
   MPI_Allreduce(local.data(), momentum.data(), 3, MPI_INT64_T, MPI_SUM, comm);
   // Zero total momentum (Tabatabaei (2008) section 3.4.4): a net drift biases every
   // flow measurement.

@@ -1,6 +1,8 @@
 // The MPCD fluid as a structure of arrays, and the periodic box it lives in.
 #pragma once
 
+#include "narrows/species/table.hpp"
+
 #include <mpi.h>
 
 #include <array>
@@ -28,7 +30,7 @@ Box make_periodic_box(int dim, std::array<int, 3> cells);
 
 // Positions x[k], velocities v[k] (k < dim; the z arrays stay empty in 2D), 64-bit global
 // ids, and the cell of each particle in the current shifted grid (recomputed every step,
-// never trusted across steps).
+// never trusted across steps). Every field is declared in table().
 struct Fluid {
   int dim = 2;
   std::array<std::vector<double>, 3> x, v;
@@ -36,8 +38,13 @@ struct Fluid {
   std::vector<std::uint32_t> cell;
 
   std::size_t size() const { return id.size(); }
-  void resize(std::size_t n);
+  void resize(std::size_t n); // every field of table()
 };
+
+// The fluid species' fields, one line each (the checkpoint's /particles/fluid/...).
+species::Table table(Fluid &f);
+// The same for reading only.
+species::Table table(const Fluid &f);
 
 // Number of particles of a box filled at a mean density: round(density * volume).
 std::uint64_t fluid_particle_count(const Box &box, double density);
