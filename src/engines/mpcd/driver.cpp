@@ -399,8 +399,8 @@ private:
   std::optional<InvariantCheck> invariants_;
   colloids::Colloids all_colloids_;
   const colloids::Colloids *colloids_ = nullptr; // &all_colloids_ with [colloids]
-  bool springs_ = false;                         // the spring contacts' history, in key order
-  colloids::ContactHistory all_contacts_;
+  bool springs_ = false;                         // spring contacts: their history is checkpointed
+  colloids::ContactHistory all_contacts_;        // gathered in key order for checkpoints
   std::uint64_t n_particles_ = 0;
 };
 
