@@ -1,9 +1,8 @@
 // Validation of the [continuum] section: model, flux and its parameters, grid, boundary,
-// initial data, time and numerics. Unknown keys of [continuum] itself are refused by the
-// generic schema check in parse.cpp.
+// initial data, time and numerics; and the observables each model writes. Unknown keys of
+// [continuum] itself are refused by the schema check (Checker::check_keys).
 #include "parse_continuum.hpp"
 #include "parse_kmc.hpp"
-#include "section_checker.hpp"
 
 #include "narrows/models/three_state/preset.hpp"
 #include "narrows/models/three_state/rates.hpp"
@@ -334,6 +333,7 @@ void parse_segregation(const Checker &c, const toml::value *sec, Continuum &out)
   const toml::value &kinds = required("kind", kinds_allowed);
   if (!kinds.is_array() || kinds.as_array().empty() || kinds.as_array().size() > 2)
     c.wrong_type("continuum.kind", kinds, kinds_allowed);
+  const auto &kind_keys = sub_keys("continuum", "kind");
   double total = 0.0;
   for (std::size_t i = 0; i < kinds.as_array().size(); ++i) {
     const toml::value &k = kinds.as_array()[i];
@@ -342,9 +342,9 @@ void parse_segregation(const Checker &c, const toml::value *sec, Continuum &out)
       c.wrong_type(key, k, "a table with radius, fraction, diffusivity");
     for (const auto &[name, x] : sorted(k)) {
       (void)x;
-      if (name != "radius" && name != "fraction" && name != "diffusivity")
+      if (find_key(kind_keys, name) == nullptr)
         c.fail(key + "." + name, "unknown key '" + key + "." + name +
-                                     "'; allowed keys: radius, fraction, diffusivity");
+                                     "'; allowed keys: " + join(names_of(kind_keys)));
     }
     const auto field = [&](const char *name, const std::string &what) -> const toml::value & {
       const toml::value *x = find(&k, name);
@@ -416,8 +416,7 @@ namespace {
 void parse_conservation_law(const Checker &c, const toml::value *sec, Continuum &out);
 } // namespace
 
-Continuum parse_continuum(const toml::value *sec, const SectionFail &fail) {
-  const Checker c(fail);
+Continuum parse_continuum(const toml::value *sec, const Checker &c) {
   if (sec == nullptr)
     c.fail("continuum", "missing required section [continuum] (run.engine = \"continuum\"); "
                         "required keys: model, flux, length, cells, initial, time");
@@ -541,5 +540,29 @@ void parse_conservation_law(const Checker &c, const toml::value *sec, Continuum 
 }
 
 } // namespace
+
+void parse_continuum_scene(const Checker &c, const toml::value &root, Scene &s) {
+  const toml::value *sec = c.section(root, "continuum");
+  c.check_keys(sec, "continuum");
+  s.continuum = parse_continuum(sec, c);
+}
+
+void check_continuum_observables(const Checker &c, const Scene &s) {
+  // Each model writes exactly the observables it writes by default (scene/schema.hpp).
+  std::vector<std::string> mine;
+  std::string list;
+  for (const auto &o : engine_schema(Engine::continuum).observables)
+    if (o.by_default(s)) {
+      mine.emplace_back(o.name);
+      list += (list.empty() ? "\"" : ", \"") + std::string(o.name) + "\"";
+    }
+  const char *const models[] = {"conservation-law", "jamming", "segregation"};
+  const auto model = static_cast<std::size_t>(s.continuum->model);
+  for (const auto &name : s.output.observables)
+    if (std::find(mine.begin(), mine.end(), name) == mine.end())
+      c.fail("output.observables", "output.observables lists \"" + name +
+                                       "\", which continuum.model = \"" + models[model] +
+                                       "\" does not write; allowed: " + list);
+}
 
 } // namespace narrows::scene::detail

@@ -1,7 +1,6 @@
 // Validation of the [kmc] section: lattice, rate tables, initial measure, times, replicas.
-// Unknown keys of [kmc] itself are refused by the generic schema check in parse.cpp.
+// Unknown keys of [kmc] itself are refused by the schema check (Checker::check_keys).
 #include "parse_kmc.hpp"
-#include "section_checker.hpp"
 
 #include "narrows/models/three_state/preset.hpp"
 #include "narrows/models/three_state/rates.hpp"
@@ -207,13 +206,11 @@ void check_family1_rates(const Checker &c, const Kmc &out, const std::string &na
                          ": w24, w42, w37, w73, w86, w68, w35, w53, w57, w75 (eq 2.5)");
 }
 
-Kmc parse_kmc(const toml::value *sec, const KmcFail &fail) {
-  const Checker c(fail);
+Kmc parse_kmc(const toml::value *sec, const Checker &c) {
   if (sec == nullptr)
-    c.fail("kmc", "missing required section [kmc] (run.engine = \"kmc\"); allowed keys in [kmc]: "
-                  "length, boundary, rates, left, right, initial, time, warmup, replicas, charge, "
-                  "samples, preset, parameters, fugacity, boundary_rates, boundary_coupling "
-                  "(length, rates or parameters, initial or fugacity, and time are required)");
+    c.fail("kmc", "missing required section [kmc] (run.engine = \"kmc\"); allowed keys in [kmc]: " +
+                      join(names_of(find_section("kmc")->keys)) +
+                      " (length, rates or parameters, initial or fugacity, and time are required)");
   Kmc out;
 
   const std::string len_allowed = "an integer from 2 (open) or 3 (periodic) to 2147483647 (sites)";
@@ -412,6 +409,12 @@ Kmc parse_kmc(const toml::value *sec, const KmcFail &fail) {
     c.fail("kmc.max_tries", line);
   }
   return out;
+}
+
+void parse_kmc_scene(const Checker &c, const toml::value &root, Scene &s) {
+  const toml::value *sec = c.section(root, "kmc");
+  c.check_keys(sec, "kmc");
+  s.kmc = parse_kmc(sec, c);
 }
 
 } // namespace narrows::scene::detail

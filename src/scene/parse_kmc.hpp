@@ -1,21 +1,21 @@
-// Validation of the [kmc] section (engine "kmc"), called by scene/parse.cpp.
+// Validation of the [kmc] section (engine "kmc"), called by parse_scene.
 #pragma once
 
 #include "narrows/scene/scene.hpp"
 
-#include "section_checker.hpp"
+#include "checker.hpp"
 
 #include <toml.hpp>
 
-#include <functional>
 #include <string>
 
 namespace narrows::scene::detail {
 
-// `section` may be null (missing [kmc]); fail(key, message) throws (section_checker.hpp).
-using KmcFail = SectionFail;
+// The [kmc] section of the scene's table `root` into s.kmc.
+void parse_kmc_scene(const Checker &c, const toml::value &root, Scene &s);
 
-Kmc parse_kmc(const toml::value *section, const KmcFail &fail);
+// `section` may be null (missing [kmc]).
+Kmc parse_kmc(const toml::value *section, const Checker &c);
 
 // Pieces shared with [continuum] (its lattice-gas fluxes take the kmc presets' rates); `name`
 // is the key in messages ("kmc.rates", "continuum.parameters").

@@ -1,6 +1,6 @@
 // Validation of the [lattice] and [tagged] sections: model, size, density, initial state,
-// walls, body force, obstacles, field blocks, VACF lags. Unknown keys of the sections
-// themselves are refused by the generic schema check in parse.cpp.
+// walls, body force, obstacles, field blocks, VACF lags; and [colloid]. Unknown keys of the
+// sections themselves are refused by the schema check (Checker::check_keys).
 #include "parse_lgca.hpp"
 
 #include <algorithm>
@@ -46,8 +46,7 @@ void parse_obstacles(const Checker &c, const toml::value &v, Lgca &out) {
 
 } // namespace
 
-Lgca parse_lgca(const toml::value *sec, const SectionFail &fail) {
-  const Checker c(fail);
+Lgca parse_lgca(const toml::value *sec, const Checker &c) {
   Lgca out;
   const toml::value *model = find(sec, "model");
   if (model == nullptr)
@@ -179,8 +178,7 @@ Lgca parse_lgca(const toml::value *sec, const SectionFail &fail) {
   return out;
 }
 
-Tagged parse_tagged(const toml::value &sec, const Lgca &lattice, const SectionFail &fail) {
-  const Checker c(fail);
+Tagged parse_tagged(const toml::value &sec, const Lgca &lattice, const Checker &c) {
   Tagged out;
   const std::string allowed = "an integer from 1 to 1000000 (VACF lags 0..max_lag)";
   if (const toml::value *v = find(&sec, "max_lag"))
@@ -198,8 +196,7 @@ Tagged parse_tagged(const toml::value &sec, const Lgca &lattice, const SectionFa
   return out;
 }
 
-LgcaColloid parse_colloid(const toml::value &sec, const Lgca &lattice, const SectionFail &fail) {
-  const Checker c(fail);
+LgcaColloid parse_colloid(const toml::value &sec, const Lgca &lattice, const Checker &c) {
   LgcaColloid out;
   if (lattice.model == LgcaModel::dhumieres_1d)
     c.fail("colloid", "section [colloid] is for the FHP models; allowed with model "
@@ -263,6 +260,19 @@ LgcaColloid parse_colloid(const toml::value &sec, const Lgca &lattice, const Sec
                " is not a multiple of colloid.displacement_every = " +
                std::to_string(out.displacement_every) + "; allowed: a multiple");
   return out;
+}
+
+void parse_lgca_scene(const Checker &c, const toml::value &root, Scene &s) {
+  c.check_keys(c.section(root, "lattice"), "lattice");
+  s.lgca = parse_lgca(c.section(root, "lattice"), c);
+  if (const toml::value *t = c.section(root, "tagged")) {
+    c.check_keys(t, "tagged");
+    s.tagged = parse_tagged(*t, *s.lgca, c);
+  }
+  if (const toml::value *t = c.section(root, "colloid")) {
+    c.check_keys(t, "colloid");
+    s.colloid = parse_colloid(*t, *s.lgca, c);
+  }
 }
 
 } // namespace narrows::scene::detail

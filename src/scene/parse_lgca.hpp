@@ -1,19 +1,23 @@
-// Validation of the [lattice] and [tagged] sections (engine "lgca"), called by scene/parse.cpp.
+// Validation of the lattice-gas engine's sections [lattice], [tagged] and [colloid] (engine
+// "lgca"), called by parse_scene.
 #pragma once
 
 #include "narrows/scene/scene.hpp"
 
-#include "section_checker.hpp"
+#include "checker.hpp"
 
 #include <toml.hpp>
 
 namespace narrows::scene::detail {
 
-// `section` may be null (missing [lattice]).
-Lgca parse_lgca(const toml::value *section, const SectionFail &fail);
+// The sections of an lgca scene from its table `root`, into `s`.
+void parse_lgca_scene(const Checker &c, const toml::value &root, Scene &s);
 
-// `section` is the [tagged] table (not null).
-Tagged parse_tagged(const toml::value &section, const Lgca &lattice, const SectionFail &fail);
-LgcaColloid parse_colloid(const toml::value &section, const Lgca &lattice, const SectionFail &fail);
+// `section` may be null (missing [lattice]).
+Lgca parse_lgca(const toml::value *section, const Checker &c);
+
+// `section` is the [tagged] ([colloid]) table (not null).
+Tagged parse_tagged(const toml::value &section, const Lgca &lattice, const Checker &c);
+LgcaColloid parse_colloid(const toml::value &section, const Lgca &lattice, const Checker &c);
 
 } // namespace narrows::scene::detail

@@ -1,15 +1,20 @@
-// docs/scenes.md against the validator: every key and observable the validator accepts with an
-// engine is documented under that engine, and every documented one is accepted. The accepted
-// sets come from scene::accepted_keys, which is itself checked against parse_scene by probing
-// (a key it lists is not refused as unknown, a section of another engine is refused).
+// docs/scenes.md against the scene schema (scene/schema.hpp), and the schema against the
+// validator. Every key of every section an engine reads is documented under that engine by a
+// row whose cells (type, default, allowed, unit, meaning) are the schema's, and every documented
+// key is the schema's; likewise the observables (layout, meaning) and the table of each engine's
+// sections. The validator accepts exactly the schema's sections and keys with each engine
+// (probed through parse_scene).
 //
-// The document's convention, read here: a level-2 heading "## Engine mpcd" (lgca, kmc) opens
-// an engine's part and "## All engines" the part common to all; other level-2 headings close
-// them. In those parts a table row whose first cell is `section.key` documents that key (rows
-// `section.key.sub` document sub-keys: their parent must be accepted), and under a level-3
-// heading starting "### Observables" a row whose first cell is `name` documents an observable.
+// The document's convention, read here: a level-2 heading "## Engine mpcd" (lgca, kmc,
+// continuum) opens an engine's part and "## All engines" the part common to all; other level-2
+// headings close them. In those parts a table row whose first cell is `section.key` documents
+// that key (`section.key.sub` a sub-key of a table-valued key), and under a level-3 heading
+// starting "### Observables" a row whose first cell is `name` documents an observable. Before the
+// first level-2 heading, the rows `engine` (or `engine` (default)) | `[section]`, ... list the
+// sections of each engine.
 #include "narrows/core/error.hpp"
 #include "narrows/scene/parse.hpp"
+#include "narrows/scene/schema.hpp"
 
 #include <gtest/gtest.h>
 
@@ -28,71 +33,160 @@ using namespace narrows::scene;
 
 const std::vector<Engine> engines{Engine::mpcd, Engine::lgca, Engine::kmc, Engine::continuum};
 
-struct Documented {
-  std::set<std::string> keys, sub_keys, observables;
-};
-
-// The first cell of a table row if it is one `code` span, else "".
-std::string first_code_cell(const std::string &line) {
+// The cells of a table row, trimmed, "\|" read as "|" ({} if the line is no table row).
+std::vector<std::string> cells_of(const std::string &line) {
   if (line.rfind("|", 0) != 0)
     return {};
-  const auto end = line.find('|', 1);
-  std::string cell = line.substr(1, end == std::string::npos ? std::string::npos : end - 1);
-  cell.erase(0, cell.find_first_not_of(' '));
-  cell.erase(cell.find_last_not_of(' ') + 1);
+  std::vector<std::string> out;
+  std::string cell;
+  for (std::size_t i = 1; i < line.size(); ++i) {
+    if (line[i] == '\\' && i + 1 < line.size() && line[i + 1] == '|') {
+      cell += '|';
+      ++i;
+    } else if (line[i] == '|') {
+      cell.erase(0, cell.find_first_not_of(' '));
+      cell.erase(cell.find_last_not_of(' ') + 1);
+      out.push_back(cell);
+      cell.clear();
+    } else {
+      cell += line[i];
+    }
+  }
+  return out;
+}
+
+// The name in a first cell that is one `code` span, else "".
+std::string code_name(const std::string &cell) {
   if (cell.size() < 3 || cell.front() != '`' || cell.back() != '`')
     return {};
-  cell = cell.substr(1, cell.size() - 2);
-  return cell.find('`') == std::string::npos ? cell : std::string();
+  const std::string name = cell.substr(1, cell.size() - 2);
+  return name.find('`') == std::string::npos ? name : std::string();
 }
+
+// A documented row: its cells after the first, and its line in the file.
+struct Row {
+  std::vector<std::string> cells;
+  int line = 0;
+};
+
+struct Documented {
+  std::map<std::string, Row> keys, observables; // "section.key" or "section.key.sub"; name
+  std::string sections;                         // the cell of the engine's sections table
+};
 
 std::map<Engine, Documented> read_docs(const std::string &path) {
   std::ifstream in(path);
   EXPECT_TRUE(in) << "cannot open " << path;
   std::map<Engine, Documented> out;
   std::vector<Engine> scope;
-  bool observables = false;
+  bool preamble = true, observables = false;
   std::string line;
-  while (std::getline(in, line)) {
+  for (int number = 1; std::getline(in, line); ++number) {
     if (line.rfind("## ", 0) == 0) {
+      preamble = false;
       observables = false;
       scope.clear();
       if (line == "## All engines")
         scope = engines;
-      else if (line == "## Engine mpcd")
-        scope = {Engine::mpcd};
-      else if (line == "## Engine lgca")
-        scope = {Engine::lgca};
-      else if (line == "## Engine kmc")
-        scope = {Engine::kmc};
-      else if (line == "## Engine continuum")
-        scope = {Engine::continuum};
+      for (Engine e : engines)
+        if (line == std::string("## Engine ") + to_string(e))
+          scope = {e};
       continue;
     }
     if (line.rfind("### ", 0) == 0) {
       observables = line.rfind("### Observables", 0) == 0;
       continue;
     }
-    const std::string name = first_code_cell(line);
+    const auto cells = cells_of(line);
+    if (cells.size() < 2)
+      continue;
+    if (preamble) { // `engine` (default) | `[section]`, ...
+      for (Engine e : engines) {
+        const std::string name = std::string("`") + to_string(e) + "`";
+        if (cells[0] == name || cells[0] == name + " (default)")
+          out[e].sections = cells[1];
+      }
+      continue;
+    }
+    const std::string name = code_name(cells[0]);
     if (name.empty())
       continue;
-    for (Engine e : scope) {
-      if (observables)
-        out[e].observables.insert(name);
-      else if (std::count(name.begin(), name.end(), '.') == 1)
-        out[e].keys.insert(name);
-      else
-        out[e].sub_keys.insert(name);
-    }
+    const Row row{std::vector<std::string>(cells.begin() + 1, cells.end()), number};
+    for (Engine e : scope)
+      (observables ? out[e].observables : out[e].keys)[name] = row;
   }
   return out;
 }
 
-std::string listed(const std::set<std::string> &names) {
-  std::string s;
-  for (const auto &n : names)
-    s += (s.empty() ? "" : ", ") + n;
+// What the schema says of each key of an engine ("section.key" and "section.key.sub").
+std::map<std::string, std::vector<std::string>> schema_keys(Engine e) {
+  std::map<std::string, std::vector<std::string>> out;
+  const auto add = [&out](const std::string &prefix, const KeySpec &k, const auto &self) -> void {
+    const std::string name = prefix + std::string(k.name);
+    out[name] = {std::string(k.type), std::string(k.default_value), std::string(k.allowed),
+                 std::string(k.unit), std::string(k.meaning)};
+    for (const auto &sub : k.sub_keys)
+      self(name + ".", sub, self);
+  };
+  for (const SectionSpec *sec : sections_of(e))
+    for (const auto &k : sec->keys)
+      add(std::string(sec->name) + ".", k, add);
+  return out;
+}
+
+std::map<std::string, std::vector<std::string>> schema_observables(Engine e) {
+  std::map<std::string, std::vector<std::string>> out;
+  for (const auto &o : engine_schema(e).observables)
+    out[std::string(o.name)] = {std::string(o.layout), std::string(o.meaning)};
+  return out;
+}
+
+// The markdown row the schema asks for (cells joined, "|" escaped), for the failure message.
+std::string row_text(const std::string &name, const std::vector<std::string> &cells) {
+  std::string s = "| `" + name + "` |";
+  for (const auto &cell : cells) {
+    std::string escaped;
+    for (const char ch : cell)
+      escaped += ch == '|' ? std::string("\\|") : std::string(1, ch);
+    s += escaped.empty() ? " |" : " " + escaped + " |";
+  }
   return s;
+}
+
+// Compares documented rows with the schema's: missing, extra and differing rows.
+void compare(const std::string &path, Engine e, const std::string &what,
+             const std::map<std::string, Row> &documented,
+             const std::map<std::string, std::vector<std::string>> &schema) {
+  for (const auto &[name, cells] : schema) {
+    const auto it = documented.find(name);
+    if (it == documented.end())
+      ADD_FAILURE() << "the schema's " << what << " of engine " << to_string(e) << " '" << name
+                    << "' has no row in " << path << "; add:\n"
+                    << row_text(name, cells);
+    else if (it->second.cells != cells)
+      ADD_FAILURE() << path << ":" << it->second.line << ": the row of " << what << " '" << name
+                    << "' (engine " << to_string(e) << ") is not the schema's (scene/schema_"
+                    << to_string(e) << ".cpp or scene/schema.cpp); the schema says:\n"
+                    << row_text(name, cells);
+  }
+  for (const auto &[name, row] : documented)
+    if (!schema.count(name))
+      ADD_FAILURE() << path << ":" << row.line << ": " << what << " '" << name
+                    << "' is documented for engine " << to_string(e) << " but is not in its schema";
+}
+
+TEST(SceneDocs, EveryRowIsTheSchemas) {
+  const std::string path = std::string(NARROWS_SOURCE_DIR) + "/docs/scenes.md";
+  const auto docs = read_docs(path);
+  for (Engine e : engines) {
+    const Documented d = docs.count(e) ? docs.at(e) : Documented{};
+    compare(path, e, "key", d.keys, schema_keys(e));
+    compare(path, e, "observable", d.observables, schema_observables(e));
+    std::string sections;
+    for (const SectionSpec *sec : sections_of(e))
+      sections += (sections.empty() ? "`[" : ", `[") + std::string(sec->name) + "]`";
+    EXPECT_EQ(d.sections, sections) << "the sections of engine " << to_string(e) << " in " << path;
+  }
 }
 
 // A minimal valid scene of each engine, as section -> key -> TOML value.
@@ -148,89 +242,55 @@ TEST(SceneDocs, MinimalScenesAreAccepted) {
     EXPECT_EQ(refusal(minimal(e)), "") << to_string(e);
 }
 
-// accepted_keys lists what parse_scene accepts: each listed key is known (not "unknown key"),
-// a key not listed is unknown, and a section of another engine is refused as such.
-TEST(SceneDocs, AcceptedKeysAreThoseOfTheValidator) {
-  std::set<std::string> all_sections;
-  for (Engine e : engines)
-    for (const auto &k : accepted_keys(e).keys)
-      all_sections.insert(k.substr(0, k.find('.')));
+// The validator reads the schema: each key of an engine's sections is known (not "unknown
+// key"), a key not listed is unknown, a section of another engine is refused as such, and
+// output.observables takes exactly the engine's observables.
+TEST(SceneDocs, TheValidatorAcceptsTheSchema) {
   for (Engine e : engines) {
-    const AcceptedKeys acc = accepted_keys(e);
-    std::set<std::string> sections;
-    for (const auto &k : acc.keys) {
-      const std::string sec = k.substr(0, k.find('.')), key = k.substr(k.find('.') + 1);
-      sections.insert(sec);
+    std::set<std::string> mine;
+    for (const SectionSpec *sec : sections_of(e)) {
+      mine.insert(std::string(sec->name));
+      for (const auto &key : sec->keys) {
+        const std::string k = std::string(sec->name) + "." + std::string(key.name);
+        Table t = minimal(e);
+        t[std::string(sec->name)][std::string(key.name)] = "\"probe\"";
+        const std::string msg = refusal(t);
+        EXPECT_EQ(msg.find("unknown key"), std::string::npos)
+            << to_string(e) << " " << k << ": " << msg;
+        EXPECT_EQ(msg.find("is for engine"), std::string::npos)
+            << to_string(e) << " " << k << ": " << msg;
+        EXPECT_EQ(msg.find("needs run.engine"), std::string::npos)
+            << to_string(e) << " " << k << ": " << msg;
+      }
       Table t = minimal(e);
-      t[sec][key] = "\"probe\"";
-      const std::string msg = refusal(t);
-      EXPECT_EQ(msg.find("unknown key"), std::string::npos)
-          << to_string(e) << " " << k << ": " << msg;
-      EXPECT_EQ(msg.find("is for engine"), std::string::npos)
-          << to_string(e) << " " << k << ": " << msg;
-      EXPECT_EQ(msg.find("needs run.engine"), std::string::npos)
-          << to_string(e) << " " << k << ": " << msg;
+      t[std::string(sec->name)]["not_a_key"] = "1";
+      EXPECT_NE(refusal(t).find("unknown key '" + std::string(sec->name) + ".not_a_key'"),
+                std::string::npos)
+          << to_string(e) << " [" << sec->name << "]: " << refusal(t);
     }
-    for (const auto &sec : sections) {
-      Table t = minimal(e);
-      t[sec]["not_a_key"] = "1";
-      EXPECT_NE(refusal(t).find("unknown key '" + sec + ".not_a_key'"), std::string::npos)
-          << to_string(e) << " [" << sec << "]: " << refusal(t);
-    }
-    for (const auto &sec : all_sections) {
-      if (sections.count(sec))
+    for (const SectionSpec *sec : all_sections()) {
+      if (mine.count(std::string(sec->name)))
         continue;
       Table t = minimal(e);
-      t[sec];
+      t[std::string(sec->name)];
       const std::string msg = refusal(t);
       EXPECT_TRUE(msg.find("is for engine") != std::string::npos ||
                   msg.find("needs run.engine") != std::string::npos)
-          << to_string(e) << " accepts [" << sec << "], not in accepted_keys: " << msg;
-    }
-    for (const auto &name : acc.observables) {
-      Table t = minimal(e);
-      t["output"]["observables"] = "[\"" + name + "\"]";
-      EXPECT_EQ(refusal(t).find("is not a known observable"), std::string::npos)
-          << to_string(e) << " " << name << ": " << refusal(t);
+          << to_string(e) << " accepts [" << sec->name << "] of another engine: " << msg;
     }
     Table t = minimal(e);
+    t["unknown_section"];
+    EXPECT_NE(refusal(t).find("unknown section [unknown_section]"), std::string::npos)
+        << refusal(t);
+    for (const auto &o : engine_schema(e).observables) {
+      Table t = minimal(e);
+      t["output"]["observables"] = "[\"" + std::string(o.name) + "\"]";
+      EXPECT_EQ(refusal(t).find("is not a known observable"), std::string::npos)
+          << to_string(e) << " " << o.name << ": " << refusal(t);
+    }
+    t = minimal(e);
     t["output"]["observables"] = "[\"not_an_observable\"]";
     EXPECT_NE(refusal(t).find("is not a known observable"), std::string::npos) << refusal(t);
-  }
-}
-
-TEST(SceneDocs, EveryAcceptedKeyIsDocumentedAndEveryDocumentedKeyIsAccepted) {
-  const std::string path = std::string(NARROWS_SOURCE_DIR) + "/docs/scenes.md";
-  const auto docs = read_docs(path);
-  for (Engine e : engines) {
-    const AcceptedKeys acc = accepted_keys(e);
-    const std::set<std::string> keys(acc.keys.begin(), acc.keys.end());
-    const std::set<std::string> obs(acc.observables.begin(), acc.observables.end());
-    const Documented d = docs.count(e) ? docs.at(e) : Documented{};
-    std::set<std::string> undocumented, unknown, undocumented_obs, unknown_obs, orphans;
-    std::set_difference(keys.begin(), keys.end(), d.keys.begin(), d.keys.end(),
-                        std::inserter(undocumented, undocumented.end()));
-    std::set_difference(d.keys.begin(), d.keys.end(), keys.begin(), keys.end(),
-                        std::inserter(unknown, unknown.end()));
-    std::set_difference(obs.begin(), obs.end(), d.observables.begin(), d.observables.end(),
-                        std::inserter(undocumented_obs, undocumented_obs.end()));
-    std::set_difference(d.observables.begin(), d.observables.end(), obs.begin(), obs.end(),
-                        std::inserter(unknown_obs, unknown_obs.end()));
-    for (const auto &sub : d.sub_keys) {
-      const auto second = sub.find('.', sub.find('.') + 1);
-      if (!keys.count(sub.substr(0, second)))
-        orphans.insert(sub);
-    }
-    EXPECT_TRUE(undocumented.empty()) << "accepted by the validator with engine " << to_string(e)
-                                      << " but not in " << path << ": " << listed(undocumented);
-    EXPECT_TRUE(unknown.empty()) << "documented in " << path << " for engine " << to_string(e)
-                                 << " but not accepted: " << listed(unknown);
-    EXPECT_TRUE(undocumented_obs.empty()) << "observables accepted with engine " << to_string(e)
-                                          << " but not documented: " << listed(undocumented_obs);
-    EXPECT_TRUE(unknown_obs.empty()) << "observables documented for engine " << to_string(e)
-                                     << " but not accepted: " << listed(unknown_obs);
-    EXPECT_TRUE(orphans.empty()) << "sub-keys documented for engine " << to_string(e)
-                                 << " whose key is not accepted: " << listed(orphans);
   }
 }
 

@@ -119,13 +119,6 @@ void read_species_rows(const std::string &path, SpeciesFields &species, std::uin
 // the fluid).
 void read_species(const std::string &path, SpeciesFields &species, MPI_Comm comm);
 
-// Refuses (collectively, one line naming the dataset and the first bad row) a species just
-// read by read_species whose state a run cannot continue: an id outside [0, total) or twice,
-// a position outside the box edges of info, a non-finite velocity. Fields: position and
-// velocity as the first two vector fields, id as the first word field.
-void validate_particles(const std::string &path, const SpeciesFields &fields,
-                        const CheckpointInfo &info, std::uint64_t total, MPI_Comm comm);
-
 // ---- files of a run directory ------------------------------------------------------------
 
 // DIR/checkpoint-<step as 10 digits>.h5

@@ -146,8 +146,8 @@ struct Thermostat {
 struct Output {
   std::string dir = "out";
   std::int64_t every = 100; // observables cadence in steps
-  std::vector<std::string> observables{"temperature", "momentum", "velocity_profile",
-                                       "density_profile"};
+  // parse_scene sets the engine's defaults (scene/schema.hpp) unless the scene lists them
+  std::vector<std::string> observables;
   std::int64_t checkpoint_every = 0; // 0 = only at the end of the run
   int checkpoint_keep = 2;           // newest checkpoints kept in the output directory
   bool progress = true;              // progress line with ETA on long runs

@@ -17,6 +17,7 @@
 #include "narrows/core/error.hpp"
 #include "narrows/core/fixed_point.hpp"
 #include "narrows/run/collective.hpp"
+#include "narrows/scene/parse.hpp"
 
 #include <algorithm>
 #include <array>
@@ -122,6 +123,88 @@ std::string number(double v) {
   return b;
 }
 
+// Numbers of the checkpoint as io/checkpoint.cpp prints them: every digit.
+std::string number_text(double v) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%.17g", v);
+  return b;
+}
+
+constexpr std::uint64_t no_row = ~std::uint64_t{0};
+
+// One refusal on every rank: each rank offers its first bad row (no_row if none) and the line
+// that describes it; every rank throws the line of the lowest bad row (so no rank waits for
+// another that already gave up).
+void refuse_first_bad_row(std::uint64_t bad_row, const std::string &line, MPI_Comm comm) {
+  std::uint64_t first = no_row;
+  MPI_Allreduce(&bad_row, &first, 1, MPI_UINT64_T, MPI_MIN, comm);
+  if (first == no_row)
+    return;
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  int mine = bad_row == first ? rank : ranks, owner = 0;
+  MPI_Allreduce(&mine, &owner, 1, MPI_INT, MPI_MIN, comm);
+  std::uint64_t length = rank == owner ? line.size() : 0;
+  MPI_Bcast(&length, 1, MPI_UINT64_T, owner, comm);
+  std::string text = rank == owner ? line : std::string(length, ' ');
+  MPI_Bcast(text.data(), static_cast<int>(length), MPI_CHAR, owner, comm);
+  throw input_error(text);
+}
+
+// Every id of [0, total) exactly once over all ranks: each (id, row) goes to the rank that
+// checks ids [ceil(d total / p), ceil((d + 1) total / p)), which keeps one row per id.
+void check_unique_ids(const std::vector<std::uint64_t> &ids, std::uint64_t first_row,
+                      std::uint64_t total, const std::string &dataset, const std::string &path,
+                      MPI_Comm comm) {
+  int p = 1, d = 0;
+  MPI_Comm_size(comm, &p);
+  MPI_Comm_rank(comm, &d);
+  const auto owner = [&](std::uint64_t id) {
+    return static_cast<int>(static_cast<unsigned __int128>(id) * p / total);
+  };
+  std::vector<int> send_counts(p, 0), recv_counts(p, 0), sdispl(p, 0), rdispl(p, 0);
+  for (const auto id : ids)
+    send_counts[owner(id)] += 2;
+  MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT, comm);
+  for (int r = 1; r < p; ++r) {
+    sdispl[r] = sdispl[r - 1] + send_counts[r - 1];
+    rdispl[r] = rdispl[r - 1] + recv_counts[r - 1];
+  }
+  std::vector<std::uint64_t> send(2 * ids.size()), recv(rdispl[p - 1] + recv_counts[p - 1]);
+  std::vector<int> at = sdispl;
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    const int r = owner(ids[i]);
+    send[at[r]++] = ids[i];
+    send[at[r]++] = first_row + i;
+  }
+  MPI_Alltoallv(send.data(), send_counts.data(), sdispl.data(), MPI_UINT64_T, recv.data(),
+                recv_counts.data(), rdispl.data(), MPI_UINT64_T, comm);
+  const auto lo =
+      static_cast<std::uint64_t>((static_cast<unsigned __int128>(total) * d + p - 1) / p);
+  const auto hi =
+      static_cast<std::uint64_t>((static_cast<unsigned __int128>(total) * (d + 1) + p - 1) / p);
+  std::vector<std::uint64_t> row_of(hi - lo, no_row);
+  std::uint64_t bad = no_row;
+  std::string line;
+  for (std::size_t k = 0; k < recv.size(); k += 2) {
+    const std::uint64_t id = recv[k], row = recv[k + 1];
+    std::uint64_t &seen = row_of[id - lo];
+    if (seen == no_row) {
+      seen = row;
+      continue;
+    }
+    const std::uint64_t later = std::max(seen, row), earlier = std::min(seen, row);
+    if (later < bad) {
+      bad = later;
+      line = path + ": " + dataset + " row " + std::to_string(later) + " holds id " +
+             std::to_string(id) + ", as does row " + std::to_string(earlier) +
+             "; allowed: every id from 0 to " + std::to_string(total - 1) + " once";
+    }
+  }
+  refuse_first_bad_row(bad, line, comm);
+}
+
 } // namespace
 
 void check_fluid_outside_colloids(const mpcd::Fluid &f, const colloids::Colloids &c,
@@ -179,6 +262,63 @@ void check_fluid_outside_colloids(const mpcd::Fluid &f, const colloids::Colloids
     if (line && first == smallest)
       throw input_error(*line);
   });
+}
+
+void check_stored_scene(const io::CheckpointInfo &info, const std::string &path) {
+  // A stored scene that does not parse is refused by the restart's comparison of the scenes
+  // (run::Shell), with its own line.
+  scene::Scene stored;
+  try {
+    stored = scene::parse_scene(info.scene_text, path + ":/parameters/scene");
+  } catch (const Error &) {
+    return;
+  }
+  if (stored.run.seed != info.seed)
+    throw input_error(path + ": /parameters/seed = " + std::to_string(info.seed) +
+                      " but /parameters/scene has run.seed = " + std::to_string(stored.run.seed) +
+                      "; allowed: the same seed");
+  for (int k = 0; k < info.dimensions; ++k)
+    if (stored.domain.size[k] != info.box[k])
+      throw input_error(path + ": /particles/fluid/box/edges[" + std::to_string(k) +
+                        "] = " + number_text(info.box[k]) +
+                        " but /parameters/scene has domain.size[" + std::to_string(k) +
+                        "] = " + number_text(stored.domain.size[k]) + "; allowed: the same box");
+}
+
+void check_restored_fluid(const mpcd::Fluid &f, const io::CheckpointInfo &info, std::uint64_t total,
+                          const std::string &path, MPI_Comm comm) {
+  // The state must be one the run can continue: finite, inside the box (between the walls),
+  // every id once. The first bad row (lowest over all ranks) is refused on every rank.
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  // The rows this rank read (io::read_species: a block of the rows by rank).
+  const auto first_row =
+      total * static_cast<std::uint64_t>(rank) / static_cast<std::uint64_t>(ranks);
+  const std::string pos = "/particles/fluid/position/value",
+                    vel = "/particles/fluid/velocity/value", ids = "/particles/fluid/id/value";
+  std::uint64_t bad = no_row;
+  std::string line;
+  for (std::size_t i = 0; i < f.id.size() && bad == no_row; ++i) {
+    const std::string row = " row " + std::to_string(first_row + i);
+    if (f.id[i] >= total) {
+      line = path + ": " + ids + row + " holds id " + std::to_string(f.id[i]) + "; allowed: 0 to " +
+             std::to_string(total - 1);
+    }
+    for (int k = 0; k < f.dim && line.empty(); ++k) {
+      const double x = f.x[k][i], v = f.v[k][i], L = info.box[k];
+      if (!(x >= 0.0 && x <= L))
+        line = path + ": " + pos + row + " component " + std::to_string(k) + " = " +
+               number_text(x) + "; allowed: inside the box, 0 to " + number_text(L);
+      else if (!std::isfinite(v))
+        line = path + ": " + vel + row + " component " + std::to_string(k) + " = " +
+               number_text(v) + "; allowed: a finite number";
+    }
+    if (!line.empty())
+      bad = first_row + i;
+  }
+  refuse_first_bad_row(bad, line, comm);
+  check_unique_ids(f.id, first_row, total, ids, path, comm);
 }
 
 } // namespace narrows::mpcd

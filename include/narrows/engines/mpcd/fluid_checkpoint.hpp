@@ -15,8 +15,9 @@ namespace narrows::mpcd {
 io::SpeciesFields fluid_fields(mpcd::Fluid &fluid);
 
 // The fluid of a checkpoint: this rank's block of rows, cell indices zero (recomputed by the
-// next step). input_error if an id is out of range (thrown after the collective reads, so it
-// can be agreed on with run::collectively).
+// next step). input_error if the checkpoint's data were not made with its stored scene, or the
+// fluid is one a run cannot continue (restart_checks.hpp; thrown collectively or after the
+// collective reads, so it can be agreed on with run::collectively).
 mpcd::Fluid read_fluid(const std::string &path, const io::CheckpointInfo &info, MPI_Comm comm);
 
 } // namespace narrows::mpcd

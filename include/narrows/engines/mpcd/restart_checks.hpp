@@ -1,15 +1,30 @@
-// Checks of a restarted MPCD state that need more than one species (issue 18 item 6): what
-// io::validate_particles cannot see field by field.
+// Checks of a restarted MPCD state, which io/ (a leaf without physics) does not make: the
+// checkpoint's stored scene against its data, the fluid field by field, and the fluid against
+// the colloids.
 #pragma once
 
 #include "narrows/colloids/colloids.hpp"
 #include "narrows/engines/mpcd/kernels/fluid.hpp"
+#include "narrows/io/checkpoint.hpp"
 
 #include <mpi.h>
 
+#include <cstdint>
 #include <string>
 
 namespace narrows::mpcd {
+
+// Refuses (input_error naming `path`) a checkpoint whose data were not made with its stored
+// scene: /parameters/seed other than its run.seed, or box edges other than its domain.size. A
+// stored scene that does not parse is left to the restart's comparison of the scenes.
+void check_stored_scene(const io::CheckpointInfo &info, const std::string &path);
+
+// Refuses (collectively, one line naming the dataset and the first bad row over all ranks) a
+// fluid just read from `path` (this rank's block of the rows, io::read_species) that a run cannot
+// continue: an id outside [0, total) or twice, a position outside the box edges of `info`, a
+// non-finite velocity.
+void check_restored_fluid(const mpcd::Fluid &fluid, const io::CheckpointInfo &info,
+                          std::uint64_t total, const std::string &path, MPI_Comm comm);
 
 // Refuses (input_error, collectively: every rank ends with the same one line, exit 2) a
 // restarted fluid with a particle inside a colloid where no running simulation can have put

@@ -1,21 +1,66 @@
-// Helpers of the section parsers: value renderings for messages, look-ups.
-#include "section_checker.hpp"
+// The words of the scene's one-line messages: values rendered, lists joined, suggestions.
+#include "message_text.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <sstream>
-#include <vector>
 
 namespace narrows::scene::detail {
 
 namespace {
 
-std::string join(const std::vector<std::string> &items) {
-  std::string out;
-  for (std::size_t i = 0; i < items.size(); ++i)
-    out += (i ? ", " : "") + items[i];
-  return out;
+std::string quote_string(const std::string &s) {
+  std::string out = "\"";
+  for (const char ch : s) {
+    switch (ch) {
+    case '"':
+      out += "\\\"";
+      break;
+    case '\\':
+      out += "\\\\";
+      break;
+    case '\n':
+      out += "\\n";
+      break;
+    case '\r':
+      out += "\\r";
+      break;
+    case '\t':
+      out += "\\t";
+      break;
+    default:
+      if (static_cast<unsigned char>(ch) < 0x20) {
+        char buf[8];
+        std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(ch));
+        out += buf;
+      } else {
+        out += ch;
+      }
+    }
+  }
+  return out + "\"";
+}
+
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j)
+    row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      const char ca = static_cast<char>(std::tolower(static_cast<unsigned char>(a[i - 1])));
+      const char cb = static_cast<char>(std::tolower(static_cast<unsigned char>(b[j - 1])));
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (ca == cb ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
 }
 
 } // namespace
@@ -59,38 +104,6 @@ std::string float_text(double x) {
   if (s.find_first_of(".e") == std::string::npos)
     s += ".0";
   return s;
-}
-
-std::string quote_string(const std::string &s) {
-  std::string out = "\"";
-  for (const char ch : s) {
-    switch (ch) {
-    case '"':
-      out += "\\\"";
-      break;
-    case '\\':
-      out += "\\\\";
-      break;
-    case '\n':
-      out += "\\n";
-      break;
-    case '\r':
-      out += "\\r";
-      break;
-    case '\t':
-      out += "\\t";
-      break;
-    default:
-      if (static_cast<unsigned char>(ch) < 0x20) {
-        char buf[8];
-        std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(ch));
-        out += buf;
-      } else {
-        out += ch;
-      }
-    }
-  }
-  return out + "\"";
 }
 
 // A short one-line rendering of a TOML value for messages.
@@ -163,19 +176,42 @@ std::string repr(const toml::value &v, int depth) {
   }
 }
 
-const toml::value *find(const toml::value *table, const char *key) {
-  if (table == nullptr)
-    return nullptr;
-  const auto &t = table->as_table();
-  const auto it = t.find(key);
-  return it == t.end() ? nullptr : &it->second;
+std::string join(const std::vector<std::string> &items, const char *sep) {
+  std::string out;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (i)
+      out += sep;
+    out += items[i];
+  }
+  return out;
 }
 
-std::map<std::string, const toml::value *> sorted(const toml::value &table) {
-  std::map<std::string, const toml::value *> out;
-  for (const auto &[k, v] : table.as_table())
-    out.emplace(k, &v);
-  return out;
+std::string trim(std::string_view s) {
+  const auto first = s.find_first_not_of(" \t\r\n");
+  if (first == std::string_view::npos)
+    return {};
+  const auto last = s.find_last_not_of(" \t\r\n");
+  return std::string(s.substr(first, last - first + 1));
+}
+
+std::string one_line(std::string s) {
+  for (char &ch : s)
+    if (ch == '\n' || ch == '\r')
+      ch = ' ';
+  return s;
+}
+
+std::string closest(const std::string &word, const std::vector<std::string> &candidates) {
+  std::string best;
+  std::size_t best_d = std::max<std::size_t>(1, std::min<std::size_t>(2, word.size() / 3)) + 1;
+  for (const auto &c : candidates) {
+    const std::size_t d = edit_distance(word, c);
+    if (d < best_d) {
+      best_d = d;
+      best = c;
+    }
+  }
+  return best;
 }
 
 } // namespace narrows::scene::detail

@@ -1,0 +1,45 @@
+// The MPCD engine's scene: its sections in the order they depend on each other, and the
+// observables a scene of it can measure.
+#include "parse_mpcd.hpp"
+
+#include <algorithm>
+#include <string>
+
+namespace narrows::scene::detail {
+
+void parse_mpcd(const Checker &c, const toml::value &root, Scene &s) {
+  parse_domain(c, c.section(root, "domain"), s.run.dimensions, s.domain);
+  parse_fluid(c, c.section(root, "fluid"), s.domain, s.run.dimensions, s.fluid);
+  s.body_force = parse_body_force(c, c.section(root, "body_force"), s.run.dimensions);
+  s.walls = parse_walls(c, c.section(root, "walls"), s.body_force);
+  s.colloids = parse_colloids(c, c.section(root, "colloids"), s.domain, s.run.dimensions,
+                              s.walls.has_value());
+  s.thermostat = parse_thermostat(c, c.section(root, "thermostat"), s.fluid.collision);
+  if (s.colloids && s.colloids->coupling == ColloidCoupling::no_slip)
+    check_no_slip(c, s);
+}
+
+void check_mpcd_observables(const Checker &c, const Scene &s) {
+  const auto &obs = s.output.observables;
+  const auto listed = [&obs](std::string_view name) {
+    return std::find(obs.begin(), obs.end(), name) != obs.end();
+  };
+  for (const auto &o : engine_schema(Engine::mpcd).observables)
+    if (o.follows_colloids && listed(o.name) && !s.colloids)
+      c.fail("output.observables", "output.observables lists \"" + std::string(o.name) +
+                                       "\", which follows colloids; allowed only with [colloids]");
+  const bool poiseuille = s.walls && s.body_force && s.body_force->kind == ForceKind::constant &&
+                          s.body_force->value[0] != 0.0;
+  if (listed("viscosity") && !poiseuille)
+    c.fail("output.observables",
+           "output.observables lists \"viscosity\", which fits the Poiseuille profile; allowed "
+           "only with [walls] and a body_force.value whose x component is non-zero");
+  // The fit needs two distinct values of y (L - y) over the unit bins: two bins are symmetric.
+  if (listed("viscosity") && s.domain.size[1] < 3.0)
+    c.fail("output.observables", "output.observables lists \"viscosity\" with domain.size[1] = " +
+                                     float_text(s.domain.size[1]) +
+                                     ", too narrow to fit a parabola; allowed: domain.size[1] "
+                                     ">= 3");
+}
+
+} // namespace narrows::scene::detail

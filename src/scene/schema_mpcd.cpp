@@ -1,0 +1,188 @@
+// The schema of the MPCD engine: its sections [domain], [fluid], [body_force], [walls],
+// [thermostat] and [colloids], and its observables.
+#include "schema_tables.hpp"
+
+namespace narrows::scene::detail {
+
+namespace {
+
+bool always(const Scene &) { return true; }
+
+} // namespace
+
+const EngineSchema &mpcd_schema() {
+  static const EngineSchema schema{
+      Engine::mpcd,
+      {{"domain",
+        {{"size", "array of `run.dimensions` numbers", "required",
+          "whole numbers from 2 to 1048576 each", "cells",
+          "box along x (flow axis, periodic, split into MPI slabs), y [, z]"}}},
+       {"fluid",
+        {{"collision", "string", "required",
+          R"(`"srd"`, `"at"`, `"at+a"`, `"random-permute"`, `"random-maxwell"`)", "",
+          "collision rule (MPC-AT+a conserves angular momentum)"},
+         {"density", "number", "10", "> 0; fewer than 2^40 particles in total",
+          "particles per cell", "mean number density n"},
+         {"dt", "number", "required",
+          "> 0 (`narrows check` warns when the mean free path is too small for the rule)", "time",
+          "collision time step"},
+         {"angle", "number", "90", "0 < angle < 360", "degrees",
+          "SRD rotation angle (accepted and ignored by the other rules)"},
+         {"kT", "number", "1",
+          "> 0, at most 1e6 (`check`: above it thermal speeds reach the run's speed limit 1e4)",
+          "energy", "temperature"},
+         {"sort_every", "integer", "20", "0 to 2147483647", "steps",
+          "counting sort of the particles by cell every this many steps (0: never); does not "
+          "change results"}}},
+       {"body_force",
+        {{"kind", "string", R"(`"constant"`)", R"(`"constant"`, `"sine"` (not with `[walls]`))", "",
+          "constant acceleration, or Kolmogorov flow"},
+         {"value", "array of `run.dimensions` numbers", R"(required with `"constant"`)", "finite",
+          "acceleration", "force per unit mass on every fluid particle"},
+         {"amplitude", "number", R"(required with `"sine"`)", "finite", "acceleration",
+          "a_x = amplitude sin(2π y / L_y)"}}},
+       {"walls",
+        {{"slip", "boolean", "`false`", "", "",
+          "specular reflection instead of no-slip bounce-back"},
+         {"virtual_particles", "boolean", "`true`", "", "",
+          "fill cells cut by a wall to the mean density (Tabatabaei (2008) eq 3.14)"},
+         {"virtual_flow", "string", R"(`"rest"`)",
+          R"(`"rest"`, `"mirror"` (`"mirror"` only with no-slip walls))", "",
+          "mean velocity of the virtual particles: at rest with the wall, or the mirror image of "
+          "the flow next to it (slip below 1 %)"}}},
+       {"thermostat",
+        {{"kind", "string", "required",
+          R"(`"layers"` (eq 3.53-3.54), `"monte-carlo"` (eq 3.55-3.57))", "",
+          "rescale relative velocities per layer of cells across the channel, or per cell with a "
+          "Monte Carlo step"},
+         {"gamma", "number", "0.1", R"(0 < gamma <= 1; only with `"monte-carlo"`)", "",
+          "step of the Monte Carlo scaling factor 1 + ε, ε uniform in [0, gamma]"}}},
+       {"colloids",
+        {{"radius", "number", "required", "> 0", "cells", "mean radius r_c"},
+         {"radius_sd", "number", "0", "0 to 0.2 radius", "cells",
+          "standard deviation of the radii (Gaussian truncated at ±3 sd)"},
+         {"mass", "number", "fluid mass density × own volume", "> 0", "particle masses",
+          "mass of each colloid"},
+         {"count", "integer", R"(required with `"lattice"` and `"random"`)",
+          "1 to 1000000; a lattice row must fit along x; < 90 % of the box volume", "",
+          "number of colloids"},
+         {"placement", "string", R"(`"lattice"`)",
+          R"(`"lattice"` (a row along x), `"random"` (no overlap), `"list"`, `"file"`, `"packing"` (a dense packing grown from points, below; only with `coupling = "no-slip"`))",
+          "", "how colloids are placed"},
+         {"positions", "array of `[x, y(, z)]`", R"(required with `"list"`)",
+          "inside the box, off the walls, cores not overlapping", "cells", "given centres"},
+         {"positions_file", "string", R"(required with `"file"`)",
+          "a text file (relative to the scene), one `x y [z]` per line, `#` comments", "",
+          "given centres from a file"},
+         {"gravity", "array of `run.dimensions` numbers", "`[0, 0(, 0)]`", "finite", "acceleration",
+          "field g: each colloid feels M g, the fluid none"},
+         {"md_substeps", "integer", "15", "1 to 10000", "",
+          "velocity-Verlet steps per collision step (τ_MD = dt / md_substeps)"},
+         {"epsilon", "number", "1", "> 0", "kT", "strength of all colloid potentials"},
+         {"wall_sigma", "number", "2 r_a",
+          "> 0 with cut-off 1.0631 wall_sigma < L_y / 2; only with `[walls]`", "cells",
+          "σ_w of the colloid-wall potential"},
+         {"wall_q", "number", "1", "> 0", "", "q of the wall potential (eq 3.35)"},
+         {"coupling", "string", R"(`"md"`)", R"(`"md"`, `"no-slip"`)", "",
+          "how colloids meet the fluid (above)"},
+         {"contacts", "string", R"(`"none"`)",
+          R"(`"none"`, `"hard"`, `"spring"` (both only with `"no-slip"`))", "",
+          "colloid-colloid and colloid-wall contacts: none, event-driven rough hard spheres "
+          "(Kanehl (thesis) §4.2.2: earliest collision first, normal and tangential contact "
+          "velocity reversed; walls are rough and at rest), or linear springs with Coulomb "
+          "friction and contact history (Kanehl (thesis) §4.2.3, `[colloids.spring]` below)"},
+         {"kind",
+          "array of tables `[[colloids.kind]]`",
+          "none (one kind from `radius`, `count`, `mass`)",
+          R"(one table per kind with `radius`, `count` and optional `mass` (below); not with `colloids.radius`, `radius_sd`, `mass`, `count`; placement `"lattice"`, `"random"` or `"packing"`)",
+          "",
+          "several colloid kinds (bidisperse, polydisperse)",
+          {{"radius", "number", "required", "> 0", "cells", "radius of this kind"},
+           {"count", "integer", "required", "1 to 1000000 (all kinds together too)", "",
+            R"(number of colloids of this kind (with `"packing"`: its share in the number ratio, scaled to the packing fraction); ids are given kind by kind in the order of the tables)"},
+           {"mass", "number", "fluid mass density × own volume", "> 0", "particle masses",
+            "mass of each colloid of this kind"}}},
+         {"spring",
+          "table `[colloids.spring]`",
+          "the defaults below",
+          R"(only with `contacts = "spring"`)",
+          "",
+          "constants of the spring contacts: F_n = −k_n δ_n, tangential spring F_t = −k_t ξ kept "
+          "per contact while it lasts (turned into the tangent plane and stretched by the "
+          "tangential contact velocity each sub-step), the magnitude of F_t at most μ times that "
+          "of F_n (beyond: sliding); torques r n × F_t on both bodies; walls at rest. No damping: "
+          "Kanehl (thesis) has none (σ of its Table 6.1 is the pressure gradient), the fluid damps "
+          "collisions",
+          {{"kn", "number", "2500", "> 0", "kT / a²",
+            "normal spring constant k_n (Kanehl (thesis) Table 6.1)"},
+           {"kt", "number", "2500", ">= 0", "kT / a²",
+            "tangential spring constant k_t (Kanehl (thesis) Table 6.1)"},
+           {"mu_cc", R"(number or `"inf"`)", "1",
+            R"(>= 0, or `"inf"` (also the TOML float `inf`): never slides)", "",
+            "colloid-colloid friction coefficient μ (Kanehl (thesis) §6.2.1: μ = 1)"},
+           {"mu_cw", R"(number or `"inf"`)", "1", R"(>= 0, or `"inf"`)", "",
+            "colloid-wall friction coefficient μ_cw"},
+           {"substeps", "integer", "10",
+            "1 to 10000, with ω h ≤ 0.25 for the stiffest contact of the lightest colloids (ω² = "
+            "max(k_n, 3 k_t (2D) or 3.5 k_t (3D)) / (M/2), h = dt / substeps)",
+            "", "velocity-Verlet sub-steps of the contacts per MPCD step"}}},
+         {"max_lag", "integer", "1000", "a multiple of `correlation_every`, at most 100000 of them",
+          "steps", "colloid VACF, D(t), MSD and angular VACF for lags 0..max_lag"},
+         {"correlation_every", "integer", "1", "1 to 1000000", "steps",
+          "colloid velocities, positions and angular velocities are sampled every this many steps "
+          "for the correlations"},
+         {"kde_width", "number", "0.25", "> 0", "cells",
+          "half-width ε of the Epanechnikov kernel of `density_kde` (Kanehl (thesis) eq 5.2)"},
+         {"statistics_from", "integer", "0", ">= 0", "step",
+          "the colloid statistics (correlations, `density_kde`) start at this step (skip the "
+          "transient)"},
+         {"packing_fraction", "number", R"(required with `"packing"`)",
+          R"(> 0 and at most 0.84 (2D) or 0.64 (3D), random close packing; only with `"packing"`)",
+          "",
+          "target area (volume) fraction of the colloids in the box; it sets the number of "
+          "colloids: one kind round(φ V / v(r)) (`count` and `radius_sd` refused), several kinds "
+          "their `count`s (read as the number ratio) times one common factor, each rounded"}}}},
+      {{"temperature", "`/observables/temperature/value [T]`",
+        "kT of the fluid relative to the cell means", always},
+       {"momentum", "`/observables/momentum/value [T][d]`", "total momentum, fluid + colloids",
+        always},
+       {"velocity_profile", "`/observables/velocity_profile/value [T][bins][d]`, `bins [bins]`",
+        "mean velocity binned across y", always},
+       {"density_profile", "`/observables/density_profile/value [T][bins]`, `bins [bins]`",
+        "number density binned across y", always},
+       {"viscosity", "`/observables/viscosity/value [T]`",
+        "ν fitted to the Poiseuille profile (needs `[walls]` and a non-zero x force)"},
+       {"energy", "`/observables/energy/value [T]`", "total energy, with the colloid potentials"},
+       {"settling_velocity", "`/observables/settling_velocity/value [T][d]`",
+        "mean colloid velocity in the co-moving frame (eq 4.8-4.10; needs `[colloids]`)", nullptr,
+        true},
+       {"colloid_positions",
+        "`/observables/colloid_positions/value [T][N_c][d]`, `bins [N_c]` (colloid ids)",
+        "colloid centres (needs `[colloids]`)", nullptr, true},
+       {"colloid_vacf",
+        "`/observables/colloid_vacf/{value, lags, error} [max_lag/correlation_every+1]`, "
+        "`value_by_kind`, `error_by_kind` (`[kinds][lags]` row-major, stored flat), `kinds`, "
+        "`samples`",
+        "C(τ) = ⟨v(t)·v(t+τ)⟩ (Kanehl (thesis) eq 4.50) over all colloids and per kind; `lags` τ "
+        "in time units",
+        nullptr, true},
+       {"colloid_diffusion",
+        "`/observables/colloid_diffusion/{value, lags, error}`, `value_by_kind`, `error_by_kind`",
+        "D(t) = (1/d) ∫₀ᵗ C(τ) dτ (eq 4.51, trapezoid rule)", nullptr, true},
+       {"colloid_msd",
+        "`/observables/colloid_msd/{value, lags, error}`, `value_by_kind`, `error_by_kind`",
+        "⟨|r(t+τ) − r(t)|²⟩ of the unwrapped centres", nullptr, true},
+       {"colloid_angular_vacf",
+        "`/observables/colloid_angular_vacf/{value, lags, error}`, `value_by_kind`, "
+        "`error_by_kind`, `integral`, `integral_error`, `integral_by_kind`",
+        "⟨ω(t)·ω(t+τ)⟩ and D_rot(t) = (1/d_rot) ∫₀ᵗ (d_rot = 1 in 2D, 3 in 3D)", nullptr, true},
+       {"density_kde",
+        "`/observables/density_kde/{value, error} [kinds][bins]`, `bins [bins]` (y), `width`, "
+        "`counts [kinds]`, `samples`",
+        "per-kind kernel density profile across y, eq 5.2 with ε = `colloids.kde_width`, "
+        "normalised to 1 per kind, time average of samples every `output.every` steps",
+        nullptr, true}}};
+  return schema;
+}
+
+} // namespace narrows::scene::detail
