@@ -1,6 +1,8 @@
 // The validated scene: plain structs filled from a TOML file by scene/parse.
 #pragma once
 
+#include "narrows/models/three_state/model.hpp"
+
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -156,40 +158,12 @@ struct Output {
   std::int64_t trajectory_subsample = 1; // frames hold the particles whose id is a multiple of this
 };
 
-// Engine "kmc": the three-state stochastic lattice gas of seed 000 ch.2 (DESIGN.md, "Scene keys
-// of the lattice engines"). States 0/1/2; pair codes c = 3 n_k + n_(k+1) (the seed's label
-// i = c + 1). All rates are zero unless given.
-enum class KmcBoundary { open, periodic };
-
-// Presets of seed 000 ch.2: family 1 (charge conserving, eq 2.5; states A = 0, vacancy = 1,
-// B = 2) and family 2 (ASEP with binary internal state, eq 2.79; vacancy = 0, A = 1, B = 2).
-enum class KmcPreset { none, family1, family2 };
-enum class KmcInitial { product, shock };
-
-struct Kmc {
-  std::int64_t length = 0;
-  KmcBoundary boundary = KmcBoundary::open;
-  std::array<double, 81> rates{};        // [from pair code * 9 + to pair code]
-  std::array<double, 9> left{}, right{}; // site 1 / site L: [from state * 3 + to state]
-  KmcInitial initial_kind = KmcInitial::product;
-  std::array<double, 3> initial{1.0, 0.0, 0.0}; // product measure (shock: left of the shock)
-  std::array<double, 3> initial_right{};        // shock: P(n) right of the shock
-  std::int64_t shock_site = 0;                  // shock: sites 1..shock_site use `initial`
-  std::array<int, 3> charge{0, 1, 2};           // C(n) counted by the current (default C = n)
-  double time = 0.0;                            // observed simulated time after warm-up
-  double warmup = 0.0;
-  std::int64_t replicas = 1;
-  std::int64_t samples = 0; // shock position samples over the observed time (0 = none)
-
-  KmcPreset preset = KmcPreset::none;
-  double c = 0.0;                      // family 2: ratio of B to A (eq 2.81)
-  std::vector<double> fugacity;        // preset: z, or [z_left, z_right] for a shock
-  bool boundary_from_fugacity = false; // preset: left/right rates made to fit the fugacities
-  double boundary_coupling = 1.0;      // base rate of those generated boundary rates
-  // Refuse a scene whose expected tries per replica (slots x largest total rate x (warmup +
-  // time)) exceed this: such a run would not end in a useful time. Raise it to run anyway.
-  double max_tries = 1e12;
-};
+// Engine "kmc": the three-state lattice gas of Tabatabaei (2008) ch.2
+// (models/three_state/model.hpp).
+using KmcBoundary = three_state::Boundary;
+using KmcPreset = three_state::Preset;
+using KmcInitial = three_state::Initial;
+using Kmc = three_state::Model;
 
 // Engine "lgca": FHP lattice gases on the triangular lattice and the 1D d'Humieres model (seed
 // 002; DESIGN.md, "Scene keys of the lattice engines"). Lattice units: spacing 1, step 1.

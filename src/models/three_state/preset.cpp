@@ -10,8 +10,6 @@ namespace narrows::three_state {
 
 namespace {
 
-using scene::KmcPreset;
-
 // Tabatabaei's w_ij (i target label, j initial label, label = pair code + 1).
 struct SeedRates {
   const std::array<double, 81> &r;
@@ -35,7 +33,7 @@ std::string fmt2(const char *format, double a, double b) {
 }
 
 // Scale of the rates, for deciding whether a residual is round-off.
-double rate_scale(const scene::Kmc &m) {
+double rate_scale(const Model &m) {
   double s = 0.0;
   for (double x : m.rates)
     s = std::max(s, std::abs(x));
@@ -88,24 +86,24 @@ double family1_ratio(const std::array<double, 81> &rates) {
   return 1.0;
 }
 
-std::array<double, 3> preset_marginal(KmcPreset preset, double ratio, double z) {
-  std::array<double, 3> p = preset == KmcPreset::family1 ? std::array{1.0, z, ratio * z * z}
-                                                         : std::array{1.0, z, ratio * z};
+std::array<double, 3> preset_marginal(Preset preset, double ratio, double z) {
+  std::array<double, 3> p =
+      preset == Preset::family1 ? std::array{1.0, z, ratio * z * z} : std::array{1.0, z, ratio * z};
   const double nu = p[0] + p[1] + p[2];
   for (double &x : p)
     x /= nu;
   return p;
 }
 
-std::array<int, 3> preset_charge(KmcPreset preset) {
-  if (preset == KmcPreset::family1)
+std::array<int, 3> preset_charge(Preset preset) {
+  if (preset == Preset::family1)
     return {1, 0, -1};
-  if (preset == KmcPreset::family2)
+  if (preset == Preset::family2)
     return {0, 1, 1};
   return {0, 1, 2};
 }
 
-int vacancy_state(KmcPreset preset) { return preset == KmcPreset::family1 ? 1 : 0; }
+int vacancy_state(Preset preset) { return preset == Preset::family1 ? 1 : 0; }
 
 BulkFit bulk_fit(const std::array<double, 81> &rates, const std::array<double, 3> &p, int vacancy) {
   // g = G (p x p) on the 9 pair states.
@@ -192,12 +190,12 @@ std::array<double, 9> boundary_rates_for(const std::array<double, 3> &p,
   return w;
 }
 
-void apply_preset(scene::Kmc &model, bool keep_charge, bool initial_given) {
-  if (model.preset == KmcPreset::none)
+void apply_preset(Model &model, bool keep_charge, bool initial_given) {
+  if (model.preset == Preset::none)
     return;
   if (!keep_charge)
     model.charge = preset_charge(model.preset);
-  const double ratio = model.preset == KmcPreset::family1 ? family1_ratio(model.rates) : model.c;
+  const double ratio = model.preset == Preset::family1 ? family1_ratio(model.rates) : model.c;
   const int vac = vacancy_state(model.preset);
   if (model.fugacity.empty())
     return;
@@ -225,15 +223,15 @@ double family1_rho_star(double sigma, double r) {
   return b > 0.0 ? 2.0 * (-c) / (b + disc) : (-b + disc) / (2.0 * a);
 }
 
-double hydrodynamic_flux(const scene::Kmc &m, double density) {
+double hydrodynamic_flux(const Model &m, double density) {
   const SeedRates w{m.rates};
-  if (m.preset == KmcPreset::family1) {
+  if (m.preset == Preset::family1) {
     const double sigma = density;
     const double rho = family1_rho_star(sigma, family1_ratio(m.rates));
     return 0.5 * (w(4, 2) - w(2, 4)) * (rho + sigma) * (1.0 - sigma) +
            0.5 * (w(8, 6) - w(6, 8)) * (rho - sigma) * (1.0 + sigma);
   }
-  if (m.preset == KmcPreset::family2) {
+  if (m.preset == Preset::family2) {
     const double c = m.c, rho = density;
     return (w(2, 4) - w(4, 2) + c * (w(3, 7) - w(7, 3)) + 2.0 * c * (w(2, 7) - w(4, 3))) /
            (1.0 + c) * rho * (1.0 - rho);
@@ -241,10 +239,10 @@ double hydrodynamic_flux(const scene::Kmc &m, double density) {
   return 0.0;
 }
 
-PresetReport analyse(const scene::Kmc &m) {
+PresetReport analyse(const Model &m) {
   PresetReport rep;
   rep.preset = m.preset;
-  if (m.preset == KmcPreset::none)
+  if (m.preset == Preset::none)
     return rep;
   const SeedRates w{m.rates};
   const double scale = rate_scale(m);
@@ -254,7 +252,7 @@ PresetReport analyse(const scene::Kmc &m) {
     if (!(std::abs(value) <= tol))
       rep.warnings.push_back(what + " does not hold: residual " + fmt("%.6g", value));
   };
-  const bool f1 = m.preset == KmcPreset::family1;
+  const bool f1 = m.preset == Preset::family1;
   const int vac = vacancy_state(m.preset);
 
   if (f1) {
@@ -332,7 +330,7 @@ PresetReport analyse(const scene::Kmc &m) {
     check("product measure of z" + side + " = " + fmt("%g", z) +
               " stationary in the bulk (eq 2.30/2.92, max remainder)",
           fit.residual);
-    if (m.boundary == scene::KmcBoundary::open) {
+    if (m.boundary == Boundary::open) {
       if (i == 0)
         check("left boundary rates fit z" + side + " (eq " + (f1 ? "2.38-2.39" : "2.95") + ")",
               boundary_residual(m.left, b.p, fit.d, true));

@@ -13,7 +13,7 @@
 // The residuals are the least-squares remainders of these equations.
 #pragma once
 
-#include "narrows/scene/scene.hpp"
+#include "narrows/models/three_state/model.hpp"
 
 #include <array>
 #include <string>
@@ -38,7 +38,7 @@ struct Residual {
 };
 
 struct PresetReport {
-  scene::KmcPreset preset = scene::KmcPreset::none;
+  Preset preset = Preset::none;
   double ratio = 0.0;       // r (family 1, eq 2.35) or c (family 2)
   double f = 0.0, fp = 0.0; // F, F' (family 1, eq 2.33-2.34) or E, E' (family 2, eq 2.93)
   std::vector<Branch> branches;
@@ -59,13 +59,13 @@ std::array<double, 81> family2_rates(const std::array<double, 6> &h, const std::
 double family1_ratio(const std::array<double, 81> &rates);
 
 // The product measure of fugacity z for a preset (ratio = r or c).
-std::array<double, 3> preset_marginal(scene::KmcPreset preset, double ratio, double z);
+std::array<double, 3> preset_marginal(Preset preset, double ratio, double z);
 
 // The conserved charge a preset counts: family 1 C = 1 - n, family 2 C = particle number.
-std::array<int, 3> preset_charge(scene::KmcPreset preset);
+std::array<int, 3> preset_charge(Preset preset);
 
 // State that carries no charge (the vacancy): 1 in family 1, 0 in family 2.
-int vacancy_state(scene::KmcPreset preset);
+int vacancy_state(Preset preset);
 
 struct BulkFit {
   std::array<double, 3> d{}; // d(vacancy) = 0
@@ -85,16 +85,16 @@ std::array<double, 9> boundary_rates_for(const std::array<double, 3> &p,
 
 // Fills what a preset derives into the model: charge (unless `keep_charge`), generated
 // boundary rates, initial probabilities from the fugacities.
-void apply_preset(scene::Kmc &model, bool keep_charge, bool initial_given);
+void apply_preset(Model &model, bool keep_charge, bool initial_given);
 
 // The hydrodynamic flux of a preset as a function of its conserved density: family 1 the
 // charge current eq 2.48 at sigma with rho = rho*(sigma) of eq 2.59 (eq 2.60); family 2 the
 // particle current eq 2.126 at rho. `density` is sigma in [-1, 1] or rho in [0, 1].
-double hydrodynamic_flux(const scene::Kmc &model, double density);
+double hydrodynamic_flux(const Model &model, double density);
 // eq 2.59 solved for rho* in [|sigma|, 1].
 double family1_rho_star(double sigma, double r);
 
 // Everything the dissertation derives for the model's preset, checked.
-PresetReport analyse(const scene::Kmc &model);
+PresetReport analyse(const Model &model);
 
 } // namespace narrows::three_state
