@@ -1,4 +1,4 @@
-// Dense packings grown from points with the spring contacts and no fluid (seed 001 §6.1).
+// Dense packings grown from points with the spring contacts and no fluid (Kanehl (thesis) §6.1).
 #include "narrows/colloids/packing.hpp"
 
 #include "narrows/colloids/colloid_pairs.hpp"

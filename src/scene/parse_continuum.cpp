@@ -486,11 +486,12 @@ void parse_conservation_law(const Checker &c, const toml::value *sec, Continuum 
        {std::pair{"c", &out.c}, std::pair{"c_prime", &out.c_prime}, std::pair{"v_cm", &out.v_cm}})
     if (const toml::value *v = find(sec, name)) {
       if (out.flux != ContinuumFlux::colloid_chain)
-        c.fail(std::string("continuum.") + name,
-               std::string("continuum.") + name +
-                   " is a parameter of the colloid-chain flux (seed 000 eq 5.3); allowed with "
-                   "continuum.flux = \"" +
-                   fluxes[static_cast<std::size_t>(out.flux)] + "\": none");
+        c.fail(std::string("continuum.") + name, std::string("continuum.") + name +
+                                                     " is a parameter of the colloid-chain flux "
+                                                     "(Tabatabaei (2008) eq 5.3); allowed with "
+                                                     "continuum.flux = \"" +
+                                                     fluxes[static_cast<std::size_t>(out.flux)] +
+                                                     "\": none");
       *field = c.number(*v, std::string("continuum.") + name, "a finite number", finite);
     }
 

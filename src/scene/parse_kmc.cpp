@@ -24,7 +24,7 @@ const std::string rate_allowed = "a rate >= 0";
 
 void parse_bulk_rates(const Checker &c, const toml::value &v, Kmc &out, const std::string &name) {
   const std::string allowed_keys =
-      "pair transitions \"ab->cd\" with states 0, 1, 2 (e.g. \"10->01\") or the seed's labels "
+      "pair transitions \"ab->cd\" with states 0, 1, 2 (e.g. \"10->01\") or Tabatabaei's labels "
       "w_ij (\"w24\", i = 3 n'_k + n'_(k+1) + 1 target, j initial)";
   if (!v.is_table())
     c.wrong_type(name, v, "a table { \"10->01\" = 1.0, ... } of " + allowed_keys);
@@ -51,7 +51,7 @@ void parse_site_rates(const Checker &c, const toml::value &v, bool left, Kmc &ou
   const std::string name = left ? "kmc.left" : "kmc.right";
   const std::string allowed_keys =
       std::string("state changes of site ") + (left ? "1" : "L") +
-      " \"a->b\" with states 0, 1, 2 (e.g. \"0->1\") or the seed's names " +
+      " \"a->b\" with states 0, 1, 2 (e.g. \"0->1\") or Tabatabaei's names " +
       (left ? "alpha1-3, gamma1-3 (eq 2.2)" : "delta1-3, beta1-3 (eq 2.3)");
   if (!v.is_table())
     c.wrong_type(name, v, "a table { \"0->1\" = 0.3, ... } of " + allowed_keys);

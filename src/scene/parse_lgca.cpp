@@ -232,7 +232,7 @@ LgcaColloid parse_colloid(const toml::value &sec, const Lgca &lattice, const Che
   if (const toml::value *v = find(&sec, "held")) {
     if (!v->is_boolean())
       c.wrong_type("colloid.held", *v,
-                   "true (held in place, seed 002 §4.3) or false (a moving disc)");
+                   "true (held in place, van der Hoef & Frenkel §4.3) or false (a moving disc)");
     out.held = v->as_boolean();
   }
   // 1/sqrt(3), the covering radius of the lattice: a smaller moving disc covers no site at

@@ -84,7 +84,7 @@ double Colloids::mass_of_id(int dim, double density, std::uint64_t id, double r)
 double Colloids::mass_of(int dim, double density, double r) const {
   if (mass > 0.0)
     return mass;
-  // Mass density of the colloid equal to the fluid's (seed 000 table 3.1: M = pi r^2 n).
+  // Mass density of the colloid equal to the fluid's (Tabatabaei (2008) table 3.1: M = pi r^2 n).
   const double pi = std::numbers::pi;
   return density * (dim == 2 ? pi * r * r : 4.0 / 3.0 * pi * r * r * r);
 }

@@ -1,5 +1,5 @@
-// The colloid species as a structure of arrays (seed 000 §3.4): position, velocity, angular
-// velocity and orientation (no-slip colloids spin), radius, mass, global id.
+// The colloid species as a structure of arrays (Tabatabaei (2008) §3.4): position, velocity,
+// angular velocity and orientation (no-slip colloids spin), radius, mass, global id.
 #pragma once
 
 #include "narrows/species/table.hpp"

@@ -1,5 +1,5 @@
-// Dense packings of colloids as in seed 001 §6.1: the colloids start as points placed at random
-// in the box, grow in steps to their radii, and after each step the linear spring contacts
+// Dense packings of colloids as in Kanehl (thesis) §6.1: the colloids start as points placed at
+// random in the box, grow in steps to their radii, and after each step the linear spring contacts
 // (springs.hpp, the same kernel and pair search as the run) push the overlaps apart, without
 // fluid. The fluid is filled in afterwards by the usual initialisation (it skips every point
 // inside a colloid, placement.hpp ColloidCover).

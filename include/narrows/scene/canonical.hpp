@@ -1,5 +1,5 @@
 // The canonical form of a scene and the one comparison a restart makes with it: a checkpoint
-// continues only the scene it was written by (DESIGN.md, "Scenes").
+// continues only the scene it was written by (docs/architecture.md, "Scenes").
 #pragma once
 
 #include <optional>

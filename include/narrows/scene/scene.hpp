@@ -42,8 +42,8 @@ struct BodyForce {
   double amplitude = 0.0; // sine: a_x = amplitude * sin(2 pi y / L_y) (Kolmogorov flow)
 };
 
-// Mean velocity of the virtual wall particles: at rest with the wall (seed 000 eq 3.14), or the
-// mirror image of the flow next to the wall (its antisymmetric continuation, no-slip walls).
+// Mean velocity of the virtual wall particles: at rest with the wall (Tabatabaei (2008) eq 3.14),
+// or the mirror image of the flow next to the wall (its antisymmetric continuation, no-slip walls).
 enum class VirtualFlow { rest, mirror };
 
 // Planar walls at y = 0 and y = L_y (2D channel; 3D slit with periodic z).
@@ -53,7 +53,7 @@ struct Walls {
   VirtualFlow virtual_flow = VirtualFlow::rest;
 };
 
-// MD-coupled colloids of seed 000 §3.4 (species "colloids"). Radii: `radius`, or with
+// MD-coupled colloids of Tabatabaei (2008) §3.4 (species "colloids"). Radii: `radius`, or with
 // radius_sd > 0 each drawn from a Gaussian of that mean and standard deviation truncated at
 // +-3 sd (colloids/placement.hpp). Potentials, with each colloid's own radius r_a:
 // colloid-fluid WCA (sigma_cf = r_a), colloid-colloid 48-24 (sigma_cc = r_a + r_b, 2 r_c for
@@ -61,18 +61,19 @@ struct Walls {
 // 000 (an acceleration: the force on a colloid is its mass times g, eq 4.4 without buoyancy, as the
 // fluid feels no gravity).
 // packing: grown from points with frictionless springs and no fluid to colloids.packing_fraction
-// (seed 001 §6.1, colloids/packing.hpp); the counts follow from that fraction.
+// (Kanehl (thesis) §6.1, colloids/packing.hpp); the counts follow from that fraction.
 enum class ColloidPlacement { lattice, list, random, packing };
-// How colloids meet the fluid: "md" (seed 000 §3.4: WCA forces, velocity-Verlet sub-steps, slip)
-// or "no-slip" (seed 001 §4.2.1: bounce-back at the surface with the rigid-body velocity, ghost
-// particles inside in the collision; colloids rotate). Contacts between colloids and with the
-// walls: "none", "hard" (event-driven rough hard spheres, seed 001 §4.2.2) or "spring" (linear
-// springs with Coulomb friction and contact history, seed 001 §4.2.3; [colloids.spring]).
+// How colloids meet the fluid: "md" (Tabatabaei (2008) §3.4: WCA forces, velocity-Verlet sub-steps,
+// slip) or "no-slip" (Kanehl (thesis) §4.2.1: bounce-back at the surface with the rigid-body
+// velocity, ghost particles inside in the collision; colloids rotate). Contacts between colloids
+// and with the walls: "none", "hard" (event-driven rough hard spheres, Kanehl (thesis) §4.2.2) or
+// "spring" (linear springs with Coulomb friction and contact history, Kanehl (thesis) §4.2.3;
+// [colloids.spring]).
 enum class ColloidCoupling { md, no_slip };
 enum class ColloidContacts { none, hard, spring };
 
-// [colloids.spring]: the constants of the spring contacts (seed 001 Table 6.1: kn = kt = 2500;
-// §6.2.1: mu = 1). mu = infinity ("inf"): never slides. No damping: the seed has none.
+// [colloids.spring]: the constants of the spring contacts (Kanehl (thesis) Table 6.1: kn = kt =
+// 2500; §6.2.1: mu = 1). mu = infinity ("inf"): never slides. No damping: the thesis has none.
 struct ColloidSprings {
   double kn = 2500.0, kt = 2500.0;
   double mu_cc = 1.0, mu_cw = 1.0;
@@ -104,7 +105,7 @@ struct Colloids {
   std::array<double, 3> gravity{0.0, 0.0, 0.0}; // acceleration g; force M g
   int md_substeps = 15;                         // tau_MD = fluid.dt / md_substeps
   double epsilon = 1.0;                         // eps_cf = eps_cc = eps_w (kT units)
-  double wall_sigma = 0.0; // sigma_w of the wall potential, 0: 2 r_a (seed 000 table 3.1)
+  double wall_sigma = 0.0; // sigma_w of the wall potential, 0: 2 r_a (Tabatabaei (2008) table 3.1)
   double wall_q = 1.0;     // q of eq 3.35
   // Several kinds ([[colloids.kind]]; empty: the one kind of radius, radius_sd, mass, count).
   // Ids are given kind by kind: kind 0 has ids 0..count_0-1, kind 1 the next count_1, ...;
@@ -134,8 +135,8 @@ struct Colloids {
   double effective_wall_sigma() const { return wall_sigma_of(radius); }
 };
 
-// Thermostats of seed 000 §3.4: "layers" rescales velocities relative to the cell means per layer
-// of cells across the channel (eq 3.53-3.54) to fluid.kT after every collision.
+// Thermostats of Tabatabaei (2008) §3.4: "layers" rescales velocities relative to the cell means
+// per layer of cells across the channel (eq 3.53-3.54) to fluid.kT after every collision.
 // "monte-carlo" scales each cell's relative velocities by a random factor accepted with the
 // Boltzmann weight (eq 3.55-3.57), step size `gamma`.
 enum class ThermostatKind { layers, monte_carlo };
@@ -166,10 +167,10 @@ using KmcInitial = three_state::Initial;
 using Kmc = three_state::Model;
 
 // Engine "lgca": FHP lattice gases on the triangular lattice and the 1D d'Humieres model (seed
-// 002; DESIGN.md, "Scene keys of the lattice engines"). Lattice units: spacing 1, step 1.
+// 002; docs/scenes.md). Lattice units: spacing 1, step 1.
 enum class LgcaModel { fhp_i, fhp_ii, fhp_iii, fhp_saturated, dhumieres_1d };
 // zero_momentum (1D model): exactly N = round(L b d) particles and total momentum 0, the
-// {N, P = 0} ensemble of seed 002 §3.4.
+// {N, P = 0} ensemble of van der Hoef & Frenkel §3.4.
 enum class LgcaInitial { equilibrium, shear_wave, zero_momentum };
 
 // A solid disc of sites (bounce-back) at (x, y) in lattice coordinates (row y at y sqrt(3)/2).
@@ -210,10 +211,10 @@ struct LgcaColloid {
 // Engine "continuum", model "conservation-law": rho_t + J(rho)_x = D rho_xx in 1D by finite
 // volumes (continuum/). The lattice-gas fluxes are those of the kmc presets (kmc/preset.hpp):
 // `lattice_gas` holds their rates (tasep and family2: preset family2, tasep with c = 0).
-// Model "jamming": phi_t + (phi v)_x = D phi_xx, v_t + v v_x = sigma - xi(phi) v (seed 001 eq
-// 6.2-6.6, xi = sigma / v_ss with v_ss fitted in Table 6.2), periodic, pseudo-spectral.
-// Model "segregation": the area (volume) fractions phi_i(y, t) of one or two colloid kinds across
-// a channel y in [-w, w] in Poiseuille flow (seed 001 eq 5.13-5.30), finite volumes, RK4.
+// Model "jamming": phi_t + (phi v)_x = D phi_xx, v_t + v v_x = sigma - xi(phi) v (Kanehl (thesis)
+// eq 6.2-6.6, xi = sigma / v_ss with v_ss fitted in Table 6.2), periodic, pseudo-spectral. Model
+// "segregation": the area (volume) fractions phi_i(y, t) of one or two colloid kinds across a
+// channel y in [-w, w] in Poiseuille flow (Kanehl (thesis) eq 5.13-5.30), finite volumes, RK4.
 enum class ContinuumModel { conservation_law, jamming, segregation };
 enum class JammingFit { mu_infinity, mu_1, mu_half, mu_0 }; // the columns of Table 6.2
 enum class ContinuumFlux { burgers, tasep, family1, family2, colloid_chain };
@@ -229,7 +230,8 @@ struct SegregationKind {
   double diffusivity = 0.0; // single-colloid D_0^i
 };
 
-// The segregation model's parameters (seed 001 ch.5); the channel is [-half_width, half_width].
+// The segregation model's parameters (Kanehl (thesis) ch.5); the channel is [-half_width,
+// half_width].
 struct Segregation {
   int dimensions = 2; // d of eq 5.13 and the structure factor (5.19-5.20 or 5.21-5.22)
   double half_width = 0.0;
