@@ -4,8 +4,8 @@
 #include "narrows/colloids/placement.hpp"
 #include "narrows/core/error.hpp"
 #include "narrows/engines/mpcd/invariants.hpp"
-#include "narrows/engines/mpcd/kernels/transport_theory.hpp"
 #include "narrows/engines/mpcd/simulation.hpp"
+#include "narrows/engines/mpcd/transport_theory.hpp"
 
 #include <unistd.h>
 
