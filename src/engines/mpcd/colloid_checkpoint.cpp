@@ -1,8 +1,8 @@
 // Writing and reading the colloid species of a checkpoint (all colloids, in id order).
 #include "narrows/engines/mpcd/colloid_checkpoint.hpp"
 
-#include "narrows/colloids/placement.hpp"
 #include "narrows/core/error.hpp"
+#include "narrows/engines/mpcd/colloid_placement.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -109,7 +109,7 @@ colloids::Colloids read_colloids(const std::string &path, const scene::Colloids 
   colloids::Colloids c;
   c.dim = dim;
   c.resize(static_cast<std::size_t>(total));
-  colloids::set_radii_and_masses(c, spec, density, seed);
+  set_radii_and_masses(c, spec, density, seed);
   // Every rank holds all rows: the same refusal everywhere, naming the first bad row.
   const auto edges = io::read_box_edges(path, "colloids", dim, comm);
   std::vector<bool> seen(static_cast<std::size_t>(total), false);
