@@ -4,7 +4,6 @@
 #include "narrows/colloids/colloid_pairs.hpp"
 #include "narrows/colloids/contact_history.hpp"
 #include "narrows/colloids/pair_geometry.hpp"
-#include "narrows/colloids/placement.hpp"
 #include "narrows/colloids/springs.hpp"
 #include "narrows/core/error.hpp"
 #include "narrows/core/fixed_point.hpp"

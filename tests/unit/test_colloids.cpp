@@ -8,6 +8,7 @@
 #include "narrows/colloids/potentials.hpp"
 #include "narrows/core/error.hpp"
 #include "narrows/core/fixed_point.hpp"
+#include "narrows/engines/mpcd/colloid_placement.hpp"
 #include "narrows/engines/mpcd/kernels/streaming.hpp"
 
 #include <gtest/gtest.h>
@@ -233,7 +234,7 @@ TEST(ColloidPlacement, RandomKeepsColloidsApartAndOffTheWalls) {
   spec.placement = scene::ColloidPlacement::random;
   mpcd::Box box = mpcd::make_periodic_box(2, {60, 12, 1});
   box.walls_y = true;
-  const Colloids c = place_colloids(spec, box, 10.0, 77);
+  const Colloids c = mpcd::place_colloids(spec, box, 10.0, 77);
   ASSERT_EQ(c.size(), 12u);
   const double min_d = repulsive_cutoff(24, 3.0), margin = wall_cutoff(3.0);
   for (std::size_t a = 0; a < c.size(); ++a) {
@@ -247,7 +248,7 @@ TEST(ColloidPlacement, RandomKeepsColloidsApartAndOffTheWalls) {
   }
   // Fluid count excludes the colloids' area: n (V - N pi r^2).
   EXPECT_EQ(
-      fluid_count_with_colloids(spec, box, 10.0, 77),
+      mpcd::fluid_count_with_colloids(spec, box, 10.0, 77),
       static_cast<std::uint64_t>(std::llround(10.0 * (720.0 - 12 * 3.14159265358979 * 2.25))));
   EXPECT_TRUE(inside_any(c, box, {c.x[0][0] + 1.0, c.x[1][0], 0.0}));
   EXPECT_FALSE(inside_any(c, box, {c.x[0][0] + 1.0, c.x[1][0] + 1.2, 0.0}));
@@ -261,10 +262,10 @@ TEST(ColloidPlacement, ListRefusesOverlappingCoresAndAllowsTouching) {
   // Touching (centres r_a + r_b = 4 apart), also across the periodic edge: accepted.
   spec.positions = {{10.0, 6.0, 0}, {14.0, 6.0, 0}, {2.0, 6.0, 0}, {38.0, 6.0, 0}};
   spec.count = 4;
-  EXPECT_EQ(place_colloids(spec, box, 10.0, 77).size(), 4u);
+  EXPECT_EQ(mpcd::place_colloids(spec, box, 10.0, 77).size(), 4u);
   const auto refused = [&](const std::string &expect) {
     try {
-      place_colloids(spec, box, 10.0, 77);
+      mpcd::place_colloids(spec, box, 10.0, 77);
     } catch (const narrows::Error &e) {
       EXPECT_NE(std::string(e.what()).find(expect), std::string::npos) << e.what();
       return true;
@@ -285,15 +286,15 @@ TEST(ColloidPlacement, ListRefusesOverlappingCoresAndAllowsTouching) {
 TEST(ColloidRadii, AreATruncatedGaussianDrawnPerColloid) {
   scene::Colloids spec;
   spec.radius = 2.0;
-  EXPECT_EQ(colloid_radius(spec, 5, 17), 2.0); // radius_sd = 0: all exactly radius
+  EXPECT_EQ(mpcd::colloid_radius(spec, 5, 17), 2.0); // radius_sd = 0: all exactly radius
   spec.radius_sd = 0.2;
   constexpr int n = 10000;
   double sum = 0.0, sum2 = 0.0, lo = 1e9, hi = -1e9;
   int differ_by_seed = 0;
   for (int i = 0; i < n; ++i) {
-    const double r = colloid_radius(spec, 5, static_cast<std::uint64_t>(i));
-    EXPECT_EQ(r, colloid_radius(spec, 5, static_cast<std::uint64_t>(i))); // a pure function
-    differ_by_seed += r != colloid_radius(spec, 6, static_cast<std::uint64_t>(i));
+    const double r = mpcd::colloid_radius(spec, 5, static_cast<std::uint64_t>(i));
+    EXPECT_EQ(r, mpcd::colloid_radius(spec, 5, static_cast<std::uint64_t>(i))); // a pure function
+    differ_by_seed += r != mpcd::colloid_radius(spec, 6, static_cast<std::uint64_t>(i));
     sum += r;
     sum2 += r * r;
     lo = std::min(lo, r);
@@ -325,13 +326,13 @@ TEST(ColloidPlacement, UnequalRadiiSetMassesDistancesAndFluidCount) {
   spec.placement = scene::ColloidPlacement::random;
   mpcd::Box box = mpcd::make_periodic_box(2, {60, 12, 1});
   box.walls_y = true;
-  const Colloids c = place_colloids(spec, box, 10.0, 77);
+  const Colloids c = mpcd::place_colloids(spec, box, 10.0, 77);
   ASSERT_EQ(c.size(), 12u);
   const double pi = 3.14159265358979323846;
   const double margin = wall_cutoff(2.0 * spec.max_radius()); // the largest wall cut-off
   double area = 0.0;
   for (std::size_t a = 0; a < c.size(); ++a) {
-    EXPECT_EQ(c.radius[a], colloid_radius(spec, 77, a));
+    EXPECT_EQ(c.radius[a], mpcd::colloid_radius(spec, 77, a));
     EXPECT_NEAR(c.mass[a], pi * c.radius[a] * c.radius[a] * 10.0, 1e-9); // own area times n
     area += pi * c.radius[a] * c.radius[a];
     EXPECT_GE(c.x[1][a], margin);
@@ -346,11 +347,11 @@ TEST(ColloidPlacement, UnequalRadiiSetMassesDistancesAndFluidCount) {
   EXPECT_GT(*std::max_element(c.radius.begin(), c.radius.end()) -
                 *std::min_element(c.radius.begin(), c.radius.end()),
             0.3);
-  EXPECT_NEAR(static_cast<double>(fluid_count_with_colloids(spec, box, 10.0, 77)),
+  EXPECT_NEAR(static_cast<double>(mpcd::fluid_count_with_colloids(spec, box, 10.0, 77)),
               10.0 * (720.0 - area), 0.5 + 1e-9);
   // A fixed mass is every colloid's mass.
   spec.mass = 33.0;
-  for (const double m : place_colloids(spec, box, 10.0, 77).mass)
+  for (const double m : mpcd::place_colloids(spec, box, 10.0, 77).mass)
     EXPECT_EQ(m, 33.0);
 }
 
@@ -498,7 +499,7 @@ TEST(ColloidPlacement, SeveralKindsRandomWithoutOverlap) {
   mpcd::Box box = mpcd::make_periodic_box(2, {120, 40, 1});
   box.walls_y = true;
   const double density = 10.0;
-  const Colloids c = place_colloids(spec, box, density, 3);
+  const Colloids c = mpcd::place_colloids(spec, box, density, 3);
   ASSERT_EQ(c.size(), 75u);
   double area = 0.0;
   for (std::size_t a = 0; a < c.size(); ++a) {
@@ -517,10 +518,10 @@ TEST(ColloidPlacement, SeveralKindsRandomWithoutOverlap) {
           << a << " " << b;
     }
   }
-  const Colloids again = place_colloids(spec, box, density, 3);
+  const Colloids again = mpcd::place_colloids(spec, box, density, 3);
   EXPECT_EQ(again.x[0], c.x[0]);
   EXPECT_EQ(again.x[1], c.x[1]);
-  EXPECT_NE(place_colloids(spec, box, density, 4).x[0], c.x[0]); // the seed decides
-  EXPECT_EQ(fluid_count_with_colloids(spec, box, density, 3),
+  EXPECT_NE(mpcd::place_colloids(spec, box, density, 4).x[0], c.x[0]); // the seed decides
+  EXPECT_EQ(mpcd::fluid_count_with_colloids(spec, box, density, 3),
             static_cast<std::uint64_t>(std::llround(density * (4800.0 - area))));
 }

@@ -1,7 +1,7 @@
 // SRD self-diffusion against D = (kT dt/2)[d n/(f(n)(1 - cos alpha)) - 1] at lambda >= 0.5.
 #include "diffusion.hpp"
 
-#include "narrows/engines/mpcd/kernels/transport_theory.hpp"
+#include "narrows/engines/mpcd/transport_theory.hpp"
 
 #include <gtest/gtest.h>
 

@@ -13,7 +13,7 @@
 // block-average error to be below half the tolerance, so a pass is not luck.
 #include "poiseuille.hpp"
 
-#include "narrows/engines/mpcd/kernels/transport_theory.hpp"
+#include "narrows/engines/mpcd/transport_theory.hpp"
 
 #include <gtest/gtest.h>
 

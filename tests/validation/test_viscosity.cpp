@@ -12,7 +12,7 @@
 //   requires (error < tolerance/2), so a pass is not luck.
 #include "kolmogorov.hpp"
 
-#include "narrows/engines/mpcd/kernels/transport_theory.hpp"
+#include "narrows/engines/mpcd/transport_theory.hpp"
 
 #include <gtest/gtest.h>
 

@@ -4,8 +4,8 @@
 // NaN, count and id set) must hold at every check, and the flow must really reach Ma ~ 0.5.
 #include "narrows/analysis/fluid_observables.hpp"
 #include "narrows/engines/mpcd/invariants.hpp"
-#include "narrows/engines/mpcd/kernels/transport_theory.hpp"
 #include "narrows/engines/mpcd/simulation.hpp"
+#include "narrows/engines/mpcd/transport_theory.hpp"
 
 #include <gtest/gtest.h>
 

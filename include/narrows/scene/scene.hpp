@@ -55,7 +55,7 @@ struct Walls {
 
 // MD-coupled colloids of Tabatabaei (2008) §3.4 (species "colloids"). Radii: `radius`, or with
 // radius_sd > 0 each drawn from a Gaussian of that mean and standard deviation truncated at
-// +-3 sd (colloids/placement.hpp). Potentials, with each colloid's own radius r_a:
+// +-3 sd (engines/mpcd/colloid_placement.hpp). Potentials, with each colloid's own radius r_a:
 // colloid-fluid WCA (sigma_cf = r_a), colloid-colloid 48-24 (sigma_cc = r_a + r_b, 2 r_c for
 // equal radii), integrated LJ wall (with [walls]); gravity is the gravitational field g_c of seed
 // 000 (an acceleration: the force on a colloid is its mass times g, eq 4.4 without buoyancy, as the

@@ -1,8 +1,8 @@
 // Writing and reading the colloid species of a checkpoint (all colloids, in id order).
 #include "narrows/engines/mpcd/colloid_checkpoint.hpp"
 
-#include "narrows/colloids/placement.hpp"
 #include "narrows/core/error.hpp"
+#include "narrows/engines/mpcd/colloid_placement.hpp"
 #include "narrows/io/species_fields.hpp"
 
 #include <algorithm>
@@ -73,7 +73,7 @@ colloids::Colloids read_colloids(const std::string &path, const scene::Colloids 
   c.dim = dim;
   c.extra = block.extra.same_fields();
   c.resize(static_cast<std::size_t>(total));
-  colloids::set_radii_and_masses(c, spec, density, seed);
+  set_radii_and_masses(c, spec, density, seed);
   const std::vector<double> scene_radius = c.radius, scene_mass = c.mass;
   const species::Table by_id = table(c);
   // Every rank holds all rows: the same refusal everywhere, naming the first bad row.

@@ -4,10 +4,10 @@
 
 #include "narrows/analysis/fluid_observables.hpp"
 #include "narrows/analysis/poiseuille.hpp"
-#include "narrows/colloids/placement.hpp"
 #include "narrows/core/error.hpp"
 #include "narrows/core/timer.hpp"
 #include "narrows/engines/mpcd/colloid_checkpoint.hpp"
+#include "narrows/engines/mpcd/colloid_placement.hpp"
 #include "narrows/engines/mpcd/colloid_statistics.hpp"
 #include "narrows/engines/mpcd/fluid_checkpoint.hpp"
 #include "narrows/engines/mpcd/info.hpp"
@@ -155,9 +155,9 @@ void check_fluid_count(const scene::Scene &scene, const io::CheckpointInfo &info
   const mpcd::Box box = mpcd::make_periodic_box(scene.run.dimensions, cells);
   // The space the colloids take holds no fluid: the count the run made (radii from the seed).
   const std::uint64_t count =
-      scene.colloids ? colloids::fluid_count_with_colloids(*scene.colloids, box,
-                                                           scene.fluid.density, scene.run.seed)
-                     : mpcd::fluid_particle_count(box, scene.fluid.density);
+      scene.colloids
+          ? fluid_count_with_colloids(*scene.colloids, box, scene.fluid.density, scene.run.seed)
+          : mpcd::fluid_particle_count(box, scene.fluid.density);
   if (count != info.fluid_particles)
     throw input_error(checkpoint + ": holds " + std::to_string(info.fluid_particles) +
                       " fluid particles, the scene has " + std::to_string(count) +

@@ -1,11 +1,11 @@
 // `narrows info` / `check`: describe the pipeline and the physical regime of a scene.
 #include "narrows/engines/mpcd/info.hpp"
 
-#include "narrows/colloids/placement.hpp"
 #include "narrows/core/error.hpp"
+#include "narrows/engines/mpcd/colloid_placement.hpp"
 #include "narrows/engines/mpcd/invariants.hpp"
-#include "narrows/engines/mpcd/kernels/transport_theory.hpp"
 #include "narrows/engines/mpcd/simulation.hpp"
+#include "narrows/engines/mpcd/transport_theory.hpp"
 
 #include <unistd.h>
 
@@ -244,7 +244,7 @@ void check_colloid_placement(const scene::Scene &s) {
   if (!s.colloids)
     return;
   try {
-    colloids::place_colloids(*s.colloids, make_box(s), s.fluid.density, s.run.seed);
+    place_colloids(*s.colloids, make_box(s), s.fluid.density, s.run.seed);
   } catch (const Error &e) {
     if (e.code() != ExitCode::bad_input)
       throw;

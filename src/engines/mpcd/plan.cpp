@@ -1,8 +1,8 @@
 // Resolving a scene into the MPCD plan, and the words of the pipeline for what it resolved.
 #include "narrows/engines/mpcd/plan.hpp"
 
-#include "narrows/colloids/placement.hpp"
 #include "narrows/colloids/potentials.hpp"
+#include "narrows/engines/mpcd/colloid_placement.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -68,7 +68,7 @@ std::string md_text(const scene::Scene &s, const MpcdPlan &p) {
   double r_lo = c.radius, r_hi = c.radius;
   if (c.radius_sd > 0.0) {
     for (std::int64_t i = 0; i < c.count; ++i) {
-      const double r = colloids::colloid_radius(c, p.seed, static_cast<std::uint64_t>(i));
+      const double r = colloid_radius(c, p.seed, static_cast<std::uint64_t>(i));
       r_lo = std::min(r_lo, r);
       r_hi = std::max(r_hi, r);
     }

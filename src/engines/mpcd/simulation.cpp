@@ -5,6 +5,7 @@
 
 #include "narrows/colloids/ownership.hpp"
 #include "narrows/colloids/placement.hpp"
+#include "narrows/engines/mpcd/colloid_placement.hpp"
 #include "narrows/engines/mpcd/kernels/cell_sort.hpp"
 #include "narrows/engines/mpcd/kernels/collision.hpp"
 #include "narrows/engines/mpcd/kernels/streaming.hpp"
@@ -31,8 +32,8 @@ mpcd::Box make_box(const scene::Scene &scene) {
 
 std::uint64_t particle_count(const scene::Scene &scene) {
   if (scene.colloids)
-    return colloids::fluid_count_with_colloids(*scene.colloids, make_box(scene),
-                                               scene.fluid.density, scene.run.seed);
+    return fluid_count_with_colloids(*scene.colloids, make_box(scene), scene.fluid.density,
+                                     scene.run.seed);
   return mpcd::fluid_particle_count(make_box(scene), scene.fluid.density);
 }
 
@@ -106,8 +107,8 @@ MpcdSimulation::MpcdSimulation(const scene::Scene &scene, MPI_Comm comm, bool al
         // packs the same colloids; a target that cannot be packed is the scene's error.
         colloids::PackingReport report;
         try {
-          colloids_ = colloids::place_colloids(*scene.colloids, box_, scene.fluid.density,
-                                               scene.run.seed, &report);
+          colloids_ =
+              place_colloids(*scene.colloids, box_, scene.fluid.density, scene.run.seed, &report);
         } catch (const Error &e) {
           if (e.code() != ExitCode::bad_input)
             throw;
@@ -115,8 +116,7 @@ MpcdSimulation::MpcdSimulation(const scene::Scene &scene, MPI_Comm comm, bool al
         }
         packing_ = report;
       } else {
-        colloids_ =
-            colloids::place_colloids(*scene.colloids, box_, scene.fluid.density, scene.run.seed);
+        colloids_ = place_colloids(*scene.colloids, box_, scene.fluid.density, scene.run.seed);
       }
       const colloids::ColloidCover cover(colloids_, box_);
       const mpcd::Exclusion exclusion{

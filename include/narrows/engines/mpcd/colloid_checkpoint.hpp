@@ -3,7 +3,7 @@
 // order (gathered from their owners: MpcdSimulation::gather_colloids), so rank 0
 // writes them and on reading every rank gets all of them back and keeps its own. Radius and mass
 // are stored so a restart restores them exactly; checkpoints from before they were stored get them
-// from the scene (colloids::set_radii_and_masses).
+// from the scene (set_radii_and_masses, colloid_placement.hpp).
 #pragma once
 
 #include "narrows/colloids/colloids.hpp"

@@ -27,7 +27,7 @@ std::vector<std::string> describe_simulation(const MpcdSimulation &sim);
 // exceeds their radius.
 void check_runnable(const scene::Scene &scene, MPI_Comm comm);
 
-// Places the scene's colloids as a run would (colloids/placement.hpp), so that `check` and a run
+// Places the scene's colloids as a run would (colloid_placement.hpp), so that `check` and a run
 // refuse what cannot be placed (overlapping given positions, no free place) before anything is
 // written: a bad-input error prefixed with the scene file.
 void check_colloid_placement(const scene::Scene &scene);

@@ -1,5 +1,5 @@
 // Transport coefficients from kinetic theory.
-#include "narrows/engines/mpcd/kernels/transport_theory.hpp"
+#include "narrows/engines/mpcd/transport_theory.hpp"
 
 #include <cmath>
 
