@@ -65,6 +65,16 @@ refused() {
   check "$name: one line on stderr" '[ "$(grep -c . "$tmp/rerr")" -eq 1 ] || { cat "$tmp/rerr"; false; }'
   check "$name: message matches '$pattern'" 'grep -q -- "$pattern" "$tmp/rerr" || { cat "$tmp/rerr"; false; }'
 }
+# Waits (up to $2 s) until the file $1 exists.
+wait_for() {
+  local i
+  for ((i = 0; i < $2 * 100; ++i)); do
+    [ -e "$1" ] && return 0
+    sleep 0.01
+  done
+  return 1
+}
+
 finish() {
   echo "$1: $pass passed, $fail failed"
   [ "$fail" -eq 0 ]

@@ -13,16 +13,6 @@ pids=()
 trap 'for p in "${pids[@]}"; do kill -9 "$p" 2> /dev/null; done; rm -rf "$tmp"' EXIT
 bound=30 # seconds from SIGTERM to exit
 
-# Waits (up to $2 s) until the file $1 exists.
-wait_for() {
-  local i
-  for ((i = 0; i < $2 * 100; ++i)); do
-    [ -e "$1" ] && return 0
-    sleep 0.01
-  done
-  return 1
-}
-
 # stopped NAME TARGET COMMAND...: runs COMMAND --out $tmp/NAME in the background, sends SIGTERM
 # once its loop runs (TARGET self: the command; one: its first child, a rank under mpirun),
 # and checks the clean stop. Sets `at` to what the stop line says it stopped after (a step, or

@@ -11,16 +11,6 @@ pids=()
 trap 'for p in "${pids[@]}"; do kill -9 "$p" 2> /dev/null; done; rm -rf "$tmp"' EXIT
 bound=20 # seconds from SIGTERM to exit
 
-# Waits (up to $2 s) until the file $1 exists.
-wait_for() {
-  local i
-  for ((i = 0; i < $2 * 100; ++i)); do
-    [ -e "$1" ] && return 0
-    sleep 0.01
-  done
-  return 1
-}
-
 # Waits up to $bound s for PID $1; kills it if it is still running. Sets code and took (s).
 wait_bounded() {
   local pid=$1 t0 i
