@@ -6,6 +6,7 @@
 
 namespace narrows::scene {
 
+// Keys: {name, type, default, allowed, unit, meaning}, the cells of their rows in docs/scenes.md.
 const SectionSpec &run_section() {
   static const SectionSpec section{
       "run",

@@ -15,6 +15,8 @@ bool segregation(const Scene &s) { return s.continuum->model == ContinuumModel::
 } // namespace
 
 const EngineSchema &continuum_schema() {
+  // Sections: {name, keys}; keys: {name, type, default, allowed, unit, meaning[, sub-keys]};
+  // observables: {name, layout, meaning, written by default when[, follows the colloids]}.
   static const EngineSchema schema{
       Engine::continuum,
       {{"continuum",

@@ -12,6 +12,8 @@ bool sampled(const Scene &s) { return s.kmc->samples > 0; }
 } // namespace
 
 const EngineSchema &kmc_schema() {
+  // Sections: {name, keys}; keys: {name, type, default, allowed, unit, meaning[, sub-keys]};
+  // observables: {name, layout, meaning, written by default when[, follows the colloids]}.
   static const EngineSchema schema{
       Engine::kmc,
       {{"kmc",

@@ -13,6 +13,8 @@ bool with_colloid(const Scene &s) { return s.colloid.has_value(); }
 } // namespace
 
 const EngineSchema &lgca_schema() {
+  // Sections: {name, keys}; keys: {name, type, default, allowed, unit, meaning[, sub-keys]};
+  // observables: {name, layout, meaning, written by default when[, follows the colloids]}.
   static const EngineSchema schema{
       Engine::lgca,
       {{"lattice",

@@ -11,6 +11,8 @@ bool always(const Scene &) { return true; }
 } // namespace
 
 const EngineSchema &mpcd_schema() {
+  // Sections: {name, keys}; keys: {name, type, default, allowed, unit, meaning[, sub-keys]};
+  // observables: {name, layout, meaning, written by default when[, follows the colloids]}.
   static const EngineSchema schema{
       Engine::mpcd,
       {{"domain",
