@@ -45,7 +45,7 @@ enum Flag : unsigned {
 };
 inline constexpr unsigned everywhere = migrates | ghost | checkpoint | trajectory;
 
-// One component array of a field and the value a new row gets (integer arrays: 0).
+// One component array of a field, and the value a new row gets.
 using Array =
     std::variant<std::vector<double> *, std::vector<std::uint64_t> *, std::vector<std::uint32_t> *>;
 
