@@ -39,6 +39,7 @@ except ModuleNotFoundError:  # older Pythons: the tomli package has the same int
 OBSERVABLES = "observables.h5"
 JOINED = "observables-joined.h5"
 TRAJECTORY = "trajectory.h5"
+AXES = ("bins", "lags")  # datasets of an observable that are axes, not samples
 _RESTART = re.compile(r"observables-(\d+)\.h5$")
 
 
@@ -267,19 +268,27 @@ class Run:
                         if name not in results or step >= results[name][0]:
                             results[name] = (step, path)
                         continue
-                    for key in ("time", "value"):
+                    # the sampled datasets: value, or (a group of several fields such as
+                    # axial_fields' phi, velocity, ...) every dataset other than the axes whose
+                    # first dimension is the number of samples
+                    step = g["step"][()]
+                    if "value" in g:
+                        sampled = ["time", "value"]
+                    else:
+                        sampled = ["time"] + [k for k in g if k not in ("step", "time") + AXES
+                                              and is_dataset(g[k]) and g[k].ndim >= 1
+                                              and g[k].shape[0] == len(step)]
+                    for key in sampled:
                         if key not in g:
                             raise NarrowsDataError(path, f"no /observables/{name}/{key}")
-                    step, time, value = g["step"][()], g["time"][()], g["value"][()]
-                    s = series.setdefault(name, {"step": step[:0], "time": time[:0],
-                                                 "value": value[:0]})
-                    if len(step):  # later samples replace earlier ones from their first step on
-                        keep = s["step"] < step[0]
-                        s["step"] = np.concatenate([s["step"][keep], step])
-                        s["time"] = np.concatenate([s["time"][keep], time])
-                        s["value"] = np.concatenate([s["value"][keep], value])
+                    s = series.setdefault(name, {"step": step[:0]})
+                    keep = s["step"] < step[0] if len(step) else np.ones(len(s["step"]), bool)
+                    s["step"] = np.concatenate([s["step"][keep], step])
+                    for key in sampled:  # later samples replace earlier ones from their first step on
+                        data = g[key][()]
+                        s[key] = np.concatenate([s[key][keep], data]) if key in s else data
                     for key in g:  # the axes (bins, ...)
-                        if key not in ("step", "time", "value") and is_dataset(g[key]):
+                        if key not in ["step"] + sampled and is_dataset(g[key]):
                             s[key] = g[key][()]
         self._joined = (series, results)
         return self._joined
