@@ -17,7 +17,7 @@ Reading:
 Missing or unreadable data raise NarrowsDataError, whose message names the file and the
 dataset; a tool reports it with one line on stderr and exit code 2 (report(), or run_tool()).
 Writing: write_observables() (the layout the tools read, used by join_observables.py and the
-self-test tools/test_narrows_h5.py). Plots: pyplot() (matplotlib with the Agg backend).
+self-test tools/test_narrows_h5.py); write_table() (a table of results, tools/sweep.py). Plots: pyplot() (matplotlib with the Agg backend).
 """
 
 import glob
@@ -420,6 +420,22 @@ def write_observables(path, series=None, results=None, scene=None, copy_from=Non
                 g = obs.create_group(name)
                 for key, value in data.items():
                     g.create_dataset(key, data=value)
+
+
+def write_table(path, columns):
+    """Writes a table {column: [values]} (all columns one length) to path as /table/<column>:
+    a float64 dataset where every value is a number, bool or None (None as NaN), else a
+    variable-length UTF-8 string dataset (None as ""). Column names with "/" get "_"."""
+    with h5py.File(path, "w") as out:
+        g = out.create_group("table")
+        for name, values in columns.items():
+            key = name.replace("/", "_")
+            if all(v is None or isinstance(v, (int, float, bool, np.number)) for v in values):
+                data = np.array([np.nan if v is None else float(v) for v in values], float)
+                g.create_dataset(key, data=data)
+            else:
+                g.create_dataset(key, data=["" if v is None else str(v) for v in values],
+                                 dtype=h5py.string_dtype("utf-8"))
 
 
 # ---- plots ---------------------------------------------------------------------------------
