@@ -14,7 +14,9 @@ a) Synthetic travelling waves written as a particle run's /observables/axial_fie
 b) Classification (§6.2.2) of three synthetic runs with noise: pulses (<dv^2>/<v>^2 = 0.5),
    free flow (0.01, <v>/v0 = 0.1) and jammed (0.01, <v>/v0 = 0.001); v0 given by --v0, from the
    run's viscosity observable (g w^2 / (2 nu), computed here) and for the continuum run v_ss(0)
-   of eq 6.4 (Table 6.2, mu = 1: e1 + 2 dv to 1e-12).
+   of eq 6.4 (Table 6.2, mu = 1: e1 + 2 dv to 1e-12); the kinetic-theory nu pulses.py uses
+   for v0 is the one `narrows info` prints for four scenes of run/ (srd 2D/3D, at+a 3D, and none
+   for at+a 2D, where pulses.py asks for --nu with one line, exit 2).
 c) A continuum jamming run (run/continuum_jamming_pulses.toml started from phi = 0.75 + 0.01
    sin(2 pi 5 x / L): a train of 5 pulses; 256 points, t = 300, 1500 samples, ~3 s): c within 1 %
    of the speed of the PDE's own density maximum (one maximum of phi(x, t), smoothed over 2
@@ -164,6 +166,27 @@ def classification(tmp):
           (done.returncode, done.stderr))
 
 
+def kinetic_theory(narrows):
+    """pulses.py's kinetic-theory nu (for v0) is the nu `narrows info` prints (5 digits)."""
+    import pulses
+    run = os.path.join(os.path.dirname(HERE), "run")
+    for name in ("quickstart.toml", "poiseuille_fig3_6.toml", "ata_fluid_table5_1_3d.toml",
+                 "ata_fluid_table5_1_2d.toml"):
+        done = subprocess.run([narrows, "info", os.path.join(run, name)], capture_output=True,
+                              text=True)
+        line = [l for l in done.stdout.splitlines() if l.startswith("viscosity")]
+        with open(os.path.join(run, name)) as f:
+            scene = narrows_h5.parse_scene(f.read())
+        mine = pulses.kinetic_viscosity(scene.get("fluid", {}), scene["run"].get("dimensions", 2))
+        if line and "nu = " in line[0]:
+            theirs = float(line[0].split("nu = ")[1].split()[0])
+            check(f"b) kinetic-theory nu of {name} = narrows info's {theirs}",
+                  mine is not None and abs(mine - theirs) <= 1e-4 * theirs, mine)
+        else:
+            check(f"b) no kinetic-theory nu for {name}, as narrows info says", mine is None,
+                  (mine, line))
+
+
 def follow_maximum(phi, dx, width=2.0):
     """Position of one maximum of phi(x, t), followed sample by sample (searched within 5 bins
     of the previous position), refined by a parabola through the three points at the maximum,
@@ -241,6 +264,7 @@ def main():
             except Exception as e:  # noqa: BLE001
                 check(f"{part.__name__} ran to the end", False, f"{type(e).__name__}: {e}")
         try:
+            kinetic_theory(sys.argv[1])
             continuum(tmp, sys.argv[1])
         except Exception as e:  # noqa: BLE001
             check("continuum ran to the end", False, f"{type(e).__name__}: {e}")
