@@ -3,9 +3,9 @@
 Every tool here reads narrows' HDF5 files through this module, and only this module imports
 h5py. What a run writes (docs/scenes.md): DIR/observables.h5 with the scene text at
 /parameters/scene and /observables/<name>/{step, time, value} (bin centres in .../bins, lags of
-correlations in .../lags; a group of several sampled fields, such as axial_fields' phi, velocity
-and fluid_velocity [T][bins], has them in place of value); a result of the whole run (colloid statistics, the lgca VACFs,
-steady_density) has a scalar step. Each restart writes DIR/observables-<step>.h5 with the
+correlations in .../lags; a group of several sampled fields, such as axial_fields' phi,
+velocity and fluid_velocity [T][bins], has them in place of value); a result of the whole run
+(colloid statistics, the lgca VACFs, steady_density) has a scalar step. Each restart writes DIR/observables-<step>.h5 with the
 samples after the checkpoint it started from; tools/join_observables.py writes
 DIR/observables-joined.h5.
 
