@@ -5,9 +5,9 @@ h5py. What a run writes (docs/scenes.md): DIR/observables.h5 with the scene text
 /parameters/scene and /observables/<name>/{step, time, value} (bin centres in .../bins, lags of
 correlations in .../lags; a group of several sampled fields, such as axial_fields' phi,
 velocity and fluid_velocity [T][bins], has them in place of value); a result of the whole run
-(colloid statistics, the lgca VACFs, steady_density) has a scalar step. Each restart writes DIR/observables-<step>.h5 with the
-samples after the checkpoint it started from; tools/join_observables.py writes
-DIR/observables-joined.h5.
+(colloid statistics, the lgca VACFs, steady_density) has a scalar step. Each restart writes
+DIR/observables-<step>.h5 with the samples after the checkpoint it started from;
+tools/join_observables.py writes DIR/observables-joined.h5.
 
 Reading:
   run = open_run("out/x")                   # the run's restart chain, joined (a fresh run:
@@ -18,7 +18,8 @@ Reading:
 Missing or unreadable data raise NarrowsDataError, whose message names the file and the
 dataset; a tool reports it with one line on stderr and exit code 2 (report(), or run_tool()).
 Writing: write_observables() (the layout the tools read, used by join_observables.py and the
-self-test tools/test_narrows_h5.py); write_table() (a table of results, tools/sweep.py). Plots: pyplot() (matplotlib with the Agg backend).
+self-test tools/test_narrows_h5.py); write_table() (a table of results, tools/sweep.py).
+Plots: pyplot() (matplotlib with the Agg backend).
 """
 
 import glob
@@ -285,7 +286,7 @@ class Run:
                     s = series.setdefault(name, {"step": step[:0]})
                     keep = s["step"] < step[0] if len(step) else np.ones(len(s["step"]), bool)
                     s["step"] = np.concatenate([s["step"][keep], step])
-                    for key in sampled:  # later samples replace earlier ones from their first step on
+                    for key in sampled:  # later samples replace the earlier from their first step
                         data = g[key][()]
                         s[key] = np.concatenate([s[key][keep], data]) if key in s else data
                     for key in g:  # the axes (bins, ...)

@@ -91,14 +91,17 @@ class Fields:
 def kinetic_viscosity(fluid, dim):
     """The kinetic-theory nu of src/engines/mpcd/transport_theory.cpp (srd, at; at+a in 3D);
     None where narrows has no formula."""
-    rule = fluid.get("collision", "srd")
-    n, dt, kT = float(fluid.get("density", 10)), float(fluid.get("dt", 0.1)), float(fluid.get("kT", 1.0))
+    rule, dt = fluid.get("collision"), float(fluid.get("dt", 0))  # both required by narrows
+    n, kT = float(fluid.get("density", 10)), float(fluid.get("kT", 1.0))  # schema defaults
     angle = math.radians(float(fluid.get("angle", 90.0)))
+    if dt <= 0:
+        return None
     f = n - 1.0 + math.exp(-n)
     ca, sa = math.cos(angle), math.sin(angle)
     if rule == "srd":
         if dim == 2:
-            return 0.5 * kT * dt * (n / (f * sa * sa) - 1.0) + (1.0 / (12.0 * dt)) * (f / n) * (1.0 - ca)
+            return (0.5 * kT * dt * (n / (f * sa * sa) - 1.0)
+                    + (1.0 / (12.0 * dt)) * (f / n) * (1.0 - ca))
         return (0.5 * kT * dt * (5.0 * n / (f * (2.0 - ca - math.cos(2.0 * angle))) - 1.0)
                 + (1.0 / (18.0 * dt)) * (f / n) * (1.0 - ca))
     if rule == "at":
@@ -336,16 +339,16 @@ def analyse(fields, blocks=4):
     for key, value in whole.items():
         vals = np.array([m[key] for m in per_block], float)
         vals = vals[np.isfinite(vals)]
-        err = float(np.std(vals, ddof=1) / math.sqrt(len(vals))) if len(vals) >= 2 else float("nan")
-        if key == "f_pt":
-            err = math.hypot(err, 1 / (math.sqrt(12) * duration)) if np.isfinite(err) else 1 / (math.sqrt(12) * duration)
-        if key == "spacing":
-            err = math.hypot(err, dx / math.sqrt(12)) if np.isfinite(err) else dx / math.sqrt(12)
+        err = float(np.std(vals, ddof=1) / math.sqrt(len(vals))) if len(vals) >= 2 else math.nan
+        resolution = {"f_pt": 1 / (math.sqrt(12) * duration), "spacing": dx / math.sqrt(12)}
+        if key in resolution:
+            err = math.hypot(err, resolution[key]) if math.isfinite(err) else resolution[key]
         out[key], out[key + "_error"] = value, err
     out["v0"], out["v0_error"], out["v0_source"] = v0, 0.0, fields.v0_source
     out["state"] = classify(whole["mean_velocity_over_v0"], whole["relative_variance"])
     out["blocks"] = len(per_block)
-    out["duration"], out["length"], out["samples"], out["bins"] = float(duration), length, len(t), v.shape[1]
+    out["duration"], out["length"] = float(duration), length
+    out["samples"], out["bins"] = len(t), v.shape[1]
     if fields.phi is not None:
         out["mean_phi"] = float(np.mean(fields.phi))
     if fields.fluid is not None:
