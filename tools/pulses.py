@@ -9,7 +9,9 @@ Usage: pulses.py RUN_DIR [--transient T] [--v0 V0 | --nu NU] [--blocks 4] [--png
 Input (read through narrows_h5): a particle run's /observables/axial_fields/{phi, velocity,
 fluid_velocity} ([T][bins], cross-section averages of eq 6.1, bins = x centres, with step and
 time), or a continuum run of model "jamming" (observables density = phi and velocity = v, e.g.
-run/continuum_jamming_pulses.toml). Samples with time < --transient are dropped.
+run/continuum_jamming_pulses.toml). Samples with time < --transient are dropped. Bins without
+colloid material (velocity NaN in axial_fields) get v interpolated linearly from the nearest
+bins with some (periodic in x); the JSON's filled_fraction says how many.
 
 v0, the colloid-free centre speed of the same channel and drive (§6.2.1):
   --v0 V0, else for a particle run g w^2 / (2 nu) with g = body_force.value[0], w =
@@ -73,6 +75,8 @@ class Fields:
     """v[T][X] and phi[T][X] (phi may be None) at times t[T] and x centres x[X] of a periodic
     channel of length L; v0 and where it came from."""
 
+    filled = 0.0  # the fraction of v values interpolated over bins without colloids
+
     def __init__(self, t, x, v, phi, length, v0=None, v0_source="", fluid=None):
         self.t, self.x, self.v, self.phi = (np.asarray(t, float), np.asarray(x, float),
                                             np.asarray(v, float), phi)
@@ -84,8 +88,10 @@ class Fields:
             raise InputError(f"--transient {transient:g} leaves {int(keep.sum())} samples "
                              f"(the run ends at t = {self.t[-1]:g}); allowed: at least 8 samples")
         cut = (lambda a: None if a is None else np.asarray(a)[keep])
-        return Fields(self.t[keep], self.x, self.v[keep], cut(self.phi), self.length, self.v0,
-                      self.v0_source, cut(self.fluid))
+        out = Fields(self.t[keep], self.x, self.v[keep], cut(self.phi), self.length, self.v0,
+                     self.v0_source, cut(self.fluid))
+        out.filled = self.filled
+        return out
 
 
 def kinetic_viscosity(fluid, dim):
@@ -149,6 +155,23 @@ def continuum_v0(scene):
     return float(Model(mu).vss(0.0)), f"v_ss(phi = 0) of eq 6.4, Table 6.2 mu = {mu}"
 
 
+def fill_gaps(v, x, length, label):
+    """v with the NaN of bins without colloid material (axial_fields) replaced by the linear
+    interpolation between the nearest bins that have some, periodic in x; and the fraction of
+    values so filled. NarrowsDataError if a sample has no colloid material at all."""
+    bad = ~np.isfinite(v)
+    if not bad.any():
+        return v, 0.0
+    v = v.copy()
+    for i in np.nonzero(bad.any(axis=1))[0]:
+        good = ~bad[i]
+        if not good.any():
+            raise NarrowsDataError(label, f"axial_fields/velocity: sample {i} has no finite value",
+                                   "samples with colloids")
+        v[i, bad[i]] = np.interp(x[bad[i]], x[good], v[i, good], period=length)
+    return v, float(bad.mean())
+
+
 def load(run_dir, v0=None, nu=None, transient=0.0):
     """The fields of a run folder (axial_fields of a particle run, or a continuum run)."""
     run = narrows_h5.open_run(run_dir)
@@ -163,8 +186,11 @@ def load(run_dir, v0=None, nu=None, transient=0.0):
             v0, source = particle_v0(run, scene, nu, transient)
         else:
             source = "--v0"
-        return Fields(s["time"], x, s["velocity"], s.get("phi"), length, v0, source,
-                      s.get("fluid_velocity"))
+        v, filled = fill_gaps(np.asarray(s["velocity"], float), x, length, run.label)
+        fields = Fields(s["time"], x, v, s.get("phi"), length, v0, source,
+                        s.get("fluid_velocity"))
+        fields.filled = filled
+        return fields
     if engine == "continuum":
         model = scene.get("continuum", {}).get("model")
         if model != "jamming":
@@ -350,9 +376,10 @@ def analyse(fields, blocks=4):
     out["duration"], out["length"] = float(duration), length
     out["samples"], out["bins"] = len(t), v.shape[1]
     if fields.phi is not None:
-        out["mean_phi"] = float(np.mean(fields.phi))
+        out["mean_phi"] = float(np.nanmean(fields.phi))
     if fields.fluid is not None:
-        out["mean_fluid_velocity"] = float(np.mean(fields.fluid))
+        out["mean_fluid_velocity"] = float(np.nanmean(fields.fluid))
+    out["filled_fraction"] = fields.filled
     return out
 
 

@@ -16,7 +16,8 @@ b) Classification (§6.2.2) of three synthetic runs with noise: pulses (<dv^2>/<
    run's viscosity observable (g w^2 / (2 nu), computed here) and for the continuum run v_ss(0)
    of eq 6.4 (Table 6.2, mu = 1: e1 + 2 dv to 1e-12); the kinetic-theory nu pulses.py uses
    for v0 is the one `narrows info` prints for four scenes of run/ (srd 2D/3D, at+a 3D, and none
-   for at+a 2D, where pulses.py asks for --nu with one line, exit 2).
+   for at+a 2D, where pulses.py asks for --nu with one line, exit 2); bins without colloids
+   (velocity NaN) are interpolated and counted.
 c) A continuum jamming run (run/continuum_jamming_pulses.toml started from phi = 0.75 + 0.01
    sin(2 pi 5 x / L): a train of 5 pulses; 256 points, t = 300, 1500 samples, ~3 s): c within 1 %
    of the speed of the PDE's own density maximum (one maximum of phi(x, t), smoothed over 2
@@ -147,6 +148,17 @@ def classification(tmp):
         check(f"b) {name}: <v>/v0 = {ratio} within 3 errors",
               abs(res["mean_velocity_over_v0"] - ratio) <= 3 * res["mean_velocity_over_v0_error"]
               + 1e-12, (res["mean_velocity_over_v0"], res["mean_velocity_over_v0_error"]))
+    # bins without colloids (velocity NaN in axial_fields): interpolated, counted
+    path = os.path.join(tmp, "state_gaps")
+    v = runs["free"][0].copy()
+    v[5, 10] = v[7, 0] = v[9, X - 1] = np.nan
+    write_run(path, t, x, v, 0.75 + 0 * v, L)
+    res, out = run_tool(path, "--v0", str(v0))
+    check("b) bins without colloids: filled, counted, state free",
+          res is not None and res["state"] == "free" and
+          abs(res["filled_fraction"] - 3 / v.size) < 1e-15 and
+          abs(res["mean_velocity_over_v0"] - 0.1) <= 3 * res["mean_velocity_over_v0_error"],
+          res or out)
     # v0 from the run: g w^2 / (2 nu) with nu from the viscosity observable
     path = os.path.join(tmp, "state_v0")
     nu = 1.98

@@ -117,8 +117,8 @@ def run_vss(run_dir, transient=0.0, blocks=4, phi=None, mu=None):
         if len(v) < 2 * blocks:
             raise InputError(f"{run.label}: {len(v)} axial_fields samples after --transient "
                              f"{transient:g}; allowed: at least {2 * blocks}")
-        out["v_ss"] = float(v.mean())
-        out["v_ss_error"] = block_error([b.mean() for b in np.array_split(v, blocks)])
+        out["v_ss"] = float(np.nanmean(v))  # NaN: a bin without colloid material
+        out["v_ss_error"] = block_error([np.nanmean(b) for b in np.array_split(v, blocks)])
         out["source"], out["samples"] = "axial_fields", int(len(v))
     else:
         raise narrows_h5.missing_observable(run.label, "colloid_positions",
