@@ -13,6 +13,8 @@
    sqrt(2 / (40 * 60)) = 0.03).
 2. One run's v_ss from colloid_positions that wrap around the periodic x (the mean displacement
    over the time after --transient, known exactly here): to 1e-12; the block error finite.
+   Without colloid_positions, from axial_fields: the bins' velocities weighted by their phi, a
+   bin without colloids (NaN) left out: to 1e-12.
 3. The command line: `fit TABLE.csv` (as tools/sweep.py --collect writes it: mu_cc, phi, v_ss,
    v_ss_error, 3 repeats per phi) writes the JSON (narrows' own table with Table 6.2's column
    beside, e3 from continuity) and the PNG; a table without v_ss: exit 2, one line.
@@ -122,6 +124,25 @@ def one_run(tmp):
     check("run: finite block error", np.isfinite(r["v_ss_error"]) and r["v_ss_error"] >= 0, r)
 
 
+def axial(tmp):
+    """v_ss from axial_fields: bins weighted by phi, a bin without colloids (NaN) left out."""
+    T, X = 40, 10
+    t = np.arange(T) * 1.0
+    phi = np.tile(np.linspace(0.5, 0.9, X), (T, 1))
+    v = np.tile(np.linspace(0.4, 0.1, X), (T, 1))
+    v[8, 4], phi[8, 4] = np.nan, 0.0
+    want = np.sum(np.nan_to_num(v[5:]) * phi[5:]) / np.sum(phi[5:])
+    path = os.path.join(tmp, "axial")
+    os.makedirs(path)
+    series = {"axial_fields": {"step": np.arange(T, dtype=np.int64), "time": t, "phi": phi,
+                               "velocity": v, "fluid_velocity": v, "bins": np.arange(X) + 0.5}}
+    narrows_h5.write_observables(os.path.join(path, "observables.h5"), series=series,
+                                 scene=SCENE.format(L=10.0))
+    r = vss_fit.run_vss(path, transient=5.0)
+    check("run: v_ss from axial_fields, weighted by phi", abs(r["v_ss"] - want) < 1e-12 and
+          r["source"] == "axial_fields", (r["v_ss"], want))
+
+
 def command_line(tmp):
     rng = np.random.default_rng(11)
     table = os.path.join(tmp, "table.csv")
@@ -162,7 +183,7 @@ def command_line(tmp):
 
 
 def main():
-    for part in (pulls, one_run, command_line):
+    for part in (pulls, one_run, axial, command_line):
         with tempfile.TemporaryDirectory() as tmp:
             try:
                 part(tmp) if part is not pulls else part()

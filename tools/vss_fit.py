@@ -15,7 +15,8 @@ periodic: each displacement between samples is taken as the shortest image, so a
 move less than half the channel between samples), as the mean over colloids of (x(t_end) -
 x(t_start)) / (t_end - t_start); its error: the samples after the transient are cut into
 --blocks time blocks, v_ss is measured in each, error = std / sqrt(blocks). Without
-colloid_positions, the mean of /observables/axial_fields/velocity (the same blocks). phi is the
+colloid_positions, the mean of /observables/axial_fields/velocity over bins and samples, each
+bin weighted by its colloid fraction phi (bins without colloids left out; the same blocks). phi is the
 scene's colloids.packing_fraction, mu the scene's colloids.spring.mu_cc and mu_cw (a run without
 them: --phi / --mu on the command line).
 
@@ -113,12 +114,19 @@ def run_vss(run_dir, transient=0.0, blocks=4, phi=None, mu=None):
     elif run.has("axial_fields"):
         s = run.series("axial_fields")
         keep = s.time >= transient
-        v = s["velocity"][keep]
+        v = np.asarray(s["velocity"][keep], float)
         if len(v) < 2 * blocks:
             raise InputError(f"{run.label}: {len(v)} axial_fields samples after --transient "
                              f"{transient:g}; allowed: at least {2 * blocks}")
-        out["v_ss"] = float(np.nanmean(v))  # NaN: a bin without colloid material
-        out["v_ss_error"] = block_error([np.nanmean(b) for b in np.array_split(v, blocks)])
+        # the colloids' mean: bins weighted by their colloid fraction phi (v is NaN where a
+        # bin has no colloid material, and its phi 0)
+        w = np.asarray(s["phi"][keep], float) if "phi" in s else np.ones_like(v)
+        w = np.where(np.isfinite(v) & np.isfinite(w), w, 0.0)
+        v = np.where(w > 0, v, 0.0)
+        mean = lambda a, b: float(np.sum(a * b) / np.sum(b))  # noqa: E731
+        out["v_ss"] = mean(v, w)
+        out["v_ss_error"] = block_error([mean(a, b) for a, b in
+                                         zip(np.array_split(v, blocks), np.array_split(w, blocks))])
         out["source"], out["samples"] = "axial_fields", int(len(v))
     else:
         raise narrows_h5.missing_observable(run.label, "colloid_positions",
