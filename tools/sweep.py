@@ -19,7 +19,9 @@ finished when narrows exited 0 without being stopped by a signal (or said "nothi
 the sweep writes POINT/DONE. A later call skips finished points and continues an unfinished
 point that has a checkpoint with `--restart POINT` (a point without checkpoint starts afresh).
 SIGTERM or SIGINT to the sweep passes SIGTERM on to the running points (narrows writes a
-checkpoint and stops) and ends the sweep: the same command resumes it. One progress line per
+checkpoint and stops) and ends the sweep: the same command resumes it. DIR/sweep.lock keeps a
+second sweep out of DIR while one runs; a point whose narrows (POINT/sweep.pid) still runs, e.g.
+after the sweep was killed with SIGKILL, is left alone. One progress line per
 point; exit 0 if every point finished, 1 otherwise.
 
 --collect TOOL: for every finished point, `TOOL [ARGS] POINT` (a .py tool runs under this
@@ -197,6 +199,10 @@ class Sweep:
     def start(self, p):
         d = self.dir(p)
         os.makedirs(d, exist_ok=True)
+        alive = running_pid(os.path.join(d, "sweep.pid"))
+        if alive:
+            self.progress(p, f"still run by process {alive} (an earlier sweep's): left alone")
+            return
         cmd, how = self.command(p)
         n = len(glob.glob(os.path.join(glob.escape(d), "sweep-*.out")))
         log = os.path.join(d, f"sweep-{n}.out")
@@ -205,10 +211,13 @@ class Sweep:
             f.flush()
             proc = subprocess.Popen(cmd, stdout=f, stderr=subprocess.STDOUT,
                                     start_new_session=True)
+        with open(os.path.join(d, "sweep.pid"), "w") as f:
+            f.write(f"{proc.pid}\n")
         self.running[p["index"]] = (proc, time.time(), how, log)
 
     def reap(self, p, code):
         proc, t0, how, log = self.running.pop(p["index"])
+        os.remove(os.path.join(self.dir(p), "sweep.pid"))
         with open(log) as f:
             text = f.read()
         seconds = time.time() - t0
@@ -240,6 +249,19 @@ class Sweep:
                     pass
 
     def run(self):
+        lock = os.path.join(self.args.out, "sweep.lock")
+        other = running_pid(lock)
+        if other and other != os.getpid():
+            return narrows_h5.report("sweep", f"{lock}: another sweep (process {other}) runs "
+                                     f"in {self.args.out}; allowed: wait for it, or stop it")
+        with open(lock, "w") as f:
+            f.write(f"{os.getpid()}\n")
+        try:
+            return self.run_points()
+        finally:
+            os.remove(lock)
+
+    def run_points(self):
         signal.signal(signal.SIGTERM, self.stop)
         signal.signal(signal.SIGINT, self.stop)
         todo = []
@@ -333,6 +355,17 @@ class Sweep:
         h5_path = os.path.join(self.args.out, "table.h5")
         narrows_h5.write_table(h5_path, {k: [r.get(k) for r in rows] for k in columns})
         print(f"sweep: {len(rows)} rows in {csv_path} and {h5_path}")
+
+
+def running_pid(path):
+    """The process id in the file at path if that process still runs, else None."""
+    try:
+        with open(path) as f:
+            pid = int(f.read().split()[0])
+        os.kill(pid, 0)
+        return pid
+    except (OSError, ValueError, IndexError):
+        return None
 
 
 def number_or_text(value):
