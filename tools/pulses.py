@@ -15,8 +15,9 @@ bins with some (periodic in x); the JSON's filled_fraction says how many.
 
 v0, the colloid-free centre speed of the same channel and drive (§6.2.1):
   --v0 V0, else for a particle run g w^2 / (2 nu) with g = body_force.value[0], w =
-  domain.size[1] / 2 and nu = --nu, else the mean of the run's `viscosity` observable, else the
-  kinetic theory narrows prints (srd, at in 2D/3D, at+a in 3D; 2D at+a has none: give --nu, e.g.
+  domain.size[1] / 2 and nu = --nu, else the mean of the run's `viscosity` observable (only in
+  a run without [colloids]: with them it is the suspension's), else the kinetic theory narrows
+  prints (srd, at in 2D/3D, at+a in 3D; 2D at+a has none: give --nu, e.g.
   Kanehl (thesis) Table 6.1: nu = 1.98); for a continuum run the model's own v_ss(phi = 0) of
   eq 6.4 (= e1 + dv [1 + tanh(phi_c / dphi)] with Table 6.2's column `continuum.mu`), the speed
   of colloid-free flow in the model's units. v0 only enters <v>/v0 and the state.
@@ -129,7 +130,7 @@ def particle_v0(run, scene, nu, transient):
     w = float(size[1]) / 2
     if nu is not None:
         source = f"--nu {nu:g}"
-    elif run.has("viscosity"):
+    elif run.has("viscosity") and "colloids" not in scene:  # with colloids: the suspension's
         s = run.series("viscosity")
         keep = s.time >= transient
         nu = float(np.mean(np.ravel(s.value[keep] if keep.any() else s.value)))
@@ -140,7 +141,7 @@ def particle_v0(run, scene, nu, transient):
         if nu is None:
             raise InputError(f"{run.newest}: no kinetic-theory viscosity for fluid.collision = "
                              f"\"{scene.get('fluid', {}).get('collision')}\" in {dim}D and no "
-                             "viscosity observable; allowed: --nu NU (Kanehl (thesis) Table 6.1: "
+                             "colloid-free viscosity observable; allowed: --nu NU (Kanehl (thesis) Table 6.1: "
                              "1.98 for at+a, rho = 25, dt = 0.02) or --v0 V0")
         source = "kinetic theory"
     return g * w * w / (2 * nu), f"g w^2/(2 nu), g = {g:g}, w = {w:g}, nu = {nu:.5g} ({source})"
