@@ -17,7 +17,10 @@ gets SIGTERM while the first long point (p0002) runs, after its log exists. Chec
 - a third call skips all four and runs nothing;
 - --slurm writes a file that passes `bash -n`, has an array of 4 indices and names every point
   with its --set values; run locally as index 1 (no srun: narrows directly) it finishes that
-  point (DONE) and a second call says "finished before";
+  point (DONE) and a second call says "finished before"; index 2 stopped by SIGUSR1 (as SLURM
+  does before the time limit) leaves a checkpoint and no DONE and resubmits index 2 with
+  CHAIN_INDEX=2 (no sbatch here: "would submit"), and that next job continues with --restart
+  and finishes the point;
 - bad --set: exit 2 with one line; another grid into the same folder: exit 2.
 Prints FAIL lines and "N passed, M failed"; exit 1 on any failure.
 """
@@ -158,6 +161,29 @@ def slurm(tmp, narrows):
     again = subprocess.run(["bash", script], capture_output=True, text=True, cwd=tmp, env=env)
     check("... and a second job says finished before",
           again.returncode == 0 and "finished before" in again.stdout, again.stdout)
+    # the chain: index 2 (a long point) gets SIGUSR1 as SLURM sends it before the time limit
+    env2 = dict(env, SLURM_ARRAY_TASK_ID="2")
+    job = subprocess.Popen(["bash", script], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                           text=True, cwd=tmp, env=env2)
+    point = os.path.join(out, points[2]["name"])
+    wait_for(lambda: os.path.isfile(os.path.join(point, "log.txt")), 60)
+    time.sleep(0.5)
+    children = open(f"/proc/{job.pid}/task/{job.pid}/children").read().split()
+    for pid in children:
+        os.kill(int(pid), signal.SIGUSR1)
+    text, _ = job.communicate(timeout=120)
+    check("SIGUSR1: the job stops with a checkpoint, no DONE, and resubmits its own index",
+          job.returncode == 0 and not os.path.isfile(os.path.join(point, "DONE")) and
+          glob.glob(os.path.join(point, "checkpoint-*.h5")) and
+          re.search(r"would submit: sbatch --array=2 --export=ALL,CHAIN_INDEX=2 ", text),
+          (children, text[-600:]))
+    env2["CHAIN_INDEX"] = "2"
+    nxt = subprocess.run(["bash", script], capture_output=True, text=True, cwd=tmp, env=env2,
+                         timeout=120)
+    check("the next job of the chain continues the checkpoint and finishes the point",
+          nxt.returncode == 0 and "--restart" in nxt.stdout and
+          os.path.isfile(os.path.join(point, "DONE")) and
+          glob.glob(os.path.join(point, "observables-*.h5")), nxt.stdout[-600:])
 
 
 def refusals(tmp, narrows):
