@@ -8,7 +8,8 @@
   sweep.py SCENE --out DIR ... --slurm [--slurm-file F] [--slurm-time 24:00:00] [--chain-max 50]
 
 Points: every combination of the --set values (commas inside [] or {} or quotes do not split:
---set domain.size=[200.0,50.0],[400.0,50.0]) times the repeats; repeat r (0-based) sets
+--set domain.size=[200.0,50.0],[400.0,50.0]; KEY1+KEY2=V1,V2 gives both keys each value, e.g.
+colloids.spring.mu_cc+colloids.spring.mu_cw=0.5,1.0 for mu = mu_cc = mu_cw) times the repeats; repeat r (0-based) sets
 SEED_KEY = S + r (S: --seed0, default the scene's value of SEED_KEY, else 1). Point i runs in
 DIR/pNNNN-KEY=V-...-rR (KEY: the last part of the key path); DIR/sweep.json lists the points
 (a later call with another grid into the same DIR is refused).
@@ -123,7 +124,7 @@ def make_points(grid, repeats, seed_key, seed0):
         for r in range(repeats):
             i = len(points)
             sets = {k: v for (k, _), v in zip(grid, values)}
-            name = "-".join([f"p{i:04d}"] + [f"{safe(k.split('.')[-1])}={safe(v)}"
+            name = "-".join([f"p{i:04d}"] + [f"{safe(k.split('+')[0].split('.')[-1])}={safe(v)}"
                                               for k, v in sets.items()] + [f"r{r}"])
             points.append({"index": i, "name": name, "sets": sets, "repeat": r,
                            "seed": seed0 + r})
@@ -132,8 +133,9 @@ def make_points(grid, repeats, seed_key, seed0):
 
 def point_args(point, seed_key):
     args = []
-    for k, v in point["sets"].items():
-        args += ["--set", f"{k}={v}"]
+    for keys, v in point["sets"].items():
+        for k in keys.split("+"):  # KEY1+KEY2=...: both keys take each value
+            args += ["--set", f"{k}={v}"]
     return args + ["--set", f"{seed_key}={point['seed']}"]
 
 

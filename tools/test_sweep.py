@@ -16,7 +16,7 @@ gets SIGTERM while the first long point (p0002) runs, after its log exists. Chec
   pulses.py columns; the repeats' seeds differ and so do their results;
 - a third call skips all four and runs nothing;
 - --slurm writes a file that passes `bash -n`, has an array of 4 indices and names every point
-  with its --set values; run locally as index 1 (no srun: narrows directly) it finishes that
+  with its --set values (also both keys of a linked KEY1+KEY2=V); run locally as index 1 (no srun: narrows directly) it finishes that
   point (DONE) and a second call says "finished before"; index 2 stopped by SIGUSR1 (as SLURM
   does before the time limit) leaves a checkpoint and no DONE and resubmits index 2 with
   CHAIN_INDEX=2 (no sbatch here: "would submit"), and that next job continues with --restart
@@ -134,7 +134,8 @@ def resume(tmp, narrows):
 def slurm(tmp, narrows):
     out = os.path.join(tmp, "sl")
     script = os.path.join(tmp, "sweep.slurm")
-    done = subprocess.run(sweep_cmd(narrows, out, "--slurm", "--slurm-file", script),
+    linked = ["--set", "continuum.drive+continuum.diffusion=1.0"]  # both keys, one value
+    done = subprocess.run(sweep_cmd(narrows, out, "--slurm", "--slurm-file", script, *linked),
                           capture_output=True, text=True, cwd=tmp)
     check("--slurm exits 0", done.returncode == 0, done.stderr)
     if done.returncode:
@@ -151,7 +152,8 @@ def slurm(tmp, narrows):
         check(f"SLURM file names point {p['name']}",
               len(line) == 1 and p["name"] in line[0] and
               f"continuum.initial.seed={p['seed']}" in line[0] and
-              f"continuum.time={p['sets']['continuum.time']}" in line[0], line)
+              f"continuum.time={p['sets']['continuum.time']}" in line[0] and
+              "continuum.drive=1.0" in line[0] and "continuum.diffusion=1.0" in line[0], line)
     env = dict(os.environ, SLURM_ARRAY_TASK_ID="1", NARROWS=narrows, PATH="/usr/bin:/bin")
     run = subprocess.run(["bash", script], capture_output=True, text=True, cwd=tmp, env=env,
                          timeout=120)
