@@ -44,7 +44,6 @@ import warnings
 import numpy as np
 
 import narrows_h5
-from narrows_h5 import NarrowsDataError
 
 NAMES = ("dv", "dphi", "phi_c", "e1", "e2", "phi_q")
 TABLE_6_2 = {  # Kanehl (thesis) Table 6.2: dv, dphi, phi_c, e1, e2, phi_q
