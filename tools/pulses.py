@@ -32,7 +32,8 @@ Measures (<...> = mean over x and t after the transient; dv = v - <v>):
   lag by lag (each maximum searched within half a spacing of the position extrapolated from the
   previous two, and refined on C's Fourier series, which is exact between the bins), over lags
   up to a third of the record; c is the least-squares slope of ridge position against lag
-  (negative = upstream, against the flow);
+  (negative = upstream, against the flow); the JSON's ridge_step_over_spacing = |c| dt /
+  lambda (dt: between samples) must stay below 1/2 (a warning above 0.4: c may be aliased);
   spacing lambda: the position of the maximum of the spatial correlation C(s, 0) in its first
   positive lobe after its first zero (refined on its Fourier series); the channel length if C
   has no such lobe within half the channel;
@@ -381,6 +382,10 @@ def analyse(fields, blocks=4):
     if fields.fluid is not None:
         out["mean_fluid_velocity"] = float(np.nanmean(fields.fluid))
     out["filled_fraction"] = fields.filled
+    # the ridge moves |c| dt per sample; beyond half a spacing it cannot be told from the next
+    # pulse's (sampling aliases c)
+    dt = (t[-1] - t[0]) / (len(t) - 1)
+    out["ridge_step_over_spacing"] = abs(whole["pulse_speed"]) * dt / whole["spacing"]
     return out
 
 
@@ -471,6 +476,9 @@ def main(argv=None):
         print(f"{key} = {res[key]:.6g} +- {res[key + '_error']:.3g}")
     print(f"v0 = {res['v0']:.6g} ({res['v0_source']})")
     print(f"state = {res['state']}")
+    if res["ridge_step_over_spacing"] > 0.4:
+        print(f"warning: the pulses move {res['ridge_step_over_spacing']:.2f} spacings between "
+              "samples: c may be aliased; sample more often (output.every)")
     if not args.no_plot:
         png = args.png or os.path.join(args.run_dir, "pulses.png")
         draw(fields, res, png)
