@@ -271,15 +271,22 @@ class Run:
                         if key not in g:
                             raise NarrowsDataError(path, f"no /observables/{name}/{key}")
                     step, time, value = g["step"][()], g["time"][()], g["value"][()]
+                    # datasets of one row per sample beside value (attribute per_sample = 1)
+                    rows = {k: g[k][()] for k in g if k not in ("step", "time", "value")
+                            and is_dataset(g[k]) and g[k].attrs.get("per_sample", 0)}
                     s = series.setdefault(name, {"step": step[:0], "time": time[:0],
-                                                 "value": value[:0]})
+                                                 "value": value[:0],
+                                                 **{k: v[:0] for k, v in rows.items()}})
                     if len(step):  # later samples replace earlier ones from their first step on
                         keep = s["step"] < step[0]
                         s["step"] = np.concatenate([s["step"][keep], step])
                         s["time"] = np.concatenate([s["time"][keep], time])
                         s["value"] = np.concatenate([s["value"][keep], value])
+                        for k, v in rows.items():
+                            s[k] = np.concatenate([s[k][keep], v])
                     for key in g:  # the axes (bins, ...)
-                        if key not in ("step", "time", "value") and is_dataset(g[key]):
+                        if (key not in ("step", "time", "value") and key not in rows
+                                and is_dataset(g[key])):
                             s[key] = g[key][()]
         self._joined = (series, results)
         return self._joined
