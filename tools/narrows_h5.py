@@ -308,7 +308,7 @@ class Run:
 class Trajectory:
     """DIR/trajectory.h5 (H5MD), open while in a with statement: dataset(name) (read lazily,
     e.g. one frame: t.dataset("particles/fluid/position/value")[k]), array(name) (all of it),
-    parameter(name) (/parameters/<name>)."""
+    has(name) (whether the file holds that object), parameter(name) (/parameters/<name>)."""
 
     def __init__(self, path):
         self.path = path
@@ -328,6 +328,9 @@ class Trajectory:
 
     def array(self, name):
         return self.dataset(name)[()]
+
+    def has(self, name):
+        return name in self._f
 
     def parameter(self, name):
         value = self.array("parameters/" + name)
