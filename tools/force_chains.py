@@ -11,7 +11,7 @@ Reads DIR/trajectory.h5 through narrows_h5: /particles/colloids (position, id, r
 /contacts (written with colloids.contacts = "spring": ids, normal_force, sliding, and the rows
 of each frame) and /particles/fluid (position, velocity) of frame K (default: the last; negative
 counts from the end). The arrows are the mean velocity of the trajectory's fluid particles in
-square bins of B cells (default 5): with output.trajectory_subsample = s each bin holds about
+square bins of B cells (default 10): with output.trajectory_subsample = s each bin holds about
 n B^2 / s of them, so choose B large enough against the thermal noise (kT / m per particle).
 The line of the strongest contact is W points wide (default 3). Prints the frame's step, time,
 number of contacts and the fraction sliding, and the PNG path (default DIR/force_chains.png).
@@ -74,7 +74,7 @@ def main(argv):
     p.add_argument("run")
     p.add_argument("--frame", type=int, default=-1)
     p.add_argument("--png")
-    p.add_argument("--bin", type=float, default=5.0)
+    p.add_argument("--bin", type=float, default=10.0)
     p.add_argument("--lateral", type=float, default=5.0)
     p.add_argument("--x", type=float, nargs=2, metavar=("X0", "X1"))
     p.add_argument("--width", type=float, default=3.0)
