@@ -270,16 +270,17 @@ class Run:
                         if name not in results or step >= results[name][0]:
                             results[name] = (step, path)
                         continue
-                    # the sampled datasets: value, or (a group of several fields such as
-                    # axial_fields' phi, velocity, ...) every dataset other than the axes whose
-                    # first dimension is the number of samples
+                    # the sampled datasets: time, value, the datasets of one row per sample
+                    # beside value (attribute per_sample = 1), and in a group of several fields
+                    # without value (axial_fields' phi, velocity, ...) every dataset other than
+                    # the axes whose first dimension is the number of samples
                     step = g["step"][()]
-                    if "value" in g:
-                        sampled = ["time", "value"]
-                    else:
-                        sampled = ["time"] + [k for k in g if k not in ("step", "time") + AXES
-                                              and is_dataset(g[k]) and g[k].ndim >= 1
-                                              and g[k].shape[0] == len(step)]
+                    sampled = ["time"] + (["value"] if "value" in g else [])
+                    sampled += [k for k in g if k not in ("step", "time", "value") + AXES
+                                and is_dataset(g[k])
+                                and (g[k].attrs.get("per_sample", 0)
+                                     or ("value" not in g and g[k].ndim >= 1
+                                         and g[k].shape[0] == len(step)))]
                     for key in sampled:
                         if key not in g:
                             raise NarrowsDataError(path, f"no /observables/{name}/{key}")
@@ -312,7 +313,7 @@ class Run:
 class Trajectory:
     """DIR/trajectory.h5 (H5MD), open while in a with statement: dataset(name) (read lazily,
     e.g. one frame: t.dataset("particles/fluid/position/value")[k]), array(name) (all of it),
-    parameter(name) (/parameters/<name>)."""
+    has(name) (whether the file holds that object), parameter(name) (/parameters/<name>)."""
 
     def __init__(self, path):
         self.path = path
@@ -332,6 +333,9 @@ class Trajectory:
 
     def array(self, name):
         return self.dataset(name)[()]
+
+    def has(self, name):
+        return name in self._f
 
     def parameter(self, name):
         value = self.array("parameters/" + name)

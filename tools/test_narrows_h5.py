@@ -21,6 +21,7 @@ import subprocess
 import sys
 import tempfile
 
+import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -116,6 +117,12 @@ def checks():
             series, results = segment(first, last, offset, offset / 1000)
             narrows_h5.write_observables(os.path.join(run_dir, name), series=series,
                                          results=results, scene=SCENE + f"# {name}\n")
+            # a dataset of one row per sample beside value (as contact_statistics writes)
+            with h5py.File(os.path.join(run_dir, name), "a") as f:
+                g = f["observables/velocity_profile"]
+                d = g.create_dataset("contacts", data=np.stack([series["temperature"]["value"]] * 2,
+                                                               axis=1))
+                d.attrs["per_sample"] = np.array([1], dtype=np.int32)
 
         # the chain: files in step order, samples replaced from each restart's first step on
         chain = narrows_h5.chain_files(run_dir)
@@ -142,6 +149,9 @@ def checks():
               np.array_equal(a["phi"][:, 1], want_value) and
               np.array_equal(a["velocity"][:, 2], -want_value) and close(a.bins, np.arange(3) + 0.5),
               {k: np.shape(a[k]) for k in a.keys()})
+        check("a per_sample dataset beside value is joined as value",
+              v["contacts"].shape == (10, 2) and np.array_equal(v["contacts"][:, 1], want_value),
+              v.get("contacts"))
         r = run.series("colloid_vacf")
         check("result of the whole run: from the file of the latest step",
               r.is_result and r.number("samples") == 90.0 and np.all(r.value == 2000.0),
