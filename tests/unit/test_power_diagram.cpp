@@ -176,10 +176,11 @@ TEST(PowerDiagram, PolydisperseCellsTileTheChannelAndHoldTheirPoints) {
 }
 
 TEST(PowerDiagram, SparseChannelGrowsTheMarginUntilTheCellsAreExact) {
-  // Three disks in a channel 100 long: the first margin (twice a diameter plus the spacing,
-  // ~34) leaves the end cells unproven, so it grows; the cells are those of brute force.
+  // Three disks in the middle of a channel 100 long: the first margin (twice a diameter plus
+  // the spacing, ~34) holds no image of them, so the outer cells would overlap across x = 0;
+  // it grows until they are proven, and the cells are those of brute force.
   const double lx = 100.0, ly = 6.0;
-  const Disks d{{3.0, 40.0, 97.5}, {2.0, 3.5, 4.0}, {1.0, 0.6, 1.4}, {0.1, 0.2, 0.3}};
+  const Disks d{{45.0, 50.0, 55.0}, {2.0, 3.5, 4.0}, {1.0, 0.6, 1.4}, {0.1, 0.2, 0.3}};
   const auto f = colloid_axial_fields(d.x, d.y, d.r, d.u, {lx, ly}, false, 25);
   EXPECT_GT(f.cells.rounds, 1);
   EXPECT_NEAR(total(f.cells.area), lx * ly, 1e-12 * lx * ly);
