@@ -6,10 +6,15 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Regular_triangulation_2.h>
+#include <CGAL/Regular_triangulation_3.h>
+#include <CGAL/Regular_triangulation_cell_base_3.h>
 #include <CGAL/Regular_triangulation_face_base_2.h>
 #include <CGAL/Regular_triangulation_vertex_base_2.h>
+#include <CGAL/Regular_triangulation_vertex_base_3.h>
 #include <CGAL/Triangulation_data_structure_2.h>
+#include <CGAL/Triangulation_data_structure_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
 #include <algorithm>
 #include <cmath>
@@ -28,12 +33,129 @@ using VertexBase =
 using FaceBase = CGAL::Regular_triangulation_face_base_2<Kernel>;
 using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
 using Regular = CGAL::Regular_triangulation_2<Kernel, Tds>;
+using VertexBase3 =
+    CGAL::Triangulation_vertex_base_with_info_3<std::size_t, Kernel,
+                                                CGAL::Regular_triangulation_vertex_base_3<Kernel>>;
+using CellBase3 = CGAL::Regular_triangulation_cell_base_3<Kernel>;
+using Tds3 = CGAL::Triangulation_data_structure_3<VertexBase3, CellBase3>;
+using Regular3 = CGAL::Regular_triangulation_3<Kernel, Tds3>;
 
 // A disk of the triangulation: an original (disk < n) or a periodic image of disk `disk`.
 struct Site {
   double x, y, r;
   std::size_t disk;
 };
+
+// A ball of the 3D triangulation.
+struct Site3 {
+  Point3 p;
+  double r;
+};
+
+double dot(const Point3 &a, const Point3 &b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Point3 minus(const Point3 &a, const Point3 &b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Point3 cross(const Point3 &a, const Point3 &b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+// The part of a convex polyhedron where side(u) <= 0, side affine; `normal` points out of the
+// kept part across the plane side = 0. An edge crossing the plane is cut from its
+// lexicographically smaller end, so the two faces sharing it get the same point, bit for bit
+// (`cut(p, q, sp, sq)`), and the new face is the set of those points (and of the vertices on
+// the plane), in counter-clockwise order around the normal.
+template <class Side, class Cut>
+Polyhedron clip_polyhedron(const Polyhedron &poly, const Side &side, const Cut &cut,
+                           const Point3 &normal) {
+  Polyhedron out;
+  std::vector<Point3> cap;
+  bool face_on_plane = false;
+  for (const auto &f : poly.faces) {
+    std::vector<Point3> g;
+    const std::size_t m = f.size();
+    bool all_on = true;
+    for (std::size_t j = 0; j < m; ++j) {
+      const Point3 &p = f[j], &q = f[(j + 1) % m];
+      const double sp = side(p), sq = side(q);
+      all_on = all_on && sp == 0.0;
+      if (sp <= 0.0) {
+        g.push_back(p);
+        if (sp == 0.0)
+          cap.push_back(p);
+      }
+      if ((sp < 0.0 && sq > 0.0) || (sp > 0.0 && sq < 0.0)) {
+        const Point3 c = p < q ? cut(p, q, sp, sq) : cut(q, p, sq, sp);
+        g.push_back(c);
+        cap.push_back(c);
+      }
+    }
+    face_on_plane = face_on_plane || (all_on && m >= 3);
+    if (g.size() >= 3)
+      out.faces.push_back(std::move(g));
+  }
+  std::sort(cap.begin(), cap.end());
+  cap.erase(std::unique(cap.begin(), cap.end()), cap.end());
+  if (cap.size() < 3 || face_on_plane || out.faces.empty())
+    return out;
+  Point3 centre{0.0, 0.0, 0.0};
+  for (const Point3 &c : cap)
+    for (int k = 0; k < 3; ++k)
+      centre[k] += c[k] / static_cast<double>(cap.size());
+  const double nn = std::sqrt(dot(normal, normal));
+  const Point3 n{normal[0] / nn, normal[1] / nn, normal[2] / nn};
+  const Point3 other = std::abs(n[0]) < 0.9 ? Point3{1.0, 0.0, 0.0} : Point3{0.0, 1.0, 0.0};
+  Point3 e1 = cross(n, other);
+  const double l1 = std::sqrt(dot(e1, e1));
+  e1 = {e1[0] / l1, e1[1] / l1, e1[2] / l1};
+  const Point3 e2 = cross(n, e1); // e1 x e2 = n: increasing angle is counter-clockwise about n
+  std::vector<std::pair<double, Point3>> around;
+  for (const Point3 &c : cap) {
+    const Point3 d = minus(c, centre);
+    around.emplace_back(std::atan2(dot(d, e2), dot(d, e1)), c);
+  }
+  std::sort(around.begin(), around.end());
+  std::vector<Point3> face;
+  for (const auto &a : around)
+    face.push_back(a.second);
+  out.faces.push_back(std::move(face));
+  return out;
+}
+
+// The part of a convex polyhedron with u[axis] <= c (below) or >= c, new vertices exactly on it.
+Polyhedron clip_axis(const Polyhedron &poly, int axis, double c, bool below) {
+  const double s = below ? 1.0 : -1.0;
+  Point3 normal{0.0, 0.0, 0.0};
+  normal[axis] = s;
+  return clip_polyhedron(
+      poly, [&](const Point3 &u) { return s * (u[axis] - c); },
+      [&](const Point3 &p, const Point3 &q, double sp, double sq) {
+        const double t = sp / (sp - sq);
+        Point3 r{p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1]), p[2] + t * (q[2] - p[2])};
+        r[axis] = c;
+        return r;
+      },
+      normal);
+}
+
+// The box [lo, hi] as a polyhedron (faces counter-clockwise seen from outside).
+Polyhedron box_polyhedron(const Point3 &lo, const Point3 &hi) {
+  Polyhedron b;
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3; // e_i x e_j = e_k
+    for (const bool upper : {false, true}) {
+      std::vector<Point3> f(4);
+      const double a[4][2] = {{lo[i], lo[j]}, {hi[i], lo[j]}, {hi[i], hi[j]}, {lo[i], hi[j]}};
+      for (int v = 0; v < 4; ++v) {
+        f[v][k] = upper ? hi[k] : lo[k];
+        f[v][i] = a[v][0];
+        f[v][j] = a[v][1];
+      }
+      if (!upper)
+        std::reverse(f.begin(), f.end());
+      b.faces.push_back(std::move(f));
+    }
+  }
+  return b;
+}
 
 } // namespace
 
@@ -226,6 +348,150 @@ PowerCells power_cells(std::span<const double> x, std::span<const double> y,
     if (proven || whole)
       return out;
     for (int k = 0; k < 2; ++k)
+      margin[k] = std::min(length[k], 2.0 * margin[k]);
+  }
+}
+
+Polyhedron clip_half_space(const Polyhedron &p, const Point3 &a, double b) {
+  return clip_polyhedron(
+      p, [&](const Point3 &u) { return dot(a, u) - b; },
+      [](const Point3 &u, const Point3 &v, double su, double sv) {
+        const double t = su / (su - sv);
+        return Point3{u[0] + t * (v[0] - u[0]), u[1] + t * (v[1] - u[1]), u[2] + t * (v[2] - u[2])};
+      },
+      a);
+}
+
+Polyhedron clip_x_slab(const Polyhedron &p, double lo, double hi) {
+  return clip_axis(clip_axis(p, 0, lo, false), 0, hi, true);
+}
+
+double polyhedron_volume(const Polyhedron &p) {
+  if (p.faces.empty())
+    return 0.0;
+  const Point3 o = p.faces[0][0];
+  double six = 0.0;
+  for (const auto &f : p.faces) {
+    const Point3 a = minus(f[0], o);
+    for (std::size_t j = 1; j + 1 < f.size(); ++j)
+      six += dot(a, cross(minus(f[j], o), minus(f[j + 1], o)));
+  }
+  return six / 6.0;
+}
+
+PowerCells3 power_cells_3d(std::span<const double> x, std::span<const double> y,
+                           std::span<const double> z, std::span<const double> r,
+                           const Point3 &length, const std::array<bool, 3> &periodic) {
+  const std::size_t n = x.size();
+  if (y.size() != n || z.size() != n || r.size() != n)
+    throw Error(ExitCode::other, "power_cells_3d: arrays of different lengths");
+  PowerCells3 out;
+  out.cell.resize(n);
+  out.volume.assign(n, 0.0);
+  if (n == 0)
+    return out;
+  double rmax = 0.0;
+  for (const double ri : r)
+    rmax = std::max(rmax, ri);
+  const double spacing = std::cbrt(length[0] * length[1] * length[2] / static_cast<double>(n));
+  Point3 margin{0.0, 0.0, 0.0};
+  for (int k = 0; k < 3; ++k)
+    if (periodic[k])
+      margin[k] = std::min(length[k], 2.0 * (2.0 * rmax + spacing));
+  std::vector<Site3> sites;
+  std::vector<std::pair<Regular3::Weighted_point, std::size_t>> points;
+  std::vector<Regular3::Vertex_handle> vertex, adjacent;
+  std::vector<std::size_t> neighbours;
+  for (;;) {
+    ++out.rounds;
+    sites.clear();
+    for (std::size_t i = 0; i < n; ++i)
+      sites.push_back({{x[i], y[i], z[i]}, r[i]});
+    for (std::size_t i = 0; i < n; ++i)
+      for (int ox = -1; ox <= 1; ++ox)
+        for (int oy = -1; oy <= 1; ++oy)
+          for (int oz = -1; oz <= 1; ++oz) {
+            const int o[3] = {ox, oy, oz};
+            if (ox == 0 && oy == 0 && oz == 0)
+              continue;
+            const Point3 p{x[i] + ox * length[0], y[i] + oy * length[1], z[i] + oz * length[2]};
+            bool inside = true;
+            for (int k = 0; k < 3; ++k)
+              inside = inside && (o[k] == 0 || (periodic[k] && p[k] >= -margin[k] &&
+                                                p[k] < length[k] + margin[k]));
+            if (inside)
+              sites.push_back({p, r[i]});
+          }
+    out.replicas = sites.size() - n;
+    points.clear();
+    for (std::size_t s = 0; s < sites.size(); ++s)
+      points.emplace_back(
+          Regular3::Weighted_point(Kernel::Point_3(sites[s].p[0], sites[s].p[1], sites[s].p[2]),
+                                   sites[s].r * sites[s].r),
+          s);
+    Regular3 rt;
+    rt.insert(points.begin(), points.end());
+    vertex.assign(n, Regular3::Vertex_handle());
+    for (auto v = rt.finite_vertices_begin(); v != rt.finite_vertices_end(); ++v)
+      if (v->info() < n)
+        vertex[v->info()] = v;
+    const bool flat = rt.dimension() < 3;
+    bool proven = true;
+    out.hidden = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      out.cell[i].faces.clear();
+      out.volume[i] = 0.0;
+      if (vertex[i] == Regular3::Vertex_handle()) {
+        ++out.hidden;
+        continue;
+      }
+      neighbours.clear();
+      if (flat) {
+        for (auto v = rt.finite_vertices_begin(); v != rt.finite_vertices_end(); ++v)
+          if (v->info() != i)
+            neighbours.push_back(v->info());
+      } else {
+        adjacent.clear();
+        rt.finite_adjacent_vertices(vertex[i], std::back_inserter(adjacent));
+        for (const auto &v : adjacent)
+          neighbours.push_back(v->info());
+      }
+      const Site3 &p = sites[i];
+      Point3 lo, hi;
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = periodic[k] ? -0.5 * length[k] : -p.p[k];
+        hi[k] = periodic[k] ? 0.5 * length[k] : length[k] - p.p[k];
+      }
+      Polyhedron cell = box_polyhedron(lo, hi);
+      for (const std::size_t s : neighbours) {
+        const Site3 &q = sites[s];
+        const Point3 d = minus(q.p, p.p);
+        cell = clip_half_space(cell, {2.0 * d[0], 2.0 * d[1], 2.0 * d[2]},
+                               dot(d, d) + p.r * p.r - q.r * q.r);
+      }
+      out.volume[i] = polyhedron_volume(cell);
+      double reach = 0.0;
+      for (const auto &f : cell.faces)
+        for (const Point3 &u : f)
+          reach = std::max(reach, std::sqrt(dot(u, u)));
+      double gap = INFINITY;
+      for (int k = 0; k < 3; ++k)
+        if (periodic[k])
+          gap = std::min(gap, std::min(p.p[k] + margin[k], length[k] + margin[k] - p.p[k]));
+      if (gap < reach + std::sqrt(std::max(0.0, reach * reach - p.r * p.r + rmax * rmax)))
+        proven = false;
+      for (auto &f : cell.faces)
+        for (Point3 &u : f)
+          for (int k = 0; k < 3; ++k)
+            u[k] += p.p[k];
+      out.cell[i] = std::move(cell);
+    }
+    bool whole = true;
+    for (int k = 0; k < 3; ++k)
+      whole = whole && (!periodic[k] || margin[k] >= length[k]);
+    if (proven || whole)
+      return out;
+    for (int k = 0; k < 3; ++k)
       margin[k] = std::min(length[k], 2.0 * margin[k]);
   }
 }

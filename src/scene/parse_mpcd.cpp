@@ -22,14 +22,9 @@ void parse_mpcd(const Checker &c, const toml::value &root, Scene &s) {
 
 namespace {
 
-// axial_fields: the 2D power diagram, bins that cover the periodic length exactly (so the mean
+// axial_fields: bins that cover the periodic length exactly (so the mean
 // of phi over the bins is the colloid area over the channel area).
 void check_axial_fields(const Checker &c, const Scene &s) {
-  if (s.run.dimensions != 2)
-    c.fail("output.observables",
-           "output.observables lists \"axial_fields\" with run.dimensions = " +
-               std::to_string(s.run.dimensions) +
-               "; allowed only with run.dimensions = 2 (the 3D power diagram is not implemented)");
   const double length = s.domain.size[0], bin = s.output.axial_bin;
   const std::string allowed = "; allowed with \"axial_fields\": a width at most domain.size[0] "
                               "that divides it";

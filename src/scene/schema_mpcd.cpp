@@ -167,7 +167,7 @@ const EngineSchema &mpcd_schema() {
         "fields along the channel averaged over its cross-section in bins of "
         "`output.axial_bin` (Kanehl (thesis) eq 6.1): colloid area fraction φ from the power "
         "(Voronoi) cells of the colloids, their material-weighted x-velocity, the fluid's mean "
-        "x-velocity (2D; needs `[colloids]`)",
+        "x-velocity (3D: volume fraction; needs `[colloids]`)",
         nullptr, true},
        {"colloid_vacf",
         "`/observables/colloid_vacf/{value, lags, error} [max_lag/correlation_every+1]`, "

@@ -3,8 +3,9 @@
 # polydisperse no-slip disks in a driven channel writes /observables/axial_fields/{phi, velocity,
 # fluid_velocity} [T][bins], bins, step, time, bitwise the same on 1, 2 and 3 ranks (28 cells:
 # uneven slabs on 3 ranks), and so are the trajectory's voronoi_fraction frames; the channel mean of phi is the colloid area over the channel area; the trajectory frames hold each
-# colloid's voronoi_fraction; the log gives the cost per sample; bad axial_bin values, 3D and a
-# scene without colloids are refused in one line.
+# colloid's voronoi_fraction; the log gives the cost per sample; the same in 3D (volume
+# fraction, 1 and 3 ranks); bad axial_bin values and a scene without colloids are refused in one
+# line.
 set -u
 source "$(dirname "$0")/common.bash"
 py=/usr/bin/python3
@@ -85,9 +86,24 @@ refused "axial_bin longer than the channel" "output.axial_bin = 56.0 is longer t
   "$narrows" check "$tmp/s.toml" --set output.axial_bin=56.0
 refused "axial_bin 0" "output.axial_bin = 0.*allowed: a number > 0" \
   "$narrows" check "$tmp/s.toml" --set output.axial_bin=0.0
-refused "3D" "lists \"axial_fields\" with run.dimensions = 3; allowed only with run.dimensions = 2" \
-  "$narrows" check "$tmp/s.toml" --set run.dimensions=3 --set domain.size=[28.0,12.0,6.0] \
-  --set body_force.value=[0.02,0.0,0.0] --set colloids.gravity=[0.02,0.0,0.0]
+# 3D: power cells of the balls in the slit, the volume fraction; 1 and 3 ranks bitwise.
+three=(--set run.dimensions=3 --set 'domain.size=[28.0,12.0,6.0]' --set run.steps=40
+  --set 'body_force.value=[0.02,0.0,0.0]' --set 'colloids.gravity=[0.02,0.0,0.0]')
+runs "3D, 1 rank" "$narrows" run "$tmp/s.toml" "${three[@]}" --out "$tmp/one3" > /dev/null 2>&1
+runs "3D, 3 ranks" "${mpi[@]}" -n 3 "$narrows" run "$tmp/s.toml" "${three[@]}" --out "$tmp/r3d" \
+  > /dev/null 2>&1
+check "3D: 3 ranks bitwise equal to 1 rank" \
+  '$py "$same" "$tmp/one3/observables.h5" "$tmp/r3d/observables.h5" $fields'
+cat > "$tmp/mean3.py" <<'PY'
+import math, sys, h5py, numpy as np
+with h5py.File(sys.argv[1] + "/observables.h5", "r") as f:
+    phi = f["/observables/axial_fields/phi"][:]
+with h5py.File(sys.argv[1] + "/trajectory.h5", "r") as f:
+    r = f["/particles/colloids/radius"][:]
+want = 4 / 3 * math.pi * np.sum(r**3) / (28.0 * 12.0 * 6.0)
+assert phi.shape == (2, 8) and np.allclose(phi.mean(axis=1), want, rtol=1e-12, atol=0), (phi, want)
+PY
+check "3D: the channel mean of phi is the colloid volume over the slit's" '$py "$tmp/mean3.py" "$tmp/one3"'
 sed '/^\[colloids/,/^substeps/d' "$tmp/s.toml" > "$tmp/fluid.toml"
 refused "no colloids" "lists \"axial_fields\", which follows colloids; allowed only with \[colloids\]" \
   "$narrows" check "$tmp/fluid.toml"

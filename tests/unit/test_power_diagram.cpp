@@ -8,7 +8,9 @@
 //   colloid area over the channel area and the material-weighted mean of v(x) the mean colloid
 //   momentum;
 // - a sparse channel (the replication margin must grow), one disk alone, disks on one line (a
-//   flat triangulation), a hidden disk.
+//   flat triangulation), a hidden disk;
+// - 3D: a bcc packing (truncated octahedra of volume a^3/2), random polydisperse balls in a slit
+//   (volumes tile it, points in the cell of least power, channel means), one ball alone.
 // Tolerances: the areas are sums of ~10 products of coordinates of size <= 100, each rounded to
 // 1e-16 relative, so 1e-12 relative leaves a factor ~100 for the sums of hundreds of cells.
 #include "narrows/analysis/axial_fields.hpp"
@@ -224,4 +226,130 @@ TEST(PowerDiagram, AxialBinCount) {
   EXPECT_EQ(axial_bin_count(25.0, 2.0), 0u);   // not a whole number of bins
   EXPECT_EQ(axial_bin_count(25.0, 30.0), 0u);  // longer than the channel
   EXPECT_EQ(axial_bin_count(25.0, 0.0), 0u);
+}
+
+namespace {
+
+// A point in a convex polyhedron (faces counter-clockwise seen from outside).
+bool inside3(const Polyhedron &p, const Point3 &u) {
+  for (const auto &f : p.faces) {
+    const Point3 &a = f[0], &b = f[1], &c = f[2];
+    const Point3 ab{b[0] - a[0], b[1] - a[1], b[2] - a[2]},
+        ac{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const Point3 n{ab[1] * ac[2] - ab[2] * ac[1], ab[2] * ac[0] - ab[0] * ac[2],
+                   ab[0] * ac[1] - ab[1] * ac[0]};
+    if (n[0] * (u[0] - a[0]) + n[1] * (u[1] - a[1]) + n[2] * (u[2] - a[2]) > 1e-9)
+      return false;
+  }
+  return !p.faces.empty();
+}
+
+} // namespace
+
+TEST(PowerDiagram3D, BodyCentredCubicPackingHasTheAnalyticFraction) {
+  // A bcc lattice of cube side a (cells: truncated octahedra of volume a^3 / 2), 4 x 4 x 4
+  // cubes, shifted off the box edges, periodic along x, y and z; 5 bins of 16/5.
+  const double a = 4.0, r = 1.5;
+  const int m = 4;
+  const double l = m * a;
+  std::vector<double> x, y, z, rr, u;
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j)
+      for (int k = 0; k < m; ++k)
+        for (const double h : {0.0, 0.5}) {
+          x.push_back(0.31 + (i + h) * a);
+          y.push_back(0.17 + (j + h) * a);
+          z.push_back(0.23 + (k + h) * a);
+          rr.push_back(r);
+          u.push_back(-0.25);
+        }
+  const double want = 4.0 / 3.0 * std::numbers::pi * r * r * r / (a * a * a / 2.0);
+  const auto f = colloid_axial_fields_3d(x, y, z, rr, u, {l, l, l}, true, 5);
+  EXPECT_EQ(f.cells.hidden, 0u);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    EXPECT_NEAR(f.cells.volume[i], a * a * a / 2.0, 1e-12 * a * a * a) << "cell " << i;
+    EXPECT_NEAR(f.local_fraction[i], want, 1e-12 * want) << "cell " << i;
+    EXPECT_EQ(f.cells.cell[i].faces.size(), 14u) << "cell " << i << " is no truncated octahedron";
+  }
+  for (std::size_t b = 0; b < 5; ++b) {
+    EXPECT_NEAR(f.phi[b], want, 1e-12 * want) << "bin " << b;
+    EXPECT_NEAR(f.velocity[b], -0.25, 1e-12) << "bin " << b;
+  }
+}
+
+TEST(PowerDiagram3D, PolydisperseCellsTileTheSlitAndHoldTheirPoints) {
+  // Random balls between walls at y = 0 and 8, periodic along x (20) and z (6).
+  const double lx = 20.0, ly = 8.0, lz = 6.0;
+  std::mt19937_64 gen(21);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<double> x, y, z, r, u;
+  while (x.size() < 60) {
+    const double ri = 0.5 + unit(gen), xi = lx * unit(gen), yi = ri + (ly - 2 * ri) * unit(gen),
+                 zi = lz * unit(gen);
+    bool free = true;
+    for (std::size_t j = 0; j < x.size() && free; ++j) {
+      double dx = std::abs(xi - x[j]), dz = std::abs(zi - z[j]);
+      dx = std::min(dx, lx - dx);
+      dz = std::min(dz, lz - dz);
+      free = dx * dx + (yi - y[j]) * (yi - y[j]) + dz * dz >= (ri + r[j]) * (ri + r[j]);
+    }
+    if (free) {
+      x.push_back(xi), y.push_back(yi), z.push_back(zi), r.push_back(ri);
+      u.push_back(unit(gen) - 0.4);
+    }
+  }
+  const std::size_t bins = 8;
+  const auto f = colloid_axial_fields_3d(x, y, z, r, u, {lx, ly, lz}, false, bins);
+  EXPECT_EQ(f.cells.hidden, 0u);
+  EXPECT_NEAR(total(f.cells.volume), lx * ly * lz, 1e-12 * lx * ly * lz);
+  double volume = 0.0, momentum = 0.0, phi_v = 0.0, phi_vu = 0.0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double vi = 4.0 / 3.0 * std::numbers::pi * r[i] * r[i] * r[i];
+    volume += vi;
+    momentum += vi * u[i];
+  }
+  const double bin_volume = lx / bins * ly * lz;
+  for (std::size_t b = 0; b < bins; ++b) {
+    phi_v += f.phi[b] * bin_volume;
+    phi_vu += f.phi[b] * f.velocity[b] * bin_volume;
+  }
+  EXPECT_NEAR(phi_v, volume, 1e-12 * volume);
+  EXPECT_NEAR(phi_vu, momentum, 1e-12 * volume);
+  // Random points lie in the cell (or an image of it) of the ball of least power.
+  int wrong = 0;
+  for (int s = 0; s < 5000; ++s) {
+    const Point3 p{lx * unit(gen), ly * unit(gen), lz * unit(gen)};
+    std::size_t best = 0;
+    double least = INFINITY, second = INFINITY;
+    for (std::size_t i = 0; i < x.size(); ++i)
+      for (int ox = -1; ox <= 1; ++ox)
+        for (int oz = -1; oz <= 1; ++oz) {
+          const double dx = p[0] - x[i] - ox * lx, dy = p[1] - y[i], dz = p[2] - z[i] - oz * lz;
+          const double power = dx * dx + dy * dy + dz * dz - r[i] * r[i];
+          if (power < least) {
+            if (i != best)
+              second = least;
+            least = power;
+            best = i;
+          } else if (i != best && power < second) {
+            second = power;
+          }
+        }
+    if (second - least < 1e-9)
+      continue;
+    bool found = false;
+    for (int ox = -1; ox <= 1 && !found; ++ox)
+      for (int oz = -1; oz <= 1 && !found; ++oz)
+        found = inside3(f.cells.cell[best], {p[0] + ox * lx, p[1], p[2] + oz * lz});
+    wrong += !found;
+  }
+  EXPECT_EQ(wrong, 0);
+}
+
+TEST(PowerDiagram3D, OneBallAloneOwnsTheSlit) {
+  const std::vector<double> x{3.0}, y{2.0}, z{1.0}, r{1.0}, u{0.4};
+  const auto f = colloid_axial_fields_3d(x, y, z, r, u, {12.0, 5.0, 4.0}, false, 3);
+  EXPECT_NEAR(f.cells.volume[0], 240.0, 1e-12 * 240.0);
+  for (std::size_t b = 0; b < 3; ++b)
+    EXPECT_NEAR(f.phi[b], 4.0 / 3.0 * std::numbers::pi / 240.0, 1e-15) << "bin " << b;
 }

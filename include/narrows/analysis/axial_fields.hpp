@@ -1,6 +1,6 @@
-// Fields along the channel (Kanehl (thesis) eq 6.1): the colloid area fraction phi(x) and the
-// colloid velocity v(x), averaged over the cross-section in bins along x, from the power
-// (Voronoi) cells of the colloids (power_diagram.hpp).
+// Fields along the channel (Kanehl (thesis) eq 6.1): the colloid area fraction phi(x) (3D:
+// volume fraction) and the colloid velocity v(x), averaged over the cross-section in bins along x,
+// from the power (Voronoi) cells of the colloids (power_diagram.hpp).
 //
 // The local fraction of colloid i is phi_i = V_i / A_i, its area V_i = pi r_i^2 over the area A_i
 // of its power cell, and phi(x, y) = phi_i on cell i is the field eq 6.1 averages over y. In a
@@ -37,6 +37,17 @@ struct ColloidAxialFields {
 ColloidAxialFields colloid_axial_fields(std::span<const double> x, std::span<const double> y,
                                         std::span<const double> r, std::span<const double> u,
                                         const Point2 &length, bool periodic_y, std::size_t bins);
+
+// The same in 3D: balls (volume 4/3 pi r^3) in the box [0, length[k]), periodic along x and z
+// (and y if periodic_y), power cells as polyhedra; phi is the volume fraction, bins are slabs.
+struct ColloidAxialFields3 {
+  std::vector<double> phi, velocity, local_fraction;
+  PowerCells3 cells;
+};
+ColloidAxialFields3 colloid_axial_fields_3d(std::span<const double> x, std::span<const double> y,
+                                            std::span<const double> z, std::span<const double> r,
+                                            std::span<const double> u, const Point3 &length,
+                                            bool periodic_y, std::size_t bins);
 
 // The number of bins of width `bin` along a length, or 0 if the length is not a whole number
 // of them (to a relative 1e-9).

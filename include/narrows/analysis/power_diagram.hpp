@@ -1,11 +1,12 @@
 // The power (Laguerre) diagram of disks in a 2D box: the Voronoi tessellation of the centres
 // weighted by the radii (Aurenhammer (1987)), the local area fraction of a packing (Kanehl
-// (thesis) §6.1, eq 6.1: "a Voronoi tessellation for the colloidal packing"). The cell of disk i
+// (thesis) eq 6.1: "a Voronoi tessellation for the colloidal packing"). The cell of disk i
 // is the set of points x whose power |x - p_i|^2 - r_i^2 is smallest over all disks; with equal
 // radii it is the ordinary Voronoi cell. The diagram comes from CGAL's regular triangulation
 // (Yvinec (2022), Regular_triangulation_2: its neighbours are those of the power diagram), and
-// each cell is the box (or channel) clipped by the power half-planes of its
-// neighbours, so a cell is a convex polygon and the cells tile the box.
+// each cell is the box (or channel) clipped by the power half-planes of its neighbours, so a
+// cell is a convex polygon and the cells tile the box. In 3D the same with balls,
+// Regular_triangulation_3 and convex polyhedra.
 //
 // Along a periodic axis the disks are replicated within a margin of the box; the margin starts at
 // a few spacings and doubles until every cell is provably unaffected by the disks left out (see
@@ -41,6 +42,33 @@ struct PowerCells {
 PowerCells power_cells(std::span<const double> x, std::span<const double> y,
                        std::span<const double> r, const Point2 &length,
                        const std::array<bool, 2> &periodic);
+
+// ---- 3D: power cells of balls as convex polyhedra ----
+
+using Point3 = std::array<double, 3>;
+// A convex polyhedron as its faces, each a convex polygon counter-clockwise seen from outside.
+struct Polyhedron {
+  std::vector<std::vector<Point3>> faces;
+};
+
+struct PowerCells3 {
+  std::vector<Polyhedron> cell; // of ball i, absolute coordinates (as polygon in 2D)
+  std::vector<double> volume;   // 0 for a hidden ball
+  std::size_t hidden = 0, replicas = 0;
+  int rounds = 0;
+};
+
+// The power cells of n balls in the box [0, length[k]) (periodic along k if periodic[k], else
+// walls at 0 and length[k]), as power_cells in 2D (Regular_triangulation_3).
+PowerCells3 power_cells_3d(std::span<const double> x, std::span<const double> y,
+                           std::span<const double> z, std::span<const double> r,
+                           const Point3 &length, const std::array<bool, 3> &periodic);
+
+// The part of a convex polyhedron where a . u <= b, closed by a new face on the plane.
+Polyhedron clip_half_space(const Polyhedron &p, const Point3 &a, double b);
+// The part with lo <= x <= hi (new vertices exactly on the planes).
+Polyhedron clip_x_slab(const Polyhedron &p, double lo, double hi);
+double polyhedron_volume(const Polyhedron &p);
 
 // ---- convex polygons (used by the cells and the bins along x) ----
 

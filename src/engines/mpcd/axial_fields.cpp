@@ -15,7 +15,7 @@ namespace narrows::mpcd {
 
 AxialFields::AxialFields(const Box &box, double bin) : box_(box) {
   bins_ = analysis::axial_bin_count(box.length[0], bin);
-  if (box.dim != 2 || bins_ == 0)
+  if (bins_ == 0)
     throw Error(ExitCode::other, "axial_fields: a " + std::to_string(box.dim) + "D box of length " +
                                      std::to_string(box.length[0]) + " in bins of " +
                                      std::to_string(bin));
@@ -25,6 +25,11 @@ AxialFields::AxialFields(const Box &box, double bin) : box_(box) {
 }
 
 AxialSample AxialFields::colloid_fields(const colloids::Colloids &all) const {
+  if (box_.dim == 3) {
+    auto f = analysis::colloid_axial_fields_3d(all.x[0], all.x[1], all.x[2], all.radius, all.v[0],
+                                               box_.length, !box_.walls_y, bins_);
+    return {std::move(f.phi), std::move(f.velocity), {}, std::move(f.local_fraction)};
+  }
   auto f = analysis::colloid_axial_fields(all.x[0], all.x[1], all.radius, all.v[0],
                                           {box_.length[0], box_.length[1]}, !box_.walls_y, bins_);
   AxialSample s;

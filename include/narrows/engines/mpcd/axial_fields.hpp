@@ -1,8 +1,8 @@
 // The MPCD observable axial_fields (Kanehl (thesis) eq 6.1): in bins of width output.axial_bin
-// along x, the colloid area fraction phi(x) and colloid velocity v(x) from the power (Voronoi)
-// cells of the colloids (analysis/axial_fields.hpp), and the fluid's mean x-velocity. Written to
-// /observables/axial_fields/{phi, velocity, fluid_velocity} [T][bins], bins (x centres), step,
-// time. Each colloid's own fraction phi_i can go with the trajectory frames
+// along x, the colloid area fraction phi(x) (3D: volume fraction) and colloid velocity v(x) from
+// the power (Voronoi) cells of the colloids (analysis/axial_fields.hpp), and the fluid's mean
+// x-velocity. Written to /observables/axial_fields/{phi, velocity, fluid_velocity} [T][bins], bins
+// (x centres), step, time. Each colloid's own fraction phi_i can go with the trajectory frames
 // (/particles/colloids/voronoi_fraction).
 //
 // Bitwise the same on any number of ranks: the colloid fields are computed from all colloids
@@ -31,7 +31,7 @@ struct AxialSample {
 
 class AxialFields {
 public:
-  // A 2D box whose x length is a whole number of bins of width `bin` (the scene checks both);
+  // A box whose x length is a whole number of bins of width `bin` (the scene checks both);
   // throws narrows::Error otherwise.
   AxialFields(const Box &box, double bin);
   std::size_t bins() const { return bins_; }
