@@ -27,7 +27,8 @@ ObservablesWriter::ObservablesWriter(const std::string &path, const std::string 
 ObservablesWriter::Series &ObservablesWriter::series(const std::string &name, Kind kind,
                                                      std::vector<hsize_t> sample_shape,
                                                      std::span<const double> bins) {
-  static constexpr const char *kind_names[] = {"scalar", "vector", "profile", "field"};
+  static constexpr const char *kind_names[] = {"scalar", "vector", "profile", "field",
+                                               "set of profiles"};
   if (const auto it = series_.find(name); it != series_.end()) {
     Series &s = it->second;
     if (s.kind != kind || s.sample_shape != sample_shape)
@@ -46,8 +47,9 @@ ObservablesWriter::Series &ObservablesWriter::series(const std::string &name, Ki
   Series s{kind, std::move(sample_shape), 0, {}, {}, {}, {}};
   s.step = h5::create_series(group.get(), "step", H5T_STD_I64LE, {}, path_);
   s.time = h5::create_series(group.get(), "time", H5T_IEEE_F64LE, {}, path_);
-  s.value = h5::create_series(group.get(), "value", H5T_IEEE_F64LE, s.sample_shape, path_);
-  if (kind == Kind::profile)
+  if (kind != Kind::profiles)
+    s.value = h5::create_series(group.get(), "value", H5T_IEEE_F64LE, s.sample_shape, path_);
+  if (kind == Kind::profile || kind == Kind::profiles)
     h5::write_dataset<double>(group.get(), "bins", bins, path_);
   return series_.emplace(name, std::move(s)).first->second;
 }
@@ -88,6 +90,39 @@ void ObservablesWriter::append_profile(const std::string &name, std::int64_t ste
   if (components > 1)
     shape.push_back(components);
   append(series(name, Kind::profile, std::move(shape), bins), name, step, time, values.data());
+}
+
+void ObservablesWriter::append_profiles(
+    const std::string &name, std::int64_t step, double time, std::span<const double> bins,
+    const std::vector<std::pair<std::string, std::span<const double>>> &fields) {
+  for (const auto &[field, values] : fields)
+    if (bins.empty() || values.size() != bins.size() || field.empty() ||
+        field.find('/') != std::string::npos || field == "step" || field == "time" ||
+        field == "bins")
+      throw Error(ExitCode::other, path_ + ": profile '" + name + "/" + field + "' has " +
+                                       std::to_string(values.size()) + " values for " +
+                                       std::to_string(bins.size()) + " bins (or a bad name)");
+  Series &s = series(name, Kind::profiles, {bins.size()}, bins);
+  if (s.fields.empty()) {
+    const h5::Group group = h5::open_group(observables_.get(), name, path_);
+    for (const auto &f : fields)
+      s.fields.emplace_back(
+          f.first, h5::create_series(group.get(), f.first, H5T_IEEE_F64LE, s.sample_shape, path_));
+  }
+  bool same = s.fields.size() == fields.size();
+  for (std::size_t j = 0; same && j < fields.size(); ++j)
+    same = s.fields[j].first == fields[j].first;
+  if (!same)
+    throw Error(ExitCode::other,
+                path_ + ": profiles '" + name + "' were written with other fields before");
+  // As append(): the sample count advances only when every row is written.
+  const std::string prefix = "/observables/" + name + "/";
+  h5::write_row(s.step, s.samples, H5T_NATIVE_INT64, {}, &step, path_, prefix + "step");
+  h5::write_row(s.time, s.samples, H5T_NATIVE_DOUBLE, {}, &time, path_, prefix + "time");
+  for (std::size_t j = 0; j < fields.size(); ++j)
+    h5::write_row(s.fields[j].second, s.samples, H5T_NATIVE_DOUBLE, s.sample_shape,
+                  fields[j].second.data(), path_, prefix + fields[j].first);
+  ++s.samples;
 }
 
 void ObservablesWriter::append_field(const std::string &name, std::int64_t step, double time,

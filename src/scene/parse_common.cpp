@@ -110,6 +110,9 @@ void parse_output(const Checker &c, const value *o, Engine engine, Output &out) 
            "output.trajectory_every = " + std::to_string(out.trajectory_every) +
                " is for particle engines; allowed with run.engine = \"" + to_string(engine) +
                "\": 0 (the lattice engines write no trajectory)");
+  if (const value *v = find(o, "axial_bin"))
+    out.axial_bin = c.number(*v, "output.axial_bin", "a number > 0 (cell units)",
+                             [](double x) { return x > 0.0; });
   if (const value *v = find(o, "progress")) {
     if (!v->is_boolean())
       c.wrong_type("output.progress", *v, "true or false");

@@ -3,6 +3,7 @@
 #include "parse_mpcd.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace narrows::scene::detail {
@@ -21,6 +22,28 @@ void parse_mpcd(const Checker &c, const toml::value &root, Scene &s) {
   if (s.colloids && s.colloids->coupling == ColloidCoupling::no_slip)
     check_no_slip(c, s);
 }
+
+namespace {
+
+// axial_fields: bins that cover the periodic length exactly (so the mean
+// of phi over the bins is the colloid area over the channel area).
+void check_axial_fields(const Checker &c, const Scene &s) {
+  const double length = s.domain.size[0], bin = s.output.axial_bin;
+  const std::string allowed = "; allowed with \"axial_fields\": a width at most domain.size[0] "
+                              "that divides it";
+  if (bin > length * (1.0 + 1e-9))
+    c.fail("output.axial_bin",
+           "output.axial_bin = " + float_text(bin) +
+               " is longer than the channel, domain.size[0] = " + float_text(length) + allowed);
+  const double bins = std::round(length / bin);
+  if (std::abs(bins * bin - length) > 1e-9 * length)
+    c.fail("output.axial_bin", "output.axial_bin = " + float_text(bin) +
+                                   " does not divide domain.size[0] = " + float_text(length) +
+                                   " into whole bins" + allowed + " (e.g. " +
+                                   float_text(length / bins) + ")");
+}
+
+} // namespace
 
 void check_mpcd_observables(const Checker &c, const Scene &s) {
   const auto &obs = s.output.observables;
@@ -44,6 +67,8 @@ void check_mpcd_observables(const Checker &c, const Scene &s) {
     c.fail("output.observables",
            "output.observables lists \"viscosity\", which fits the Poiseuille profile; allowed "
            "only with [walls] and a body_force.value whose x component is non-zero");
+  if (listed("axial_fields"))
+    check_axial_fields(c, s);
   // The fit needs two distinct values of y (L - y) over the unit bins: two bins are symmetric.
   if (listed("viscosity") && s.domain.size[1] < 3.0)
     c.fail("output.observables", "output.observables lists \"viscosity\" with domain.size[1] = " +

@@ -46,7 +46,11 @@ const SectionSpec &output_section() {
         "write the fluid (and colloids) to `DIR/trajectory.h5` every this many steps and at the "
         "start; 0: no trajectory"},
        {"trajectory_subsample", "integer", "1", ">= 1", "",
-        "frames hold the fluid particles whose id is a multiple of it"}}};
+        "frames hold the fluid particles whose id is a multiple of it"},
+       {"axial_bin", "number", "2.0",
+        "> 0; with `axial_fields`: at most `domain.size[0]`, which must be a whole number of "
+        "bins",
+        "cells", "width of the bins along x of the mpcd observable `axial_fields`"}}};
   return section;
 }
 

@@ -168,6 +168,14 @@ const EngineSchema &mpcd_schema() {
        {"colloid_positions",
         "`/observables/colloid_positions/value [T][N_c][d]`, `bins [N_c]` (colloid ids)",
         "colloid centres (needs `[colloids]`)", nullptr, true},
+       {"axial_fields",
+        "`/observables/axial_fields/{phi, velocity, fluid_velocity} [T][bins]`, `bins [bins]` "
+        "(x centres), `step`, `time`",
+        "fields along the channel averaged over its cross-section in bins of "
+        "`output.axial_bin` (Kanehl (thesis) eq 6.1): colloid area fraction φ from the power "
+        "(Voronoi) cells of the colloids, their material-weighted x-velocity, the fluid's mean "
+        "x-velocity (3D: volume fraction; needs `[colloids]`)",
+        nullptr, true},
        {"colloid_vacf",
         "`/observables/colloid_vacf/{value, lags, error} [max_lag/correlation_every+1]`, "
         "`value_by_kind`, `error_by_kind` (`[kinds][lags]` row-major, stored flat), `kinds`, "

@@ -180,6 +180,34 @@ TEST(ObservablesWriter, ShapeChangeThrows) {
   EXPECT_EQ(shape_of(file.get(), "observables/momentum/value"), (std::vector<hsize_t>{2, 3}));
 }
 
+TEST(ObservablesWriter, ProfilesShareBinsAndSteps) {
+  // A set of profiles (axial_fields): one dataset [T][bins] per field beside step, time, bins,
+  // and no value; a sample with other fields, or other bins, throws.
+  TempFile tmp("narrows-observables");
+  {
+    ObservablesWriter w(tmp.str(), "");
+    const std::vector<double> bins{1, 3, 5}, a{0.1, 0.2, 0.3}, b{-1, -2, -3};
+    w.append_profiles("axial_fields", 10, 1.0, bins, {{"phi", a}, {"velocity", b}});
+    w.append_profiles("axial_fields", 20, 2.0, bins, {{"phi", b}, {"velocity", a}});
+    EXPECT_THROW(w.append_profiles("axial_fields", 30, 3.0, bins, {{"phi", a}}), narrows::Error);
+    EXPECT_THROW(w.append_profiles("axial_fields", 30, 3.0, bins, {{"phi", a}, {"v", b}}),
+                 narrows::Error);
+    EXPECT_THROW(w.append_profiles("axial_fields", 30, 3.0, std::vector<double>{1, 3},
+                                   {{"phi", a}, {"velocity", b}}),
+                 narrows::Error);
+    EXPECT_THROW(w.append_profiles("other", 0, 0.0, bins, {{"step", a}}), narrows::Error);
+  }
+  const h5::File file = h5::open_file(tmp.str());
+  EXPECT_EQ(shape_of(file.get(), "observables/axial_fields/phi"), (std::vector<hsize_t>{2, 3}));
+  EXPECT_EQ(read_all<double>(file.get(), "observables/axial_fields/velocity"),
+            (std::vector<double>{-1, -2, -3, 0.1, 0.2, 0.3}));
+  EXPECT_EQ(read_all<std::int64_t>(file.get(), "observables/axial_fields/step"),
+            (std::vector<std::int64_t>{10, 20}));
+  EXPECT_EQ(read_all<double>(file.get(), "observables/axial_fields/bins"),
+            (std::vector<double>{1, 3, 5}));
+  EXPECT_LT(H5Lexists(file.get(), "observables/axial_fields/value", H5P_DEFAULT), 1);
+}
+
 TEST(ObservablesWriter, UnwritablePathThrows) {
   try {
     ObservablesWriter w("/nonexistent-dir-narrows/observables.h5", "");

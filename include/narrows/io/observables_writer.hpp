@@ -34,6 +34,13 @@ public:
                       std::span<const double> bins, std::span<const double> values,
                       std::size_t components);
 
+  // One sample of several profiles over the same bins, each its own series: datasets
+  // /observables/<name>/<field> of shape [T][bins] (no `value`), beside step, time and bins.
+  // Every sample names the same fields in the same order.
+  void append_profiles(const std::string &name, std::int64_t step, double time,
+                       std::span<const double> bins,
+                       const std::vector<std::pair<std::string, std::span<const double>>> &fields);
+
   // One sample of a field of any shape (row-major `values`): value shape [T][shape...].
   void append_field(const std::string &name, std::int64_t step, double time,
                     const std::vector<hsize_t> &shape, std::span<const double> values);
@@ -69,13 +76,15 @@ public:
   const std::string &path() const { return path_; }
 
 private:
-  enum class Kind { scalar, vector, profile, field };
+  enum class Kind { scalar, vector, profile, field, profiles };
   struct Series {
     Kind kind;
     std::vector<hsize_t> sample_shape; // shape of one sample (value without the T axis)
     hsize_t samples = 0;
     h5::Dataset step, time, value;
     std::vector<std::pair<std::vector<hsize_t>, h5::Dataset>> beside; // (append_field's)
+    // profiles: the named datasets instead of value
+    std::vector<std::pair<std::string, h5::Dataset>> fields = {};
   };
 
   Series &series(const std::string &name, Kind kind, std::vector<hsize_t> sample_shape,

@@ -164,6 +164,7 @@ struct Output {
   std::int64_t trajectory_every =
       0; // fluid frames to trajectory.h5 every this many steps (0 = none)
   std::int64_t trajectory_subsample = 1; // frames hold the particles whose id is a multiple of this
+  double axial_bin = 2.0; // width of the bins along x of the mpcd observable axial_fields
 };
 
 // Engine "kmc": the three-state lattice gas of Tabatabaei (2008) ch.2

@@ -8,6 +8,7 @@
 #include "narrows/colloids/contact_network.hpp"
 #include "narrows/core/error.hpp"
 #include "narrows/core/timer.hpp"
+#include "narrows/engines/mpcd/axial_fields.hpp"
 #include "narrows/engines/mpcd/colloid_checkpoint.hpp"
 #include "narrows/engines/mpcd/colloid_placement.hpp"
 #include "narrows/engines/mpcd/colloid_statistics.hpp"
@@ -59,6 +60,8 @@ public:
     settling_ = wants(s, "settling_velocity");
     positions_ = wants(s, "colloid_positions");
     contacts_ = wants(s, "contact_statistics");
+    if (wants(s, "axial_fields"))
+      axial_.emplace(sim.box(), s.output.axial_bin);
   }
   void every_step() {
     colloid_stats_.after_step(sim_);
@@ -102,6 +105,17 @@ public:
     }
     if (contacts_)
       sample_contacts(step, t);
+    if (axial_) {
+      Stopwatch watch;
+      const colloids::Colloids c = sim_.gather_colloids(); // collective
+      const AxialSample a = axial_->sample(c, sim_.fluid(), comm);
+      axial_seconds_ += watch.seconds();
+      ++axial_samples_;
+      if (writer_)
+        writer_->append_profiles(
+            "axial_fields", step, t, axial_->centres(),
+            {{"phi", a.phi}, {"velocity", a.velocity}, {"fluid_velocity", a.fluid_velocity}});
+    }
     if (momentum_) {
       const auto p = total_momentum(sim_);
       if (writer_)
@@ -130,6 +144,12 @@ public:
   // The colloid statistics' sums for a checkpoint.
   std::vector<io::CheckpointArray> checkpoint_arrays() const {
     return colloid_stats_.checkpoint_arrays();
+  }
+  // axial_fields: the bins (for the trajectory's voronoi_fraction), and what a sample cost
+  // (seconds per sample on this rank, gathering included), or nullptr / 0.
+  const AxialFields *axial() const { return axial_ ? &*axial_ : nullptr; }
+  double axial_seconds_per_sample() const {
+    return axial_samples_ > 0 ? axial_seconds_ / static_cast<double>(axial_samples_) : 0.0;
   }
   // When the run ends: the results of the whole run (colloid statistics).
   void finish() {
@@ -172,6 +192,9 @@ private:
   analysis::ProfileAccumulator profiles_;
   SettlingSum settling_sum_;
   ColloidStatistics colloid_stats_;
+  std::optional<AxialFields> axial_;
+  double axial_seconds_ = 0.0;
+  std::uint64_t axial_samples_ = 0;
   bool temperature_ = false, momentum_ = false, velocity_ = false, density_ = false,
        viscosity_ = false, energy_ = false, settling_ = false, positions_ = false,
        contacts_ = false;
@@ -277,6 +300,9 @@ public:
     if (scene.colloids) {
       colloids_ = &all_colloids_;
       all_colloids_ = sim.gather_colloids();
+      // With axial_fields the frames carry each colloid's Voronoi fraction.
+      if (observer_->axial())
+        observer_->axial()->add_local_fraction(all_colloids_);
     }
     springs_ = scene.colloids && scene.colloids->contacts == scene::ColloidContacts::spring;
     if (scene.output.trajectory_every > 0) {
@@ -312,8 +338,11 @@ public:
   void write_frame() override {
     if (!trajectory_)
       return;
-    if (colloids_)
+    if (colloids_) {
       all_colloids_ = sim_->gather_colloids();
+      if (observer_->axial())
+        observer_->axial()->add_local_fraction(all_colloids_);
+    }
     std::optional<colloids::ContactNetwork> network;
     if (springs_) { // (every contact once: each is held by the rank of its owner colloid)
       all_contacts_ = sim_->gather_contacts();
@@ -420,6 +449,13 @@ public:
                       all[0], all[0] > 0.0 ? 100.0 * all[1] / all[0] : 0.0);
         log.line(text);
       }
+    }
+    if (const double s = busiest(observer_->axial_seconds_per_sample()); s > 0.0) {
+      std::snprintf(text, sizeof text,
+                    "axial_fields: %.3g ms per sample on the busiest rank (%lld colloids gathered, "
+                    "their power diagram, the bins, the fluid sums)",
+                    1e3 * s, static_cast<long long>(scene_.colloids->count));
+      log.line(text);
     }
     observer_->finish();
   }
