@@ -7,7 +7,8 @@
   vss_fit.py fit SOURCE... [--transient T] [--out PREFIX] [--column-mu KEY] [--column-phi KEY]
       SOURCE: a table (CSV) written by tools/sweep.py --collect "tools/vss_fit.py run", run
       folders (each measured as `run` does), or vss.json files. Writes PREFIX.json (default
-      vss_fit.json) and PREFIX.png (fig 6.8 style).
+      vss_fit.json, every mu), PREFIX-mu<mu>.json (one mu each: the flat object that the
+      continuum jamming model reads with continuum.vss_fit = FILE) and PREFIX.png (fig 6.8 style).
 
 v_ss of one run (§6.2.2: the uniform flow of a channel of l = 200 b): the mean colloid x
 velocity after the transient, from /observables/colloid_positions (value [T][N_c][d]; x is
@@ -22,12 +23,12 @@ them: --phi / --mu on the command line).
 
 The fit: runs with the same (mu, phi) are repeats: their mean and standard error (std /
 sqrt(n), ddof = 1; a single run keeps its block error). For each mu, eq 6.4
-    v(phi) = dv [1 + tanh((phi_c - phi) / dphi)] + { e1 + e2 phi        (phi < phi_c)
-                                                    { e3 (phi - phi_q)^2 (phi >= phi_c)
+    v(phi) = delta_v [1 + tanh((phi_c - phi) / delta_phi)] + { e1 + e2 phi         (phi < phi_c)
+                                                             { e3 (phi - phi_q)^2  (phi >= phi_c)
 with e3 = (e1 + e2 phi_c) / (phi_c - phi_q)^2 (continuity at phi_c) is fitted by weighted least
 squares (scipy.optimize.curve_fit, sigma = the standard errors, absolute_sigma=True; started
-from Table 6.2's column nearest in mu), giving dv, dphi, phi_c, e1, e2, phi_q with errors (the
-square roots of the covariance's diagonal), e3 and its error (propagated with the covariance),
+from Table 6.2's column nearest in mu), giving delta_v, delta_phi, phi_c, e1, e2, phi_q with
+errors (the square roots of the covariance's diagonal), e3 and its error (propagated with the covariance),
 chi^2 and its degrees of freedom. The JSON holds narrows' own table and Table 6.2's column
 beside it; the PNG shows the points with error bars, the fit, and Table 6.2's curve dashed.
 Velocities are in the runs' units (b / t0 for the MPCD runs of Table 6.1, Table 6.2's units).
@@ -45,7 +46,7 @@ import numpy as np
 
 import narrows_h5
 
-NAMES = ("dv", "dphi", "phi_c", "e1", "e2", "phi_q")
+NAMES = ("delta_v", "delta_phi", "phi_c", "e1", "e2", "phi_q")  # continuum.vss's keys
 TABLE_6_2 = {  # Kanehl (thesis) Table 6.2: dv, dphi, phi_c, e1, e2, phi_q
     "infinity": (0.0489, 0.00247, 0.744, 2.82, -3.68, 0.819),
     "1": (0.0413, 0.0025, 0.762, 2.56, -3.24, 0.845),
@@ -317,6 +318,9 @@ def main(argv=None):
         return narrows_h5.report("vss_fit", e)
     with open(args.out + ".json", "w") as fh:
         json.dump({f"{mu:g}": r for mu, r in results.items()}, fh, indent=1)
+    for mu, r in results.items():  # one flat object per mu: continuum.vss_fit = "PREFIX-mu1.json"
+        with open(f"{args.out}-mu{mu:g}.json", "w") as fh:
+            json.dump(r, fh, indent=1)
     for mu, res in results.items():
         print(f"mu = {mu:g} ({res['runs']} runs at {res['points']} phi; chi2 = {res['chi2']:.4g} "
               f"for {res['dof']} dof)        Table 6.2 (mu = {res['table_6_2_column']})")
@@ -327,7 +331,8 @@ def main(argv=None):
                 table = (t["e1"] + t["e2"] * t["phi_c"]) / (t["phi_c"] - t["phi_q"]) ** 2
             print(f"  {name:6s} = {res[name]:10.5g} +- {res[name + '_error']:.2g}    {table:.5g}")
     draw(results, args.out + ".png")
-    print(f"wrote {args.out}.json and {args.out}.png")
+    print(f"wrote {args.out}.json (every mu), {args.out}-mu<mu>.json (one mu each, for "
+          f"continuum.vss_fit) and {args.out}.png")
     return 0
 
 
