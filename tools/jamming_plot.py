@@ -15,7 +15,8 @@ Panels:
   a) growth rate Re lambda(k) of eq 6.11 at phi0 = --phi (or the run's mean) with the band
      edge; with OUTDIR (a `narrows run` of model "jamming") the rates measured in the run,
      printed as "growth k = ... measured eq-6.11 rel.error samples": least-squares slopes of
-     ln |phi_n(t)| while the mode stays within e^8 of its first size. Start the run from
+     ln |phi_n(t)| while the mode stays within e^8 of its first size and above 1e3 amax^2
+     (amax the largest mode: the quadratic terms feed it less than 1e-3 of itself). Start the run from
      continuum.initial kind "eigenmode" (amplitude <= 1e-6: each mode on its slow eigenvector,
      so the rates hold from t = 0 and no mode's harmonics swamp the decaying ones; they agree
      with eq 6.11 within 1 % on both sides of the band edge, tests/cli/jamming_growth.sh);
@@ -159,6 +160,9 @@ class Model:
         return np.array(ps), np.array(vs)
 
 
+COUPLING = 1e3  # measured_rates: a mode counts while COUPLING amax^2 or larger
+
+
 def measured_rates(run, cont):
     """(k, rate, samples) of each Fourier mode of the run's phi: the least-squares slope of
     ln |phi_n(t)| while the mode stays within e^8 of its size at the first sample used. Started
@@ -178,12 +182,16 @@ def measured_rates(run, cont):
     else:
         modes = range(1, cells // 3)
         start = np.searchsorted(t, 4.0)
+    # The quadratic terms (phi v)_x, (v^2/2)_x feed mode n from pairs of modes at a size of
+    # order amax^2 (amax the largest mode): a mode is followed only while it is COUPLING times
+    # larger, so that what it receives stays under 1 / COUPLING of it.
+    amax = amp[:, 1:cells // 3].max(axis=1)
     ks, rates, counts = [], [], []
     for n in modes:
         if not eigen and amp[start, n] < 1e-4 * amp[0, n]:
             continue  # decayed to the rounding floor before t = 4
         y = np.log(amp[start:, n] + 1e-300)
-        keep = np.abs(y - y[0]) <= 8
+        keep = (np.abs(y - y[0]) <= 8) & (amp[start:, n] >= COUPLING * amax[start:] ** 2)
         stop = np.argmin(keep) if not keep.all() else len(y)
         if stop < 10:
             continue

@@ -87,7 +87,7 @@ const EngineSchema &continuum_schema() {
             "mean ± amplitude in the flux's range; jamming: in [0, 1]; eigenmode: >= 0, mean ± "
             "(number of modes) × amplitude in [0, 1]",
             "",
-            R"(amplitude of the sine; jamming `"random"`: phi_i = mean + amplitude u_i, u_i uniform in (−1, 1) at each point; `"eigenmode"`: of phi in each mode (1e-6 or less keeps the modes' coupling below the 2 % of a growth-rate measurement))"},
+            R"(amplitude of the sine; jamming `"random"`: phi_i = mean + amplitude u_i, u_i uniform in (−1, 1) at each point; `"eigenmode"`: of phi in each mode (1e-6 or less: the modes feed each other at order amplitude², which tools/jamming_plot.py keeps under 1e-3 of a mode it measures))"},
            {"mode", "integer", "1", R"(1 to (cells − 1) / 3; jamming `"sine"` only)", "",
             "n of phi = mean + amplitude sin(2π n x / length)"},
            {"modes", "array of integers", "every mode 1 to (cells − 1) / 3",
