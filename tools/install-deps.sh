@@ -6,6 +6,7 @@ packages=(
   build-essential cmake pkg-config
   openmpi-bin libopenmpi-dev libhdf5-openmpi-dev hdf5-tools
   libeigen3-dev libfftw3-dev libtoml11-dev libcli11-dev librandom123-dev
+  nlohmann-json3-dev
   libgtest-dev googletest libcgal-dev
   python3 python3-numpy python3-h5py python3-matplotlib python3-scipy
   clang-format

@@ -1,21 +1,37 @@
 #!/usr/bin/python3
 """Figures of the jamming model (Kanehl (thesis) ch.6) like the thesis': growth rate against k,
-the fixed-point classes in the (c, phi0) plane and a phase portrait.
+the fixed-point classes in the (c, phi0) plane and a phase portrait; with --waves also the limit
+cycles and homoclinic orbits of the travelling waves (a second PNG, tools/jamming_waves.py).
 
 Usage: jamming_plot.py [OUTDIR] [--mu 1] [--phi 0.75] [--c -2.8] [--q 2.228] [--png FILE]
+                       [--waves [--waves-z 300]]
+
+The model: with OUTDIR the parameters the run used (/parameters/continuum of its observables:
+a Table 6.2 column, continuum.vss or continuum.vss_fit), else Table 6.2's column --mu. Prints
+the unstable band of eq 6.11 at phi0 (its edge searched from k -> 0, where Re lambda =
+k^2 (phi0^2 v_ss'^2 v_ss / (sigma D) - 1), upwards and bisected).
 
 Panels:
-  a) growth rate Re lambda(k) of eq 6.11 at phi0 = --phi (sigma = D = 1 unless OUTDIR's scene
-     says otherwise); with OUTDIR (a `narrows run` of model "jamming" started from small noise,
-     e.g. run/continuum_jamming_pulses.toml with a small amplitude) the rates measured in the
-     run: least-squares slopes of ln |phi_n(t)| over the samples while the mode stays within
-     e^8 of its size after t = 4 (modes already 1e-4 of their start by then are left out) (as tests/validation/test_continuum_jamming.cpp does);
+  a) growth rate Re lambda(k) of eq 6.11 at phi0 = --phi (or the run's mean) with the band
+     edge; with OUTDIR (a `narrows run` of model "jamming") the rates measured in the run,
+     printed as "growth k = ... measured eq-6.11 rel.error samples": least-squares slopes of
+     ln |phi_n(t)| while the mode stays within e^8 of its first size and above 1e3 amax^2
+     (amax the largest mode: the quadratic terms feed it less than 1e-3 of itself). Start the run from
+     continuum.initial kind "eigenmode" (amplitude <= 1e-6: each mode on its slow eigenvector,
+     so the rates hold from t = 0 and no mode's harmonics swamp the decaying ones; they agree
+     with eq 6.11 within 1 % on both sides of the band edge, tests/cli/jamming_growth.sh);
+     from random noise the fit starts at t = 4 and rates beyond k ~ 0.75 are unreliable.
+     The run's fronts are checked: fewer than 5 grid points across the steepest pulse front
+     (front_resolution) prints a warning on stderr;
   b) Re lambda at k = 1 against phi for the four columns of Table 6.2 (fig 6.11);
   c) the fixed-point classes of eq 6.13-6.14 in the (c, phi0) plane (eq 6.20) with the Hopf
-     line of eq 6.21 (fig 6.14);
+     line of eq 6.21 (fig 6.14 left);
   d) the phase portrait at (--c, --q): nullclines (eq 6.16-6.17), fixed points with their
      type, trajectories and the limit cycle around the middle fixed point if there is one
      (fig 6.12, 6.18 b).
+--waves (OUT/jamming_waves.png, a minute or two): the area of limit cycles between the Hopf
+and the homoclinic line (fig 6.14 right, 6.18 a), three closed orbits I-III in the phase
+plane and their profiles phi(z), v(z) (fig 6.18 c); prints the homoclinic line.
 The formulas are those of src/continuum/jamming_*.cpp and travelling_wave.cpp written again in
 numpy (the C++ functions are validated by the tests; this only draws). Writes a PNG (default
 OUTDIR/jamming.png or ./jamming.png) and prints the fixed points.
@@ -37,11 +53,19 @@ TABLE_6_2 = {  # dv, dphi, phi_c, e1, e2, phi_q
 }
 
 
+VSS_NAMES = ("delta_v", "delta_phi", "phi_c", "e1", "e2", "phi_q")
+
+
 class Model:
-    def __init__(self, mu="1", drive=1.0, diffusion=1.0):
-        self.dv, self.dphi, self.phic, self.e1, self.e2, self.phiq = TABLE_6_2[mu]
+    def __init__(self, mu="1", drive=1.0, diffusion=1.0, vss=None):
+        """v_ss of Table 6.2's column mu, or of vss = (delta_v, delta_phi, phi_c, e1, e2,
+        phi_q) (eq 6.4)."""
+        self.dv, self.dphi, self.phic, self.e1, self.e2, self.phiq = (
+            TABLE_6_2[mu] if vss is None else tuple(float(x) for x in vss))
         self.e3 = (self.e1 + self.e2 * self.phic) / (self.phic - self.phiq) ** 2
         self.sigma, self.D = drive, diffusion
+        self.label = f"mu = {mu}" if vss is None else "vss " + ", ".join(
+            f"{n} = {x:g}" for n, x in zip(VSS_NAMES, vss))
 
     def vss(self, p):
         p = np.asarray(p, dtype=float)
@@ -66,6 +90,25 @@ class Model:
         a = -(D * k * k + xi) / 2
         disc = a * a - xi * D * k * k + 1j * k * p0 * self.sigma * self.dxi(p0) / xi
         return a + np.sqrt(disc + 0j) - 1j * k * self.vss(p0)
+
+    def long_wave(self, p0):
+        """phi0^2 v_ss'^2 v_ss / (sigma D) - 1: Re lambda = k^2 times this as k -> 0."""
+        return p0 * p0 * self.dvss(p0) ** 2 * self.vss(p0) / (self.sigma * self.D) - 1
+
+    def band_edge(self, p0, k_max=20.0, samples=4000):
+        """The upper edge of the unstable band of eq 6.11 (0 if none up to k_max): the scan
+        starts at k -> 0 (the sign of long_wave), so a band narrower than the first sample is
+        bisected between 0 and it, not missed."""
+        ks = np.concatenate([[0.0], np.linspace(0, k_max, samples + 1)[1:]])
+        unstable = np.concatenate([[self.long_wave(p0) > 0], self.growth(p0, ks[1:]).real > 0])
+        edge = 0.0
+        for i in np.nonzero(unstable[:-1] & ~unstable[1:])[0]:
+            a, b = ks[i], ks[i + 1]
+            for _ in range(100):
+                mid = 0.5 * (a + b)
+                a, b = (mid, b) if self.growth(p0, mid).real > 0 else (a, mid)
+            edge = 0.5 * (a + b)
+        return k_max if unstable[-1] else edge
 
     def jacobian_eigs(self, c, p0):
         """Eigenvalues of eq 6.19 (with sigma, D) at the fixed point phi0."""
@@ -117,26 +160,81 @@ class Model:
         return np.array(ps), np.array(vs)
 
 
-def measured_rates(outdir):
-    density = narrows_h5.open_run(outdir).series("density")
-    phi = density["value"]
-    t = density["time"]
-    bins = density["bins"]
-    length = bins[1] * len(bins)
-    amp = np.abs(np.fft.rfft(phi, axis=1)) / phi.shape[1]
-    ks, rates = [], []
-    start = np.searchsorted(t, 4.0)
-    for n in range(1, phi.shape[1] // 3):
-        if amp[start, n] < 1e-4 * amp[0, n]:
+COUPLING = 1e3  # measured_rates: a mode counts while COUPLING amax^2 or larger
+
+
+def measured_rates(run, cont):
+    """(k, rate, samples) of each Fourier mode of the run's phi: the least-squares slope of
+    ln |phi_n(t)| while the mode stays within e^8 of its size at the first sample used. Started
+    from initial kind "eigenmode" (each mode on its slow eigenvector, amplitude <= 1e-6) the
+    fit starts at t = 0 and takes the excited modes; from noise ("random"/"sine") at t = 4,
+    after the fast partner's transient, leaving out modes already 1e-4 of their start."""
+    density = run.series("density")
+    phi, t, bins = density["value"], density["time"], density["bins"]
+    cells = phi.shape[1]
+    length = bins[1] * cells
+    amp = np.abs(np.fft.rfft(phi, axis=1)) / cells
+    init = cont.get("initial", {})
+    eigen = init.get("kind") == "eigenmode"
+    if eigen:
+        modes = init.get("modes", list(range(1, (cells - 1) // 3 + 1)))
+        start = 0
+    else:
+        modes = range(1, cells // 3)
+        start = np.searchsorted(t, 4.0)
+    # The quadratic terms (phi v)_x, (v^2/2)_x feed mode n from pairs of modes at a size of
+    # order amax^2 (amax the largest mode): a mode is followed only while it is COUPLING times
+    # larger, so that what it receives stays under 1 / COUPLING of it.
+    amax = amp[:, 1:cells // 3].max(axis=1)
+    ks, rates, counts = [], [], []
+    for n in modes:
+        if not eigen and amp[start, n] < 1e-4 * amp[0, n]:
             continue  # decayed to the rounding floor before t = 4
         y = np.log(amp[start:, n] + 1e-300)
-        keep = np.abs(y - y[0]) <= 8
+        keep = (np.abs(y - y[0]) <= 8) & (amp[start:, n] >= COUPLING * amax[start:] ** 2)
         stop = np.argmin(keep) if not keep.all() else len(y)
-        if stop < 20:
+        if stop < 10:
             continue
         ks.append(2 * np.pi * n / length)
         rates.append(np.polyfit(t[start:start + stop], y[:stop], 1)[0])
-    return np.array(ks), np.array(rates)
+        counts.append(stop)
+    return np.array(ks), np.array(rates), np.array(counts)
+
+
+def front_resolution(run):
+    """(fewest grid points across the steepest front over the samples, its sample time): the
+    front width is (max phi - min phi) / max |phi_{i+1} - phi_i| in units of dx, i.e. 2 delta
+    for a tanh front phi ~ tanh(x / delta). The solver keeps modes below 2/3 of the Nyquist
+    wave number; the spectrum of a tanh front falls as exp(-pi k delta / 2), so at that cut it
+    is exp(-pi^2 delta / (3 dx)): 3e-4 of the jump for 5 points across the front, 7e-3 for 3.
+    Under 5 points the front is not resolved (Gibbs ripples, growth rates and speeds off).
+    Only samples with pulses count: max phi - min phi >= 0.01 (below it the fields are small
+    perturbations, e.g. the grid-scale noise of a random start, not fronts). (inf, nan) when
+    no sample has pulses."""
+    phi = run.series("density")["value"]
+    t = run.series("density")["time"]
+    jump = phi.max(axis=1) - phi.min(axis=1)
+    steep = np.abs(np.diff(phi, axis=1, append=phi[:, :1])).max(axis=1)
+    points = np.where((steep > 0) & (jump >= 0.01), jump / np.where(steep > 0, steep, 1), np.inf)
+    i = int(np.argmin(points))
+    return (float(points[i]), float(t[i])) if np.isfinite(points[i]) else (np.inf, np.nan)
+
+
+FRONT_POINTS = 5  # the least grid points across a front (front_resolution)
+
+
+def model_of_run(run, cont):
+    """The Model of a run: the parameters the engine wrote to /parameters/continuum, or (older
+    files) the scene's mu."""
+    drive, diffusion = cont.get("drive", 1.0), cont.get("diffusion", 1.0)
+    attrs = run.parameter_attributes("continuum")
+    if attrs is not None and all(n in attrs for n in VSS_NAMES):
+        m = Model(drive=attrs.get("drive", drive), diffusion=attrs.get("diffusion", diffusion),
+                  vss=[attrs[n] for n in VSS_NAMES])
+        if "mu" in cont or ("vss" not in cont and "vss_fit" not in cont):
+            m.label = f"mu = {cont.get('mu', '1')}"
+        return m
+    return Model(cont.get("mu", "1"), drive, diffusion)
 
 
 def main():
@@ -147,16 +245,26 @@ def main():
     ap.add_argument("--c", type=float, default=-2.8)
     ap.add_argument("--q", type=float, default=2.228)
     ap.add_argument("--png")
+    ap.add_argument("--waves", action="store_true",
+                    help="also the limit cycles of eq 6.13-6.14 (fig 6.14 right, 6.18 a, c): "
+                         "OUT/jamming_waves.png; about a minute")
+    ap.add_argument("--waves-z", type=float, default=300.0,
+                    help="length in z each trajectory of --waves is followed (default 300)")
     args = ap.parse_args()
-    drive, diffusion, mu, phi0 = 1.0, 1.0, args.mu, args.phi
+    phi0 = args.phi
+    m = Model(args.mu)
+    run = None
     if args.outdir:
         run = narrows_h5.open_run(args.outdir)
         run.require_engine("continuum")
         cont = run.scene()["continuum"]
-        drive, diffusion = cont.get("drive", 1.0), cont.get("diffusion", 1.0)
-        mu = cont.get("mu", "1")
+        m = model_of_run(run, cont)
         phi0 = cont["initial"].get("mean", phi0)
-    m = Model(mu, drive, diffusion)
+    drive, diffusion = m.sigma, m.D
+    edge = m.band_edge(phi0)
+    print(f"eq 6.11 at phi0 = {phi0:g} ({m.label}, sigma = {drive:g}, D = {diffusion:g}): "
+          f"long-wave coefficient {float(m.long_wave(phi0)):+.6g}, "
+          + (f"unstable band 0 < k < {edge:.6g}" if edge > 0 else "no unstable band"))
 
     plt = narrows_h5.pyplot()
     import matplotlib.colors
@@ -164,14 +272,33 @@ def main():
     fig, ax = plt.subplots(2, 2, figsize=(12, 9))
     k = np.linspace(1e-3, 3.0, 600)
     ax[0, 0].plot(k, m.growth(phi0, k).real, label="eq 6.11")
-    if args.outdir:
-        km, rm = measured_rates(args.outdir)
+    if edge > 0:
+        ax[0, 0].axvline(edge, color="0.5", ls=":", lw=1, label=f"band edge k = {edge:.4g}")
+    if run is not None:
+        km, rm, counts = measured_rates(run, cont)
         ax[0, 0].plot(km, rm, "o", ms=4, label="PDE run: slope of ln|phi_n|")
+        print("     k        measured      eq 6.11     rel. error  samples")
+        for kk, r, n in zip(km, rm, counts):
+            th = float(m.growth(phi0, kk).real)
+            print(f"growth k = {kk:.6f}  {r:+.6e}  {th:+.6e}  {(r - th) / abs(th):+.2e}  {n}")
+        points, when = front_resolution(run)
+        if np.isfinite(points):
+            print(f"front: {points:.3g} grid points across the steepest front (at t = {when:g})")
+        else:
+            print("front: no pulses (max phi - min phi < 0.01 in every sample)")
+        if points < FRONT_POINTS:
+            print(f"warning: the grid does not resolve the pulse fronts: {points:.3g} grid points "
+                  f"across the steepest front at t = {when:g}, fewer than {FRONT_POINTS} "
+                  f"(continuum.cells = {run.series('density')['value'].shape[1]}); allowed: "
+                  f"more continuum.cells for the same length", file=sys.stderr)
+            ax[0, 0].text(0.02, 0.02, f"front under {FRONT_POINTS} grid points: not resolved",
+                          color="r", transform=ax[0, 0].transAxes)
     ax[0, 0].axhline(0, color="k", lw=0.5)
     ax[0, 0].set(xlabel="k", ylabel="Re lambda",
-                 title=f"a) growth rate, phi0 = {phi0:g}, mu = {mu}, sigma = {drive:g}, D = {diffusion:g}")
+                 title=f"a) growth rate, phi0 = {phi0:g}, {m.label}, sigma = {drive:g}, "
+                       f"D = {diffusion:g}")
     ax[0, 0].set_ylim(min(-1.0, m.growth(phi0, k).real.max() * -3), None)
-    ax[0, 0].legend()
+    ax[0, 0].legend(fontsize=8)
 
     p = np.linspace(0.6, 0.85, 2000)
     for name in TABLE_6_2:
@@ -231,6 +358,10 @@ def main():
     png = args.png or os.path.join(args.outdir or ".", "jamming.png")
     fig.savefig(png, dpi=110)
     print(f"wrote {png}")
+    if args.waves:
+        import jamming_waves
+        jamming_waves.figure(m, os.path.join(os.path.dirname(png) or ".", "jamming_waves.png"),
+                             args.waves_z, args.c, args.q)
 
 
 if __name__ == "__main__":

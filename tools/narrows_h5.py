@@ -243,6 +243,16 @@ class Run:
                 return None
             return _text(f["parameters/scene"][()])
 
+    def parameter_attributes(self, group):
+        """The attributes of /parameters/<group> (of the newest file of a chain) as a dict, or
+        None if the file has no such group (e.g. the resolved model parameters an engine wrote)."""
+        with h5py.File(self.newest, "r") as f:
+            g = f.get("parameters/" + group)
+            if not isinstance(g, h5py.Group):
+                return None
+            return {k: (_text(v) if isinstance(v, (bytes, str)) else v.item() if
+                        getattr(v, "size", 0) == 1 else v) for k, v in g.attrs.items()}
+
     def scene(self):
         """/parameters/scene as a dict (tomllib)."""
         return parse_scene(self.scene_text(), self.newest)

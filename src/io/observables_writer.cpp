@@ -20,7 +20,7 @@ std::string shape_string(const std::vector<hsize_t> &shape) {
 
 ObservablesWriter::ObservablesWriter(const std::string &path, const std::string &scene_text)
     : path_(path), file_(h5::create_file(path)) {
-  h5::write_h5md_header(file_.get(), scene_text, path_);
+  parameters_ = h5::write_h5md_header(file_.get(), scene_text, path_);
   observables_ = h5::create_group(file_.get(), "observables", path_);
 }
 
@@ -64,6 +64,16 @@ void ObservablesWriter::append(Series &s, const std::string &name, std::int64_t 
   h5::write_row(s.value, s.samples, H5T_NATIVE_DOUBLE, s.sample_shape, value, path_,
                 prefix + "value");
   ++s.samples;
+}
+
+void ObservablesWriter::write_parameters(
+    const std::string &name, const std::vector<std::pair<std::string, double>> &numbers,
+    const std::vector<std::pair<std::string, std::string>> &strings) {
+  const h5::Group group = h5::create_group(parameters_.get(), name, path_);
+  for (const auto &[key, x] : numbers)
+    h5::write_attribute<double>(group.get(), key, std::span<const double>(&x, 1), path_);
+  for (const auto &[key, text] : strings)
+    h5::write_string_attribute(group.get(), key, text, path_);
 }
 
 void ObservablesWriter::append_scalar(const std::string &name, std::int64_t step, double time,

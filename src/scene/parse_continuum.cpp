@@ -2,6 +2,7 @@
 // initial data, time and numerics; and the observables each model writes. Unknown keys of
 // [continuum] itself are refused by the schema check (Checker::check_keys).
 #include "parse_continuum.hpp"
+#include "parse_jamming_vss.hpp"
 #include "parse_kmc.hpp"
 
 #include "narrows/models/three_state/preset.hpp"
@@ -201,7 +202,8 @@ void parse_initial(const Checker &c, const toml::value &v, const Range &range, C
 // Initial data of the jamming model: phi about a mean (sine, random) or given at the points.
 void parse_jamming_initial(const Checker &c, const toml::value &v, Continuum &out) {
   const std::string allowed = "{ kind = \"sine\", mean, amplitude, mode } or { kind = "
-                              "\"random\", mean, amplitude, seed } or { kind = \"cells\", "
+                              "\"random\", mean, amplitude, seed } or { kind = \"eigenmode\", "
+                              "mean, amplitude, modes, seed } or { kind = \"cells\", "
                               "values = [...], velocity = [...] }";
   if (!v.is_table())
     c.wrong_type("continuum.initial", v, allowed);
@@ -209,14 +211,16 @@ void parse_jamming_initial(const Checker &c, const toml::value &v, Continuum &ou
   if (kind == nullptr)
     c.fail("continuum.initial.kind", "missing required key 'continuum.initial.kind'; allowed "
                                      "with continuum.model = \"jamming\": \"sine\", \"random\", "
-                                     "\"cells\"");
-  const std::size_t k = choice(c, *kind, "continuum.initial.kind", {"sine", "random", "cells"});
-  out.initial = k == 0   ? ContinuumInitial::sine
-                : k == 1 ? ContinuumInitial::random
-                         : ContinuumInitial::cells;
+                                     "\"cells\", \"eigenmode\"");
+  const std::size_t k =
+      choice(c, *kind, "continuum.initial.kind", {"sine", "random", "cells", "eigenmode"});
+  const ContinuumInitial kinds[] = {ContinuumInitial::sine, ContinuumInitial::random,
+                                    ContinuumInitial::cells, ContinuumInitial::eigenmode};
+  out.initial = kinds[k];
   const std::vector<std::vector<std::string>> keys{{"kind", "mean", "amplitude", "mode"},
                                                    {"kind", "mean", "amplitude", "seed"},
-                                                   {"kind", "values", "velocity"}};
+                                                   {"kind", "values", "velocity"},
+                                                   {"kind", "mean", "amplitude", "modes", "seed"}};
   check_initial_keys(c, v, *kind, keys[k]);
   const auto required = [&](const char *name, const std::string &what) -> const toml::value & {
     return required_initial(c, v, name, what);
@@ -251,11 +255,42 @@ void parse_jamming_initial(const Checker &c, const toml::value &v, Continuum &ou
   out.mean = c.number(required("mean", fraction), "continuum.initial.mean", fraction,
                       [](double x) { return x > 0.0 && x < 1.0; });
   const double room = std::min(out.mean, 1.0 - out.mean);
-  const std::string what = "a number with mean +- amplitude from 0 to 1";
+  const std::int64_t top = (out.cells - 1) / 3;
+  if (out.initial == ContinuumInitial::eigenmode) {
+    // The modes first: the amplitude's range depends on how many there are.
+    const std::string mwhat = "an array of distinct integers from 1 to " + std::to_string(top) +
+                              " (continuum.cells / 3: the modes the 2/3 rule keeps)";
+    if (const toml::value *x = find(&v, "modes")) {
+      if (!x->is_array() || x->as_array().empty())
+        c.wrong_type("continuum.initial.modes", *x, mwhat);
+      for (std::size_t i = 0; i < x->as_array().size(); ++i) {
+        const std::int64_t n =
+            c.integer(x->as_array()[i], "continuum.initial.modes[" + std::to_string(i) + "]", mwhat,
+                      [top](std::int64_t n) { return n >= 1 && n <= top; });
+        if (std::find(out.modes.begin(), out.modes.end(), n) != out.modes.end())
+          c.fail("continuum.initial.modes", "continuum.initial.modes[" + std::to_string(i) +
+                                                "] = " + std::to_string(n) +
+                                                " is given twice; allowed: " + mwhat);
+        out.modes.push_back(n);
+      }
+    } else {
+      for (std::int64_t n = 1; n <= top; ++n)
+        out.modes.push_back(n);
+    }
+  }
+  const double count =
+      out.initial == ContinuumInitial::eigenmode ? static_cast<double>(out.modes.size()) : 1.0;
+  const std::string what =
+      out.initial == ContinuumInitial::eigenmode
+          ? "a number >= 0 with mean +- (number of modes) x amplitude from 0 to 1 (" +
+                std::to_string(out.modes.size()) + " modes)"
+          : "a number with mean +- amplitude from 0 to 1";
   out.amplitude = c.number(required("amplitude", what), "continuum.initial.amplitude", what,
-                           [room](double a) { return std::abs(a) <= room; });
+                           [room, count, this_kind = out.initial](double a) {
+                             return count * std::abs(a) <= room &&
+                                    (this_kind != ContinuumInitial::eigenmode || a >= 0.0);
+                           });
   if (out.initial == ContinuumInitial::sine) {
-    const std::int64_t top = (out.cells - 1) / 3;
     const std::string mwhat = "an integer from 1 to " + std::to_string(top) +
                               " (continuum.cells / 3: the modes the 2/3 rule keeps)";
     if (const toml::value *x = find(&v, "mode"))
@@ -286,8 +321,9 @@ void refuse_segregation_keys(const Checker &c, const toml::value *sec, const std
 // model = "segregation": the channel, the flow, the constants of the theory and the kinds; the
 // other models' keys are refused.
 void parse_segregation(const Checker &c, const toml::value *sec, Continuum &out) {
-  for (const char *k : {"flux", "rates", "parameters", "c", "c_prime", "v_cm", "reservoirs",
-                        "limiter", "mu", "drive", "diffusion", "boundary", "length", "initial"})
+  for (const char *k :
+       {"flux", "rates", "parameters", "c", "c_prime", "v_cm", "reservoirs", "limiter", "mu", "vss",
+        "vss_fit", "drive", "diffusion", "boundary", "length", "initial"})
     if (find(sec, k) != nullptr)
       c.fail(std::string("continuum.") + k,
              std::string("continuum.") + k +
@@ -379,13 +415,13 @@ void parse_jamming(const Checker &c, const toml::value *sec, Continuum &out) {
       c.fail(std::string("continuum.") + k,
              std::string("continuum.") + k +
                  " is a key of continuum.model = \"conservation-law\"; allowed with "
-                 "\"jamming\": mu, drive, diffusion, length, cells, boundary, initial, time, "
+                 "\"jamming\": mu or vss or vss_fit, drive, diffusion, length, cells, boundary, "
+                 "initial, time, "
                  "samples, cfl");
   const auto required = [&](const char *name, const std::string &what) -> const toml::value & {
     return required_key(c, sec, name, what);
   };
-  if (const toml::value *v = find(sec, "mu"))
-    out.fit = static_cast<JammingFit>(choice(c, *v, "continuum.mu", {"infinity", "1", "1/2", "0"}));
+  parse_jamming_vss(c, sec, out);
   if (const toml::value *v = find(sec, "drive"))
     out.drive = c.number(*v, "continuum.drive", "a number > 0 (sigma of eq 6.3)",
                          [](double x) { return x > 0.0; });
@@ -429,7 +465,8 @@ Continuum parse_continuum(const toml::value *sec, const Checker &c) {
              "continuum.model", {"conservation-law", "jamming", "segregation"}));
   if (out.model == ContinuumModel::jamming) {
     refuse_segregation_keys(c, sec, "jamming",
-                            "mu, drive, diffusion, length, cells, boundary, initial, time, "
+                            "mu or vss or vss_fit, drive, diffusion, length, cells, boundary, "
+                            "initial, time, "
                             "samples, cfl");
     parse_jamming(c, sec, out);
   } else if (out.model == ContinuumModel::segregation) {
@@ -438,7 +475,7 @@ Continuum parse_continuum(const toml::value *sec, const Checker &c) {
     refuse_segregation_keys(c, sec, "conservation-law",
                             "flux and its parameters, length, cells, diffusion, boundary, "
                             "reservoirs, initial, time, samples, cfl, limiter");
-    for (const char *k : {"mu", "drive"})
+    for (const char *k : {"mu", "vss", "vss_fit", "drive"})
       if (find(sec, k) != nullptr)
         c.fail(std::string("continuum.") + k,
                std::string("continuum.") + k +

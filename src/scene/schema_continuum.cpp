@@ -64,10 +64,11 @@ const EngineSchema &continuum_schema() {
           "",
           "initial data (cell averages of it)",
           {{"kind", "string", "required",
-            R"(`"riemann"`, `"profile"`, `"sine"`, `"cells"`; jamming: `"sine"`, `"random"`, `"cells"`)",
+            R"(`"riemann"`, `"profile"`, `"sine"`, `"cells"`; jamming: `"sine"`, `"random"`, `"cells"`, `"eigenmode"`)",
             "",
             "a jump, a piecewise-linear profile, a sine, or the cell averages themselves; jamming: "
-            "phi at the points, v = v_ss(phi) unless `velocity` is given"},
+            "phi at the points, v = v_ss(phi) unless `velocity` is given; `\"eigenmode\"`: each of "
+            "`modes` on the growing eigenvector of eq 6.10 (phi and v)"},
            {"left", "number", R"(required with `"riemann"`)",
             "the flux's range: family1 −1 to 1; tasep, family2 0 to 1; others finite", "",
             "density left of the jump"},
@@ -78,16 +79,28 @@ const EngineSchema &continuum_schema() {
             "in the flux's range; profile: 2 to 10000000 values; cells: `cells` values", "",
             "profile: values at equally spaced points from 0 to length, joined linearly; cells: "
             "the initial cell averages (e.g. a coarse-grained kmc profile)"},
-           {"mean", "number", R"(required with `"sine"` (and jamming `"random"`))",
+           {"mean", "number", R"(required with `"sine"` (and jamming `"random"`, `"eigenmode"`))",
             "in the flux's range; jamming: 0 < mean < 1", "",
             "mean of mean + amplitude sin(2π x / length) (jamming: of phi)"},
-           {"amplitude", "number", R"(required with `"sine"` (and jamming `"random"`))",
-            "mean ± amplitude in the flux's range; jamming: in [0, 1]", "",
-            R"(amplitude of the sine; jamming `"random"`: phi_i = mean + amplitude u_i, u_i uniform in (−1, 1) at each point)"},
+           {"amplitude", "number",
+            R"(required with `"sine"` (and jamming `"random"`, `"eigenmode"`))",
+            "mean ± amplitude in the flux's range; jamming: in [0, 1]; eigenmode: >= 0, mean ± "
+            "(number of modes) × amplitude in [0, 1]",
+            "",
+            R"(amplitude of the sine; jamming `"random"`: phi_i = mean + amplitude u_i, u_i uniform in (−1, 1) at each point; `"eigenmode"`: of phi in each mode (1e-6 or less: the modes feed each other at order amplitude², which tools/jamming_plot.py keeps under 1e-3 of a mode it measures))"},
            {"mode", "integer", "1", R"(1 to (cells − 1) / 3; jamming `"sine"` only)", "",
             "n of phi = mean + amplitude sin(2π n x / length)"},
-           {"seed", "integer", "1", R"(>= 0; jamming `"random"` only)", "",
-            "seed of the random perturbation (the same on any rank count)"},
+           {"modes", "array of integers", "every mode 1 to (cells − 1) / 3",
+            R"(distinct, 1 to (cells − 1) / 3; jamming `"eigenmode"` only)", "",
+            "the modes n (k = 2π n / length) of phi = mean + amplitude Σ_n cos(k x + θ_n), v = "
+            "v_ss(mean) + amplitude Σ_n Re(r_n e^(i(k x + θ_n))), r_n = −(λ_n + i k v0 + D k²) / "
+            "(i "
+            "k phi0) on the eigenvalue λ_n of larger real part (eq 6.11): each mode grows (decays) "
+            "at "
+            "Re λ_n from t = 0, without the transient of the fast mode"},
+           {"seed", "integer", "1", R"(>= 0; jamming `"random"`, `"eigenmode"` only)", "",
+            "seed of the random perturbation (the same on any rank count); eigenmode: of the "
+            "phases θ_n"},
            {"velocity", "array of numbers", "v_ss(phi) at each point",
             R"(`cells` finite numbers; jamming `"cells"` only)", "length/time",
             "v at the points"}}},
@@ -100,9 +113,33 @@ const EngineSchema &continuum_schema() {
          {"limiter", "string", R"(`"mc"`)",
           R"(`"mc"` (monotonised central), `"minmod"`; conservation-law only)", "",
           "TVD slope limiter"},
-         {"mu", "string", R"(`"1"`)", R"(`"infinity"`, `"1"`, `"1/2"`, `"0"`; jamming only)", "",
+         {"mu", "string", R"(`"1"` (unless `vss` or `vss_fit`))",
+          R"(`"infinity"`, `"1"`, `"1/2"`, `"0"`; jamming only; not with `vss`, `vss_fit`)", "",
           "wall friction mu: the column of Table 6.2 whose v_ss(phi) fit (eq 6.4) gives xi = sigma "
           "/ v_ss"},
+         {"vss",
+          "table",
+          "none",
+          "jamming only; not with `mu`, `vss_fit`; all six sub-keys; delta_v >= 0, delta_phi > 0, "
+          "0 < phi_c < phi_q <= 1, e1 > 0, e1 + e2 phi_c > 0",
+          "",
+          "the parameters of the v_ss(phi) fit (eq 6.4) given explicitly (Table 6.2's column mu = "
+          "1 is `{ delta_v = 0.0413, delta_phi = 0.0025, phi_c = 0.762, e1 = 2.56, e2 = −3.24, "
+          "phi_q = 0.845 }`); e3 follows from continuity at phi_c",
+          {{"delta_v", "number", "required", ">= 0", "velocity",
+            "Delta v, height of the tanh step"},
+           {"delta_phi", "number", "required", "> 0", "", "Delta phi, width of the tanh step"},
+           {"phi_c", "number", "required", "0 < phi_c < phi_q", "", "phi_c, the jamming point"},
+           {"e1", "number", "required", "> 0", "velocity", "e1 of the free-flow line e1 + e2 phi"},
+           {"e2", "number", "required", "e1 + e2 phi_c > 0", "velocity",
+            "e2 of the free-flow line"},
+           {"phi_q", "number", "required", "phi_c < phi_q <= 1", "",
+            "phi_q, where the jammed branch e3 (phi − phi_q)² vanishes"}}},
+         {"vss_fit", "string", "none",
+          "jamming only; not with `mu`, `vss`; a readable JSON file (see below)", "",
+          "path (relative to the scene file) of a JSON object with the numbers `delta_v`, "
+          "`delta_phi`, `phi_c`, `e1`, `e2`, `phi_q` of eq 6.4 (optional `<name>_error` numbers "
+          ">= 0, other keys ignored), as tools/vss_fit.py writes it; the same ranges as `vss`"},
          {"drive", "number", "1", "> 0; jamming only", "length/time²",
           "sigma of eq 6.3, the driving acceleration (1: the normalised eq 6.6)"},
          {"dimensions", "integer", "2", "2 or 3; segregation only", "",

@@ -16,7 +16,7 @@ check "check: the fit of Table 6.2 (mu = 1)" \
 check "check: the unstable band of eq 6.11 at phi = 0.75" \
   'grep -q "^stability (eq 6.11) of phi = 0.75.*unstable band 0 < k < 0.757" "$tmp/check.out" &&
    grep -q "^stability boundary .* unstable to long waves for drive < 1.258" "$tmp/check.out"'
-check "check: time step and steps" 'grep -q "^time: 400 in 54200 steps" "$tmp/check.out"'
+check "check: time step and steps" 'grep -q "^time: 400 in 108400 steps" "$tmp/check.out"'
 
 runs "uninterrupted run" "$narrows" run "$scene" "${short[@]}" --set output.checkpoint_every=1360 \
   --out "$tmp/full" > /dev/null 2>&1

@@ -187,3 +187,29 @@ TEST(JammingStability, BoundaryInThePhiDrivePlaneIsTheLongWaveOne) {
 }
 
 } // namespace
+
+namespace {
+
+// The band-edge search starts at k -> 0 (the sign of the long-wave coefficient): just below the
+// stability boundary (drive 1e-6 below critical_drive) the band 0 < k < k_c is far narrower
+// than the first sample k_max / samples = 0.005, and must still be found - and agree with the
+// long-wave limit k_c^2 ~ coefficient / (quartic term), checked here only as 0 < k_c < 0.005 and
+// Re lambda > 0 at k_c / 2, < 0 at 2 k_c (eq 6.11 itself, not the search).
+TEST(JammingStability, NarrowBandNearTheBoundaryIsFound) {
+  for (double phi0 : {0.70, 0.75}) {
+    const continuum::JammingModel unit(continuum::table_6_2(scene::JammingFit::mu_1), 1.0, 1.0);
+    const double sc = continuum::critical_drive(unit, phi0);
+    const continuum::JammingModel m(continuum::table_6_2(scene::JammingFit::mu_1),
+                                    (1.0 - 1e-6) * sc, 1.0);
+    ASSERT_GT(continuum::long_wave_coefficient(m, phi0), 0.0);
+    const double edge = continuum::unstable_band_edge(m, phi0, 20.0, 4000);
+    std::printf("  phi0 = %g, drive = %.8g (critical %.8g): band 0 < k < %.4e\n", phi0, m.drive(),
+                sc, edge);
+    EXPECT_GT(edge, 0.0) << phi0;
+    EXPECT_LT(edge, 20.0 / 4000) << phi0;
+    EXPECT_GT(continuum::growth_rate(m, phi0, 0.5 * edge).real(), 0.0) << phi0;
+    EXPECT_LT(continuum::growth_rate(m, phi0, 2.0 * edge).real(), 0.0) << phi0;
+  }
+}
+
+} // namespace

@@ -70,6 +70,12 @@ public:
                     const std::vector<hsize_t> &shape = {},
                     const std::vector<std::string> &shaped = {});
 
+  // Attributes of the group /parameters/<name> (created on first use): numbers and strings,
+  // e.g. the resolved parameters of a model that the scene only names (a preset, a fit file).
+  void write_parameters(const std::string &name,
+                        const std::vector<std::pair<std::string, double>> &numbers,
+                        const std::vector<std::pair<std::string, std::string>> &strings);
+
   // H5Fflush: what was appended so far survives a crash of the run.
   void flush();
 
@@ -94,7 +100,7 @@ private:
 
   std::string path_;
   h5::File file_;
-  h5::Group observables_;
+  h5::Group observables_, parameters_;
   std::map<std::string, Series> series_;
 };
 

@@ -225,9 +225,12 @@ struct LgcaColloid {
 // channel y in [-w, w] in Poiseuille flow (Kanehl (thesis) eq 5.13-5.30), finite volumes, RK4.
 enum class ContinuumModel { conservation_law, jamming, segregation };
 enum class JammingFit { mu_infinity, mu_1, mu_half, mu_0 }; // the columns of Table 6.2
+// Where the jamming model's v_ss parameters (eq 6.4) come from: a column of Table 6.2
+// (continuum.mu), the scene itself (continuum.vss) or a fit file (continuum.vss_fit).
+enum class JammingVss { preset, given, file };
 enum class ContinuumFlux { burgers, tasep, family1, family2, colloid_chain };
 enum class ContinuumBoundary { open, periodic };
-enum class ContinuumInitial { riemann, profile, sine, cells, random };
+enum class ContinuumInitial { riemann, profile, sine, cells, random, eigenmode };
 enum class ContinuumLimiter { mc, minmod };
 enum class SegregationShear { poiseuille, viscous };
 
@@ -270,11 +273,17 @@ struct Continuum {
   ContinuumLimiter limiter = ContinuumLimiter::mc;
   // jamming only
   JammingFit fit = JammingFit::mu_1; // v_ss of Table 6.2 for this wall friction
-  double drive = 1.0;                // sigma of eq 6.3
-  std::int64_t mode = 1;             // sine: mean + amplitude sin(2 pi mode x / length)
-  std::uint64_t seed = 1;            // random: mean + amplitude * uniform(-1, 1) per point
-  std::vector<double> velocity;      // cells: the initial v (empty: v_ss(phi) at each point)
-  Segregation segregation;           // segregation only (length = 2 half_width)
+  JammingVss vss_source = JammingVss::preset;
+  // given or file: delta_v, delta_phi, phi_c, e1, e2, phi_q of eq 6.4 (and the file's errors of
+  // each, NaN when it gives none); vss_file as written in the scene and resolved.
+  std::array<double, 6> vss{}, vss_error{};
+  std::string vss_file, vss_path;
+  double drive = 1.0;              // sigma of eq 6.3
+  std::int64_t mode = 1;           // sine: mean + amplitude sin(2 pi mode x / length)
+  std::uint64_t seed = 1;          // random: mean + amplitude * uniform(-1, 1) per point
+  std::vector<std::int64_t> modes; // eigenmode: the modes n excited (each at `amplitude`)
+  std::vector<double> velocity;    // cells: the initial v (empty: v_ss(phi) at each point)
+  Segregation segregation;         // segregation only (length = 2 half_width)
 };
 
 struct Scene {

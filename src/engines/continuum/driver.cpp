@@ -69,6 +69,7 @@ std::vector<std::string> describe(const scene::Scene &scene) {
     out.push_back("initial: the given cell averages");
     break;
   case scene::ContinuumInitial::random: // model jamming only (jamming_driver.cpp)
+  case scene::ContinuumInitial::eigenmode:
     break;
   case scene::ContinuumInitial::sine:
     out.push_back("initial: " + format("%g + %g sin(2 pi x / %g)", m.mean, m.amplitude, m.length));

@@ -65,6 +65,8 @@ public:
     if (shell.rank() == 0)
       writer_ =
           std::make_unique<io::ObservablesWriter>(shell.output_file("observables"), scene_.text);
+    if (writer_ && !(model_->parameters.empty() && model_->parameter_texts.empty()))
+      writer_->write_parameters("continuum", model_->parameters, model_->parameter_texts);
     if (!shell.restarting())
       sample();
   }

@@ -21,6 +21,20 @@ namespace narrows::continuum {
 
 namespace {
 
+// "delta_v = ..., ..., phi_q = ...; e3 = ..." with the fit file's errors where it gives them.
+std::string vss_parameter_text(const scene::Continuum &m) {
+  static const char *const names[] = {"delta_v", "delta_phi", "phi_c", "e1", "e2", "phi_q"};
+  const VssFit f = vss_fit_of(m);
+  const double p[] = {f.dv, f.dphi, f.phi_c, f.e1, f.e2, f.phi_q};
+  std::string s;
+  for (int i = 0; i < 6; ++i) {
+    s += (i ? ", " : "") + std::string(names[i]) + format(" = %.12g", p[i]);
+    if (m.vss_source == scene::JammingVss::file && std::isfinite(m.vss_error[i]))
+      s += format(" +- %.3g", m.vss_error[i]);
+  }
+  return s + format("; e3 = %.12g (continuity at phi_c)", f.e3);
+}
+
 double mean_of(const std::vector<double> &x) {
   double s = 0.0;
   for (double y : x)
@@ -39,6 +53,8 @@ std::vector<std::string> describe_jamming(const scene::Scene &scene) {
                 "sigma - xi(phi) v (Kanehl (thesis) eq 6.2-6.6), D = " +
                 format("%g, sigma = %g", m.diffusion, m.drive));
   out.push_back("friction: " + model.describe());
+  out.push_back("v_ss parameters (eq 6.4) from " + vss_source_text(m) + ": " +
+                vss_parameter_text(m));
   out.push_back("grid: " + std::to_string(m.cells) + " points x_i = i dx, dx = " +
                 format("%g", p.dx) + " on [0, " + format("%g", m.length) + "), periodic");
   switch (m.initial) {
@@ -52,6 +68,15 @@ std::vector<std::string> describe_jamming(const scene::Scene &scene) {
     out.push_back("initial: phi = " +
                   format("%g + %g u_i, u_i uniform in (-1, 1), seed ", m.mean, m.amplitude) +
                   std::to_string(m.seed) + ", v = v_ss(phi)");
+    break;
+  case scene::ContinuumInitial::eigenmode:
+    out.push_back(
+        "initial: phi = " +
+        format("%g + %g sum_n cos(2 pi n x / %g + theta_n) over ", m.mean, m.amplitude, m.length) +
+        std::to_string(m.modes.size()) +
+        " modes n, each with v on its growing eigenvector (eq 6.10-6.11), phases from "
+        "seed " +
+        std::to_string(m.seed));
     break;
   default:
     out.push_back(std::string("initial: the given phi") +
@@ -121,6 +146,17 @@ public:
     point = "point";
     lines = describe_jamming(scene);
     fields = {{"density", &phi_}, {"velocity", &v_}};
+    const scene::Continuum &m = *scene.continuum;
+    const VssFit &f = jamming_.fit();
+    parameters = {{"delta_v", f.dv}, {"delta_phi", f.dphi}, {"phi_c", f.phi_c},
+                  {"e1", f.e1},      {"e2", f.e2},          {"phi_q", f.phi_q},
+                  {"e3", f.e3},      {"drive", m.drive},    {"diffusion", m.diffusion}};
+    static const char *const names[] = {"delta_v", "delta_phi", "phi_c", "e1", "e2", "phi_q"};
+    if (m.vss_source == scene::JammingVss::file)
+      for (int i = 0; i < 6; ++i)
+        if (std::isfinite(m.vss_error[i]))
+          parameters.push_back({std::string(names[i]) + "_error", m.vss_error[i]});
+    parameter_texts = {{"vss_source", vss_source_text(m)}};
   }
 
   void step(double dt) override { solver_.step(phi_, v_, dt); }

@@ -27,8 +27,30 @@ VssFit table_6_2(scene::JammingFit mu) {
   return f;
 }
 
+VssFit vss_fit_of(const scene::Continuum &m) {
+  if (m.vss_source == scene::JammingVss::preset)
+    return table_6_2(m.fit);
+  const auto &p = m.vss;
+  VssFit f{p[0], p[1], p[2], p[3], p[4], p[5], 0.0};
+  f.e3 = (f.e1 + f.e2 * f.phi_c) / ((f.phi_c - f.phi_q) * (f.phi_c - f.phi_q));
+  return f;
+}
+
+std::string vss_source_text(const scene::Continuum &m) {
+  switch (m.vss_source) {
+  case scene::JammingVss::given:
+    return "continuum.vss";
+  case scene::JammingVss::file:
+    return "continuum.vss_fit = " + m.vss_path;
+  default:
+    break;
+  }
+  static const char *const mu[] = {"infinity", "1", "1/2", "0"};
+  return std::string("Table 6.2, mu = ") + mu[static_cast<int>(m.fit)];
+}
+
 JammingModel::JammingModel(const scene::Continuum &m)
-    : fit_(table_6_2(m.fit)), drive_(m.drive), diffusion_(m.diffusion) {}
+    : fit_(vss_fit_of(m)), drive_(m.drive), diffusion_(m.diffusion) {}
 
 double JammingModel::vss(double phi) const {
   const VssFit &f = fit_;
@@ -52,7 +74,7 @@ std::string JammingModel::describe() const {
   char buf[600];
   std::snprintf(buf, sizeof buf,
                 "xi(phi) = sigma / v_ss(phi), sigma = %g; v_ss = %g [1 + tanh((%g - phi) / %g)] "
-                "+ { %g %+g phi below phi_c = %g; %.6g (phi - %g)^2 above } (eq 6.4, Table 6.2)",
+                "+ { %g %+g phi below phi_c = %g; %.6g (phi - %g)^2 above } (eq 6.4)",
                 drive_, f.dv, f.phi_c, f.dphi, f.e1, f.e2, f.phi_c, f.e3, f.phi_q);
   return buf;
 }

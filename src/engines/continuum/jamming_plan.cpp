@@ -4,10 +4,12 @@
 #include "narrows/core/error.hpp"
 #include "narrows/core/rng.hpp"
 #include "narrows/engines/continuum/jamming_model.hpp"
+#include "narrows/engines/continuum/jamming_stability.hpp"
 #include "narrows/engines/continuum/plan.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <numbers>
 
 namespace narrows::continuum {
@@ -29,6 +31,28 @@ void jamming_initial(const scene::Continuum &m, std::vector<double> &phi, std::v
       phi[i] = m.mean + m.amplitude * (2.0 * rng::uniform53(b[0], b[1]) - 1.0);
     }
     break;
+  case scene::ContinuumInitial::eigenmode: {
+    // Each mode on the eigenvector of its eigenvalue of larger real part (eq 6.10-6.11):
+    // phi_n = a e^(i theta), v_n = r phi_n with r = -(lambda + i k v0 + D k^2) / (i k phi0).
+    const JammingModel model(m);
+    const double v0 = model.vss(m.mean), D = model.diffusion();
+    v.assign(n, v0);
+    for (std::size_t j = 0; j < m.modes.size(); ++j) {
+      const double k = 2.0 * std::numbers::pi * static_cast<double>(m.modes[j]) / m.length;
+      const std::complex<double> lambda = growth_rate(model, m.mean, k);
+      const std::complex<double> r = -(lambda + std::complex<double>(D * k * k, k * v0)) /
+                                     std::complex<double>(0.0, k * m.mean);
+      const rng::Block b = rng::draw(m.seed, rng::Purpose::continuum_initial, 1, j);
+      const double theta = 2.0 * std::numbers::pi * rng::uniform53(b[0], b[1]);
+      for (std::size_t i = 0; i < n; ++i) {
+        const std::complex<double> e =
+            std::polar(m.amplitude, k * static_cast<double>(i) * dx + theta);
+        phi[i] += e.real();
+        v[i] += (r * e).real();
+      }
+    }
+    return;
+  }
   default: // cells
     phi = m.profile;
     break;

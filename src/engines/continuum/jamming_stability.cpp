@@ -41,8 +41,11 @@ double critical_drive(const JammingModel &model, double phi0) {
 double unstable_band_edge(const JammingModel &model, double phi0, double k_max, int samples) {
   const auto g = [&](double k) { return growth_rate(model, phi0, k).real(); };
   double edge = 0.0;
+  // The scan starts at k -> 0, where Re lambda = k^2 long_wave_coefficient + O(k^4): a band
+  // narrower than the first sample k_max / samples (close to the stability boundary) is found
+  // by bisection between 0 and that sample instead of being missed.
   double prev_k = 0.0;
-  bool prev_unstable = false;
+  bool prev_unstable = long_wave_coefficient(model, phi0) > 0.0;
   for (int i = 1; i <= samples; ++i) {
     const double k = k_max * i / samples;
     const bool unstable = g(k) > 0.0;

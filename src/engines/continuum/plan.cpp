@@ -53,6 +53,7 @@ std::vector<double> initial_cells(const scene::Continuum &m) {
     u = m.profile;
     break;
   case scene::ContinuumInitial::random: // model jamming only (jamming_plan.cpp)
+  case scene::ContinuumInitial::eigenmode:
     break;
   case scene::ContinuumInitial::sine: {
     const double k = 2.0 * std::numbers::pi / m.length;

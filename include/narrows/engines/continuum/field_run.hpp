@@ -33,6 +33,10 @@ public:
   std::vector<std::string> lines; // the description the log opens with
   // The state, checkpointed as /continuum/<name> and restored on a restart (names in order).
   std::vector<std::pair<std::string, std::vector<double> *>> fields;
+  // Resolved model parameters, written as attributes of /parameters/continuum of the
+  // observables file (numbers and strings; empty: no group).
+  std::vector<std::pair<std::string, double>> parameters;
+  std::vector<std::pair<std::string, std::string>> parameter_texts;
 
   virtual void step(double dt) = 0;
   // Throws invariant_error if the fields are no longer sound at this step.

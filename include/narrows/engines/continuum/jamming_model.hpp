@@ -21,6 +21,11 @@ struct VssFit {
 
 // Table 6.2, one column per wall friction mu.
 VssFit table_6_2(scene::JammingFit mu);
+// The scene's parameters: Table 6.2's column continuum.mu, or continuum.vss, or the file of
+// continuum.vss_fit (e3 from continuity, computed alike in all three cases).
+VssFit vss_fit_of(const scene::Continuum &m);
+// Where they came from, for the log: "Table 6.2, mu = 1", "continuum.vss" or the fit file.
+std::string vss_source_text(const scene::Continuum &m);
 
 class JammingModel {
 public:

@@ -26,7 +26,8 @@ double long_wave_coefficient(const JammingModel &model, double phi0);
 double critical_drive(const JammingModel &model, double phi0);
 
 // The upper edge of the unstable band 0 < k < k_c (0 when no wave number up to k_max grows):
-// scanned on `samples` points up to k_max and refined by bisection.
+// scanned from k -> 0 (the sign of long_wave_coefficient) on `samples` points up to k_max and
+// refined by bisection.
 double unstable_band_edge(const JammingModel &model, double phi0, double k_max, int samples = 2000);
 
 } // namespace narrows::continuum

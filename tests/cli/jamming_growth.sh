@@ -1,0 +1,123 @@
+#!/usr/bin/env bash
+# Panel a of tools/jamming_plot.py (growth rates of the jamming model's homogeneous flow,
+# Kanehl (thesis) eq 6.11) against a reference computed here, independently of narrows'
+# continuum:: code and of the tool's own formula: v_ss of eq 6.4 with Table 6.2's mu = 1 column
+# written out, xi = sigma / v_ss, xi' by a central difference, and the eigenvalues of the 2x2
+# linearised PDE for exp(i k x) by numpy.linalg.eigvals. The run starts from continuum.initial
+# kind "eigenmode" (each of ten modes on its slow eigenvector, amplitude 1e-7), five modes
+# inside the unstable band and five beyond its edge; every measured rate must agree with the
+# reference within 2 % (the splitting error at cfl 0.1 is under 1 %, see
+# tests/validation/test_continuum_jamming.cpp; the modes' coupling at amplitude 1e-7 is
+# O(1e-7) relative), and the band edge the tool prints (its search starts at k -> 0) within
+# 1e-6 of the reference's. A second run excites every mode at once: there the harmonics of the
+# growing modes reach the slowly decaying ones (mode 16 = 2 x 8 was 20 % off), and the tool
+# must leave those samples out (it follows a mode while it is >= 1e3 amax^2). Then the tool's
+# front check: the pulses of run/continuum_jamming_pulses
+# on 64 points (dx = 1.6) are not resolved (a warning on stderr), with dx = 0.098 (the scene's
+# 1024 points on length 100; here 512 on 50) they are (about 8 points across the front, whose
+# width 0.77 changes by 6 % from dx = 0.195, where it is 4.2 points).
+set -u
+source "$(dirname "$0")/common.bash"
+
+scene=$src/run/continuum_jamming_pulses.toml
+runs "eigenmode run" "$narrows" run "$scene" --set continuum.cells=256 --set continuum.time=120.0 \
+  --set continuum.samples=480 \
+  --set 'continuum.initial={ kind = "eigenmode", mean = 0.75, amplitude = 1e-7, modes = [2, 4, 6, 8, 10, 14, 17, 20, 24, 28] }' \
+  --out "$tmp/eig" > /dev/null 2>&1
+check "log: the eigenmode initial condition" \
+  'grep -q "^initial: phi = 0.75 + 1e-07 sum_n cos(2 pi n x / 100 + theta_n) over 10 modes n" "$tmp/eig/log.txt"'
+runs "jamming_plot on the eigenmode run" /usr/bin/python3 "$src/tools/jamming_plot.py" "$tmp/eig" \
+  > "$tmp/plot.out" 2>&1
+cat > "$tmp/reference.py" <<'PY'
+import re, sys
+import numpy as np
+dv, dphi, phic, e1, e2, phiq = 0.0413, 0.0025, 0.762, 2.56, -3.24, 0.845  # Table 6.2, mu = 1
+e3 = (e1 + e2 * phic) / (phic - phiq) ** 2
+def vss(p):
+    step = dv * (1 + np.tanh((phic - p) / dphi))
+    return step + (e1 + e2 * p if p < phic else e3 * (p - phiq) ** 2)
+sigma = D = 1.0
+phi0 = 0.75
+xi = lambda p: sigma / vss(p)
+h = 1e-7
+dxi = (xi(phi0 + h) - xi(phi0 - h)) / (2 * h)
+v0 = vss(phi0)
+def rate(k):
+    # d/dt (phi_k, v_k) of phi_t + (phi v)_x = D phi_xx, v_t + v v_x = sigma - xi(phi) v
+    # linearised about (phi0, v0) for exp(i k x)
+    J = np.array([[-1j * k * v0 - D * k * k, -1j * k * phi0],
+                  [-dxi * v0, -1j * k * v0 - xi(phi0)]])
+    return np.linalg.eigvals(J).real.max()
+ks = np.linspace(1e-4, 3, 30000)
+g = np.array([rate(k) for k in ks])
+i = np.nonzero((g[:-1] > 0) & (g[1:] <= 0))[0][-1]
+a, b = ks[i], ks[i + 1]
+for _ in range(60):
+    m = 0.5 * (a + b)
+    a, b = (m, b) if rate(m) > 0 else (a, m)
+edge = 0.5 * (a + b)
+PY
+check "panel a: ten rates within 2 % of the eigenvalues of the linearised PDE, five each side of the band edge" \
+  '/usr/bin/python3 - "$tmp/plot.out" "$tmp" <<PY
+import re, sys
+sys.path.insert(0, sys.argv[2])
+from reference import rate, edge
+text = open(sys.argv[1]).read()
+tool_edge = float(re.search(r"unstable band 0 < k < ([0-9.e+-]+)", text).group(1))
+assert abs(tool_edge - edge) < 1e-6, (tool_edge, edge)
+rows = re.findall(r"^growth k = (\S+)\s+(\S+)\s+(\S+)\s+(\S+)\s+(\d+)", text, re.M)
+assert len(rows) == 10, rows
+inside = beyond = 0
+print(f"band edge: reference {edge:.6f}, tool {tool_edge:.6f}")
+print("   k       measured      reference    rel. error")
+for k, measured, _, _, n in rows:
+    k, measured = float(k), float(measured)
+    ref = rate(k)
+    err = (measured - ref) / abs(ref)
+    print(f"{k:.4f}  {measured:+.6e}  {ref:+.6e}  {err:+.2e}  {n}")
+    assert abs(err) < 0.02, (k, measured, ref)
+    assert int(n) >= 20, (k, n)
+    inside += k < edge
+    beyond += k > edge
+assert inside >= 5 and beyond >= 5, (inside, beyond)
+PY'
+runs "eigenmode run, every mode" "$narrows" run "$scene" --set continuum.cells=256 \
+  --set continuum.time=120.0 --set continuum.samples=480 \
+  --set 'continuum.initial={ kind = "eigenmode", mean = 0.75, amplitude = 1e-7 }' \
+  --out "$tmp/all" > /dev/null 2>&1
+runs "jamming_plot on every mode" /usr/bin/python3 "$src/tools/jamming_plot.py" "$tmp/all" \
+  > "$tmp/all.out" 2>&1
+check "every mode at once: each rate the tool reports with |Re lambda| > 0.005 within 2 % (the harmonics of growing modes are left out)" \
+  '/usr/bin/python3 - "$tmp/all.out" "$tmp" <<PY
+import re, sys
+sys.path.insert(0, sys.argv[2])
+from reference import rate, edge
+rows = re.findall(r"^growth k = (\S+)\s+(\S+)", open(sys.argv[1]).read(), re.M)
+inside = beyond = 0
+for k, measured in rows:
+    k, measured = float(k), float(measured)
+    ref = rate(k)
+    if abs(ref) > 0.005:
+        assert abs(measured - ref) < 0.02 * abs(ref), (k, measured, ref)
+        inside += k < edge
+        beyond += k > edge
+print(inside, "inside,", beyond, "beyond the band edge")
+assert inside >= 5 and beyond >= 5, (inside, beyond)
+PY'
+grep -q "^warning" "$tmp/plot.out" && check "no front warning in the linear regime" false
+
+runs "coarse pulses (64 points)" "$narrows" run "$scene" --set continuum.cells=64 \
+  --set continuum.samples=40 --out "$tmp/coarse" > /dev/null 2>&1
+runs --err "$tmp/coarse.err" "jamming_plot on the coarse run" /usr/bin/python3 \
+  "$src/tools/jamming_plot.py" "$tmp/coarse" > "$tmp/coarse.out"
+check "coarse: the warning that the grid does not resolve the fronts" \
+  'grep -q "^warning: the grid does not resolve the pulse fronts: .* grid points across the steepest front at t = .*, fewer than 5 (continuum.cells = 64)" "$tmp/coarse.err"'
+runs "resolved pulses (512 points on length 50)" "$narrows" run "$scene" --set continuum.samples=40 \
+  --set continuum.cells=512 --set continuum.length=50.0 --out "$tmp/fine" > /dev/null 2>&1
+runs --err "$tmp/fine.err" "jamming_plot on the resolved run" /usr/bin/python3 \
+  "$src/tools/jamming_plot.py" "$tmp/fine" > "$tmp/fine.out"
+check "resolved: no warning, and pulses formed (the front is under 20 points wide)" \
+  '! grep -q "warning" "$tmp/fine.err" &&
+   /usr/bin/python3 -c "import re,sys; x=float(re.search(r\"^front: (\S+) grid points\", open(sys.argv[1]).read(), re.M).group(1)); assert 5 <= x < 20, x" "$tmp/fine.out"'
+
+finish jamming_growth
