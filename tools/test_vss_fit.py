@@ -33,6 +33,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import narrows_h5  # noqa: E402
+from continuum_run import find_narrows  # noqa: E402
 import vss_fit  # noqa: E402
 
 passed = failed = 0
@@ -172,6 +173,23 @@ def command_line(tmp):
     e3 = (res["e1"] + res["e2"] * res["phi_c"]) / (res["phi_c"] - res["phi_q"]) ** 2
     check("fit: e3 from continuity", abs(res["e3"] - e3) < 1e-12 * abs(e3) and res["e3_error"] > 0)
     check("fit: PNG", os.path.getsize(prefix + ".png") > 0)
+    # the one-mu file is what the continuum jamming model reads (continuum.vss_fit = FILE)
+    flat = prefix + "-mu1.json"
+    with open(flat) as f:
+        one = json.load(f)
+    check("fit: the one-mu file holds the six eq 6.4 parameters flat",
+          all(isinstance(one.get(k), float) for k in vss_fit.NAMES), sorted(one))
+    scene = os.path.join(HERE, "..", "run", "continuum_jamming_pulses.toml")
+    with open(scene) as f:
+        text = f.read()
+    check("fit: the jamming scene names its mu preset", 'mu = "1"\n' in text)
+    copy = os.path.join(tmp, "jamming_fit.toml")
+    with open(copy, "w") as f:
+        f.write(text.replace('mu = "1"\n', f'vss_fit = "{flat}"\n'))
+    done = subprocess.run([find_narrows(None), "check", copy], capture_output=True, text=True)
+    check("fit: narrows takes the one-mu file as continuum.vss_fit and prints its phi_c",
+          done.returncode == 0 and f"{one['phi_c']:.6g}"[:5] in done.stdout,
+          (done.returncode, done.stdout[-400:], done.stderr))
     bad = os.path.join(tmp, "bad.csv")
     with open(bad, "w") as f:
         f.write("mu_cc,phi,speed\n1,0.7,0.3\n")
