@@ -267,19 +267,26 @@ class Run:
                         if name not in results or step >= results[name][0]:
                             results[name] = (step, path)
                         continue
-                    for key in ("time", "value"):
+                    # The sampled datasets: time and value, or for a set of profiles without
+                    # a value (axial_fields) every dataset but step, time and bins.
+                    sampled = ["time", "value"]
+                    if "value" not in g:
+                        sampled = ["time"] + [k for k in g if k not in ("step", "time", "bins")
+                                              and is_dataset(g[k])]
+                    for key in sampled:
                         if key not in g:
                             raise NarrowsDataError(path, f"no /observables/{name}/{key}")
-                    step, time, value = g["step"][()], g["time"][()], g["value"][()]
-                    s = series.setdefault(name, {"step": step[:0], "time": time[:0],
-                                                 "value": value[:0]})
+                    step = g["step"][()]
+                    s = series.setdefault(name, {"step": step[:0]})
+                    for key in sampled:
+                        s.setdefault(key, g[key][()][:0])
                     if len(step):  # later samples replace earlier ones from their first step on
                         keep = s["step"] < step[0]
                         s["step"] = np.concatenate([s["step"][keep], step])
-                        s["time"] = np.concatenate([s["time"][keep], time])
-                        s["value"] = np.concatenate([s["value"][keep], value])
+                        for key in sampled:
+                            s[key] = np.concatenate([s[key][keep], g[key][()]])
                     for key in g:  # the axes (bins, ...)
-                        if key not in ("step", "time", "value") and is_dataset(g[key]):
+                        if key not in ["step"] + sampled and is_dataset(g[key]):
                             s[key] = g[key][()]
         self._joined = (series, results)
         return self._joined

@@ -85,6 +85,10 @@ def segment(first, last, offset, bins_shift):
         "velocity_profile": {"step": step, "time": 0.1 * step,
                              "value": np.repeat(value, 8).reshape(len(step), 4, 2),
                              "bins": np.arange(4) + 0.5 + bins_shift},
+        # a set of profiles without a value (axial_fields): phi [T][3], velocity [T][3]
+        "axial_fields": {"step": step, "time": 0.1 * step, "bins": np.arange(3) + 1.0,
+                         "phi": np.repeat(value, 3).reshape(len(step), 3),
+                         "velocity": -np.repeat(value, 3).reshape(len(step), 3)},
     }
     results = {"colloid_vacf": {"step": np.int64(last), "time": 0.1 * last,
                                 "lags": np.arange(3.0), "value": np.full(3, float(offset)),
@@ -131,13 +135,20 @@ def checks():
         check("joined [T][bins][d] values", v.value.shape == (10, 4, 2) and
               np.array_equal(v.value[:, 0, 0], want_value), v.value.shape)
         check("bins from the newest file", close(v.bins, np.arange(4) + 2.5), v.bins)
+        a = run.series("axial_fields")
+        check("joined set of profiles (no value)",
+              a.value is None and a["phi"].shape == (10, 3) and
+              np.array_equal(a["phi"][:, 1], want_value) and
+              np.array_equal(a["velocity"][:, 2], -want_value) and
+              np.array_equal(a.step, want_step) and close(a.bins, np.arange(3) + 1.0),
+              (a.keys(), a.get("phi")))
         r = run.series("colloid_vacf")
         check("result of the whole run: from the file of the latest step",
               r.is_result and r.number("samples") == 90.0 and np.all(r.value == 2000.0),
               (r.is_result, r.get("samples")))
         check("lags of a result", np.array_equal(r.lags, np.arange(3.0)), r.lags)
         check("names of the chain", run.names() ==
-              ["temperature", "velocity_profile", "colloid_vacf"], run.names())
+              ["axial_fields", "temperature", "velocity_profile", "colloid_vacf"], run.names())
 
         check("open_run(folder) reads the whole chain by default",
               np.array_equal(narrows_h5.open_run(run_dir).series("temperature").step,
@@ -160,9 +171,9 @@ def checks():
         # the joined file (module and tool) reads back as the chain
         joined = os.path.join(tmp, "joined.h5")
         n = run.write_joined(joined)
-        check("write_joined counts series and results", n == (2, 1), n)
+        check("write_joined counts series and results", n == (3, 1), n)
         back = narrows_h5.open_run(joined)
-        for name in ("temperature", "velocity_profile"):
+        for name in ("temperature", "velocity_profile", "axial_fields"):
             a, b = run.series(name), back.series(name)
             check(f"joined file: {name}", all(np.array_equal(a[k], b[k]) for k in a.keys())
                   and sorted(a.keys()) == sorted(b.keys()), sorted(b.keys()))
