@@ -3,10 +3,11 @@
 Every tool here reads narrows' HDF5 files through this module, and only this module imports
 h5py. What a run writes (docs/scenes.md): DIR/observables.h5 with the scene text at
 /parameters/scene and /observables/<name>/{step, time, value} (bin centres in .../bins, lags of
-correlations in .../lags); a result of the whole run (colloid statistics, the lgca VACFs,
-steady_density) has a scalar step. Each restart writes DIR/observables-<step>.h5 with the
-samples after the checkpoint it started from; tools/join_observables.py writes
-DIR/observables-joined.h5.
+correlations in .../lags; a group of several sampled fields, such as axial_fields' phi,
+velocity and fluid_velocity [T][bins], has them in place of value); a result of the whole run
+(colloid statistics, the lgca VACFs, steady_density) has a scalar step. Each restart writes
+DIR/observables-<step>.h5 with the samples after the checkpoint it started from;
+tools/join_observables.py writes DIR/observables-joined.h5.
 
 Reading:
   run = open_run("out/x")                   # the run's restart chain, joined (a fresh run:
@@ -17,7 +18,8 @@ Reading:
 Missing or unreadable data raise NarrowsDataError, whose message names the file and the
 dataset; a tool reports it with one line on stderr and exit code 2 (report(), or run_tool()).
 Writing: write_observables() (the layout the tools read, used by join_observables.py and the
-self-test tools/test_narrows_h5.py). Plots: pyplot() (matplotlib with the Agg backend).
+self-test tools/test_narrows_h5.py); write_table() (a table of results, tools/sweep.py).
+Plots: pyplot() (matplotlib with the Agg backend).
 """
 
 import glob
@@ -39,6 +41,7 @@ except ModuleNotFoundError:  # older Pythons: the tomli package has the same int
 OBSERVABLES = "observables.h5"
 JOINED = "observables-joined.h5"
 TRAJECTORY = "trajectory.h5"
+AXES = ("bins", "lags")  # datasets of an observable that are axes, not samples
 _RESTART = re.compile(r"observables-(\d+)\.h5$")
 
 
@@ -267,24 +270,26 @@ class Run:
                         if name not in results or step >= results[name][0]:
                             results[name] = (step, path)
                         continue
-                    # The sampled datasets: time and value, or for a set of profiles without
-                    # a value (axial_fields) every dataset but step, time and bins.
-                    sampled = ["time", "value"]
-                    if "value" not in g:
-                        sampled = ["time"] + [k for k in g if k not in ("step", "time", "bins")
-                                              and is_dataset(g[k])]
+                    # the sampled datasets: time, value, the datasets of one row per sample
+                    # beside value (attribute per_sample = 1), and in a group of several fields
+                    # without value (axial_fields' phi, velocity, ...) every dataset other than
+                    # the axes whose first dimension is the number of samples
+                    step = g["step"][()]
+                    sampled = ["time"] + (["value"] if "value" in g else [])
+                    sampled += [k for k in g if k not in ("step", "time", "value") + AXES
+                                and is_dataset(g[k])
+                                and (g[k].attrs.get("per_sample", 0)
+                                     or ("value" not in g and g[k].ndim >= 1
+                                         and g[k].shape[0] == len(step)))]
                     for key in sampled:
                         if key not in g:
                             raise NarrowsDataError(path, f"no /observables/{name}/{key}")
-                    step = g["step"][()]
                     s = series.setdefault(name, {"step": step[:0]})
-                    for key in sampled:
-                        s.setdefault(key, g[key][()][:0])
-                    if len(step):  # later samples replace earlier ones from their first step on
-                        keep = s["step"] < step[0]
-                        s["step"] = np.concatenate([s["step"][keep], step])
-                        for key in sampled:
-                            s[key] = np.concatenate([s[key][keep], g[key][()]])
+                    keep = s["step"] < step[0] if len(step) else np.ones(len(s["step"]), bool)
+                    s["step"] = np.concatenate([s["step"][keep], step])
+                    for key in sampled:  # later samples replace the earlier from their first step
+                        data = g[key][()]
+                        s[key] = np.concatenate([s[key][keep], data]) if key in s else data
                     for key in g:  # the axes (bins, ...)
                         if key not in ["step"] + sampled and is_dataset(g[key]):
                             s[key] = g[key][()]
@@ -308,7 +313,7 @@ class Run:
 class Trajectory:
     """DIR/trajectory.h5 (H5MD), open while in a with statement: dataset(name) (read lazily,
     e.g. one frame: t.dataset("particles/fluid/position/value")[k]), array(name) (all of it),
-    parameter(name) (/parameters/<name>)."""
+    has(name) (whether the file holds that object), parameter(name) (/parameters/<name>)."""
 
     def __init__(self, path):
         self.path = path
@@ -328,6 +333,9 @@ class Trajectory:
 
     def array(self, name):
         return self.dataset(name)[()]
+
+    def has(self, name):
+        return name in self._f
 
     def parameter(self, name):
         value = self.array("parameters/" + name)
@@ -418,6 +426,22 @@ def write_observables(path, series=None, results=None, scene=None, copy_from=Non
                 g = obs.create_group(name)
                 for key, value in data.items():
                     g.create_dataset(key, data=value)
+
+
+def write_table(path, columns):
+    """Writes a table {column: [values]} (all columns one length) to path as /table/<column>:
+    a float64 dataset where every value is a number, bool or None (None as NaN), else a
+    variable-length UTF-8 string dataset (None as ""). Column names with "/" get "_"."""
+    with h5py.File(path, "w") as out:
+        g = out.create_group("table")
+        for name, values in columns.items():
+            key = name.replace("/", "_")
+            if all(v is None or isinstance(v, (int, float, bool, np.number)) for v in values):
+                data = np.array([np.nan if v is None else float(v) for v in values], float)
+                g.create_dataset(key, data=data)
+            else:
+                g.create_dataset(key, data=["" if v is None else str(v) for v in values],
+                                 dtype=h5py.string_dtype("utf-8"))
 
 
 # ---- plots ---------------------------------------------------------------------------------

@@ -21,6 +21,7 @@ import subprocess
 import sys
 import tempfile
 
+import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -85,11 +86,12 @@ def segment(first, last, offset, bins_shift):
         "velocity_profile": {"step": step, "time": 0.1 * step,
                              "value": np.repeat(value, 8).reshape(len(step), 4, 2),
                              "bins": np.arange(4) + 0.5 + bins_shift},
-        # a set of profiles without a value (axial_fields): phi [T][3], velocity [T][3]
-        "axial_fields": {"step": step, "time": 0.1 * step, "bins": np.arange(3) + 1.0,
-                         "phi": np.repeat(value, 3).reshape(len(step), 3),
-                         "velocity": -np.repeat(value, 3).reshape(len(step), 3)},
     }
+    # a group of several sampled fields and no value (as axial_fields: phi, velocity [T][bins])
+    series["axial_fields"] = {"step": step, "time": 0.1 * step,
+                              "phi": np.repeat(value, 3).reshape(len(step), 3),
+                              "velocity": -np.repeat(value, 3).reshape(len(step), 3),
+                              "bins": np.arange(3) + 0.5}
     results = {"colloid_vacf": {"step": np.int64(last), "time": 0.1 * last,
                                 "lags": np.arange(3.0), "value": np.full(3, float(offset)),
                                 "samples": np.array([float(last)])}}
@@ -115,6 +117,12 @@ def checks():
             series, results = segment(first, last, offset, offset / 1000)
             narrows_h5.write_observables(os.path.join(run_dir, name), series=series,
                                          results=results, scene=SCENE + f"# {name}\n")
+            # a dataset of one row per sample beside value (as contact_statistics writes)
+            with h5py.File(os.path.join(run_dir, name), "a") as f:
+                g = f["observables/velocity_profile"]
+                d = g.create_dataset("contacts", data=np.stack([series["temperature"]["value"]] * 2,
+                                                               axis=1))
+                d.attrs["per_sample"] = np.array([1], dtype=np.int32)
 
         # the chain: files in step order, samples replaced from each restart's first step on
         chain = narrows_h5.chain_files(run_dir)
@@ -136,12 +144,14 @@ def checks():
               np.array_equal(v.value[:, 0, 0], want_value), v.value.shape)
         check("bins from the newest file", close(v.bins, np.arange(4) + 2.5), v.bins)
         a = run.series("axial_fields")
-        check("joined set of profiles (no value)",
-              a.value is None and a["phi"].shape == (10, 3) and
+        check("joined fields of a group without value (axial_fields)",
+              a.value is None and np.array_equal(a.step, want_step) and
               np.array_equal(a["phi"][:, 1], want_value) and
-              np.array_equal(a["velocity"][:, 2], -want_value) and
-              np.array_equal(a.step, want_step) and close(a.bins, np.arange(3) + 1.0),
-              (a.keys(), a.get("phi")))
+              np.array_equal(a["velocity"][:, 2], -want_value) and close(a.bins, np.arange(3) + 0.5),
+              {k: np.shape(a[k]) for k in a.keys()})
+        check("a per_sample dataset beside value is joined as value",
+              v["contacts"].shape == (10, 2) and np.array_equal(v["contacts"][:, 1], want_value),
+              v.get("contacts"))
         r = run.series("colloid_vacf")
         check("result of the whole run: from the file of the latest step",
               r.is_result and r.number("samples") == 90.0 and np.all(r.value == 2000.0),

@@ -131,13 +131,21 @@ h5::Dataset create_series(hid_t group, const std::string &name, hid_t type,
 void write_row(const h5::Dataset &dset, hsize_t row, hid_t type,
                const std::vector<hsize_t> &sample_shape, const void *data, const std::string &where,
                const std::string &name) {
-  std::vector<hsize_t> dims{row + 1}, start{row}, count{1};
+  write_rows(dset, row, 1, type, sample_shape, data, where, name);
+}
+
+void write_rows(const h5::Dataset &dset, hsize_t first, hsize_t n, hid_t type,
+                const std::vector<hsize_t> &sample_shape, const void *data,
+                const std::string &where, const std::string &name) {
+  std::vector<hsize_t> dims{first + n}, start{first}, count{n};
   for (const hsize_t n : sample_shape) {
     dims.push_back(n);
     start.push_back(0);
     count.push_back(n);
   }
   h5::check(H5Dset_extent(dset.get(), dims.data()), where, "extend dataset " + name);
+  if (n == 0)
+    return;
   const h5::Dataspace file_space(H5Dget_space(dset.get()), where, "get dataspace of " + name);
   h5::check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr,
                                 count.data(), nullptr),

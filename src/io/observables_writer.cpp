@@ -44,7 +44,7 @@ ObservablesWriter::Series &ObservablesWriter::series(const std::string &name, Ki
     throw Error(ExitCode::other, path_ + ": invalid observable name '" + name + "'");
 
   const h5::Group group = h5::create_group(observables_.get(), name, path_);
-  Series s{kind, std::move(sample_shape), 0, {}, {}, {}};
+  Series s{kind, std::move(sample_shape), 0, {}, {}, {}, {}};
   s.step = h5::create_series(group.get(), "step", H5T_STD_I64LE, {}, path_);
   s.time = h5::create_series(group.get(), "time", H5T_IEEE_F64LE, {}, path_);
   if (kind != Kind::profiles)
@@ -136,6 +136,57 @@ void ObservablesWriter::append_field(const std::string &name, std::int64_t step,
                                      std::to_string(values.size()) + " values for shape " +
                                      shape_string(shape));
   append(series(name, Kind::field, shape, {}), name, step, time, values.data());
+}
+
+void ObservablesWriter::append_field(
+    const std::string &name, std::int64_t step, double time, const std::vector<hsize_t> &shape,
+    std::span<const double> values, const std::vector<Beside> &beside,
+    const std::vector<std::pair<std::string, std::vector<double>>> &axes) {
+  const auto elements = [](const std::vector<hsize_t> &sh) {
+    hsize_t n = 1;
+    for (const hsize_t k : sh)
+      n *= k;
+    return n;
+  };
+  for (const Beside &b : beside)
+    if (b.key.empty() || b.key.find('/') != std::string::npos || b.key == "step" ||
+        b.key == "time" || b.key == "value" || b.values.size() != elements(b.shape))
+      throw Error(ExitCode::other, path_ + ": field '" + name + "': dataset '" + b.key +
+                                       "' beside value has " + std::to_string(b.values.size()) +
+                                       " values for shape " + shape_string(b.shape));
+  if (shape.empty() || elements(shape) == 0 || values.size() != elements(shape))
+    throw Error(ExitCode::other, path_ + ": field '" + name + "' has " +
+                                     std::to_string(values.size()) + " values for shape " +
+                                     shape_string(shape));
+  const bool fresh = series_.count(name) == 0;
+  Series &s = series(name, Kind::field, shape, {});
+  if (fresh) {
+    const h5::Group group = h5::open_group(observables_.get(), name, path_);
+    for (const Beside &b : beside) {
+      h5::Dataset d = h5::create_series(group.get(), b.key, H5T_IEEE_F64LE, b.shape, path_);
+      const std::array<std::int32_t, 1> one{1};
+      h5::write_attribute<std::int32_t>(d.get(), "per_sample", one, path_);
+      s.beside.emplace_back(b.shape, std::move(d));
+    }
+    for (const auto &[key, data] : axes)
+      h5::write_dataset<double>(group.get(), key, data, path_);
+  }
+  if (s.beside.size() != beside.size())
+    throw Error(ExitCode::other, path_ + ": field '" + name + "' was written with " +
+                                     std::to_string(s.beside.size()) +
+                                     " datasets beside value, now " +
+                                     std::to_string(beside.size()));
+  for (std::size_t j = 0; j < beside.size(); ++j)
+    if (s.beside[j].first != beside[j].shape)
+      throw Error(ExitCode::other, path_ + ": field '" + name + "': dataset '" + beside[j].key +
+                                       "' was of shape " + shape_string(s.beside[j].first) +
+                                       ", now " + shape_string(beside[j].shape));
+  // The datasets beside value first: the sample counts only once value is written too.
+  const std::string prefix = "/observables/" + name + "/";
+  for (std::size_t j = 0; j < beside.size(); ++j)
+    h5::write_row(s.beside[j].second, s.samples, H5T_NATIVE_DOUBLE, beside[j].shape,
+                  beside[j].values.data(), path_, prefix + beside[j].key);
+  append(s, name, step, time, values.data());
 }
 
 void ObservablesWriter::write_result(

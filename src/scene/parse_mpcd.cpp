@@ -16,6 +16,9 @@ void parse_mpcd(const Checker &c, const toml::value &root, Scene &s) {
   s.colloids = parse_colloids(c, c.section(root, "colloids"), s.domain, s.run.dimensions,
                               s.walls.has_value());
   s.thermostat = parse_thermostat(c, c.section(root, "thermostat"), s.fluid.collision);
+  if (s.body_force && s.body_force->acts_on == DriveTarget::fluid_and_colloids && !s.colloids)
+    c.fail("body_force.acts_on", "body_force.acts_on = \"fluid+colloids\" needs [colloids] (there "
+                                 "are none to drive); allowed without them: \"fluid\"");
   if (s.colloids && s.colloids->coupling == ColloidCoupling::no_slip)
     check_no_slip(c, s);
 }
@@ -51,6 +54,13 @@ void check_mpcd_observables(const Checker &c, const Scene &s) {
     if (o.follows_colloids && listed(o.name) && !s.colloids)
       c.fail("output.observables", "output.observables lists \"" + std::string(o.name) +
                                        "\", which follows colloids; allowed only with [colloids]");
+  if (listed("contact_statistics") && s.colloids && s.colloids->contacts != ColloidContacts::spring)
+    c.fail(
+        "output.observables",
+        std::string("output.observables lists \"contact_statistics\" with colloids.contacts = \"") +
+            (s.colloids->contacts == ColloidContacts::hard ? "hard" : "none") +
+            "\" (hard-sphere contacts are instantaneous: no overlaps, forces or lasting "
+            "contacts to count); allowed only with colloids.contacts = \"spring\"");
   const bool poiseuille = s.walls && s.body_force && s.body_force->kind == ForceKind::constant &&
                           s.body_force->value[0] != 0.0;
   if (listed("viscosity") && !poiseuille)

@@ -157,6 +157,16 @@ std::optional<BodyForce> parse_body_force(const Checker &c, const value *bf, int
     out.amplitude =
         c.number(*amp, "body_force.amplitude", amp_allowed, [](double) { return true; });
   }
+  if (const value *on = find(bf, "acts_on")) {
+    const std::size_t i =
+        c.choice(*on, "body_force.acts_on", "a known drive target", {"fluid", "fluid+colloids"});
+    out.acts_on = i == 0 ? DriveTarget::fluid : DriveTarget::fluid_and_colloids;
+    if (out.acts_on == DriveTarget::fluid_and_colloids && out.kind == ForceKind::sine)
+      c.fail("body_force.acts_on",
+             "body_force.acts_on = \"fluid+colloids\" cannot be combined with body_force.kind = "
+             "\"sine\" (the Kolmogorov force varies across a colloid); allowed: \"fluid\", or a "
+             "constant body_force.value");
+  }
   return out;
 }
 

@@ -52,6 +52,18 @@ const char *to_string(LgcaModel m) {
   return "unknown";
 }
 
+std::array<double, 3> colloid_acceleration(const Scene &s) {
+  std::array<double, 3> g{0.0, 0.0, 0.0};
+  if (!s.colloids)
+    return g;
+  g = s.colloids->gravity;
+  if (s.body_force && s.body_force->kind == ForceKind::constant &&
+      s.body_force->acts_on == DriveTarget::fluid_and_colloids)
+    for (int k = 0; k < 3; ++k)
+      g[k] += s.body_force->value[k]; // (0 + a is a: the same bits as gravity = a)
+  return g;
+}
+
 double Colloids::max_radius() const {
   if (kinds.empty())
     return radius + 3.0 * radius_sd;

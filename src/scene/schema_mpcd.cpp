@@ -42,7 +42,13 @@ const EngineSchema &mpcd_schema() {
          {"value", "array of `run.dimensions` numbers", R"(required with `"constant"`)", "finite",
           "acceleration", "force per unit mass on every fluid particle"},
          {"amplitude", "number", R"(required with `"sine"`)", "finite", "acceleration",
-          "a_x = amplitude sin(2π y / L_y)"}}},
+          "a_x = amplitude sin(2π y / L_y)"},
+         {"acts_on", "string", R"(`"fluid"`)",
+          R"(`"fluid"`, `"fluid+colloids"` (only with `[colloids]` and `"constant"`))", "",
+          "what the force drives: the fluid alone (Kanehl (thesis) §5.1: a constant force on each "
+          "fluid particle), or also each colloid with M × value (a pressure gradient σ = ρ value "
+          "pushes a colloid with σV, i.e. M × value for a neutrally buoyant colloid), in addition "
+          "to `colloids.gravity`"}}},
        {"walls",
         {{"slip", "boolean", "`false`", "", "",
           "specular reflection instead of no-slip bounce-back"},
@@ -77,7 +83,8 @@ const EngineSchema &mpcd_schema() {
           "a text file (relative to the scene), one `x y [z]` per line, `#` comments", "",
           "given centres from a file"},
          {"gravity", "array of `run.dimensions` numbers", "`[0, 0(, 0)]`", "finite", "acceleration",
-          "field g: each colloid feels M g, the fluid none"},
+          "field g: each colloid feels M g, the fluid none (a pressure-gradient drive of the "
+          "colloids is `body_force.acts_on` instead)"},
          {"md_substeps", "integer", "15", "1 to 10000", "",
           "velocity-Verlet steps per collision step (τ_MD = dt / md_substeps)"},
          {"epsilon", "number", "1", "> 0", "kT", "strength of all colloid potentials"},
@@ -186,6 +193,15 @@ const EngineSchema &mpcd_schema() {
         "`/observables/colloid_angular_vacf/{value, lags, error}`, `value_by_kind`, "
         "`error_by_kind`, `integral`, `integral_error`, `integral_by_kind`",
         "⟨ω(t)·ω(t+τ)⟩ and D_rot(t) = (1/d_rot) ∫₀ᵗ (d_rot = 1 in 2D, 3 in 3D)", nullptr, true},
+       {"contact_statistics",
+        "`/observables/contact_statistics/value [T][2][100]` (overlap counts: colloid-colloid, "
+        "colloid-wall), `bins [100]` (δ/a), `bin_width`, `contacts [T][2]`, `beyond [T][2]`, "
+        "`sliding_fraction [T][2]`, `coordination [T][kinds]`",
+        "spring contacts at each sample (Kanehl (thesis) fig 6.2a): histogram of the normal "
+        "overlaps δ/a (a the smaller radius, a colloid's own at a wall) in bins of 0.002 from 0 "
+        "to 0.2 (`beyond`: deeper), the fraction of contacts sliding (|F_t| at μ|F_n|), the mean "
+        "number of colloid partners per colloid of each kind (needs `contacts = \"spring\"`)",
+        nullptr, true},
        {"density_kde",
         "`/observables/density_kde/{value, error} [kinds][bins]`, `bins [bins]` (y), `width`, "
         "`counts [kinds]`, `samples`",

@@ -220,3 +220,39 @@ TEST(ObservablesWriter, UnwritablePathThrows) {
 }
 
 } // namespace
+
+// A field with datasets of one row per sample beside value (contact_statistics): each grows with
+// value, carries per_sample = 1, the axes are written once; a changed key set or shape throws.
+TEST(ObservablesWriter, FieldWithDatasetsBeside) {
+  TempFile tmp("narrows-observables");
+  {
+    ObservablesWriter w(tmp.str(), "");
+    using B = ObservablesWriter::Beside;
+    const std::vector<double> value{1, 2, 3, 4, 5, 6}, two{7, 8}, one{9};
+    for (int s = 0; s < 3; ++s)
+      w.append_field("stats", s * 10, s * 1.0, {2, 3}, value,
+                     {B{"pair", {2}, two}, B{"scalar", {}, one}}, {{"bins", {0.5, 1.5, 2.5}}});
+    EXPECT_THROW(w.append_field("stats", 30, 3.0, {2, 3}, value, {B{"pair", {2}, two}}, {}),
+                 narrows::Error);
+    EXPECT_THROW(w.append_field("stats", 30, 3.0, {2, 3}, value,
+                                {B{"pair", {1}, one}, B{"scalar", {}, one}}, {}),
+                 narrows::Error);
+    EXPECT_THROW(w.append_field("other", 0, 0.0, {2}, two, {B{"value", {1}, one}}, {}),
+                 narrows::Error);
+    EXPECT_THROW(w.append_field("other", 0, 0.0, {2}, two, {B{"x", {2}, one}}, {}), narrows::Error);
+    w.flush();
+  }
+  const h5::File file = h5::open_file(tmp.str());
+  EXPECT_EQ(shape_of(file.get(), "observables/stats/value"), (std::vector<hsize_t>{3, 2, 3}));
+  EXPECT_EQ(shape_of(file.get(), "observables/stats/pair"), (std::vector<hsize_t>{3, 2}));
+  EXPECT_EQ(shape_of(file.get(), "observables/stats/scalar"), (std::vector<hsize_t>{3}));
+  EXPECT_EQ(read_all<double>(file.get(), "observables/stats/pair"),
+            (std::vector<double>{7, 8, 7, 8, 7, 8}));
+  EXPECT_EQ(read_all<double>(file.get(), "observables/stats/bins"),
+            (std::vector<double>{0.5, 1.5, 2.5}));
+  EXPECT_EQ(read_all<std::int64_t>(file.get(), "observables/stats/step"),
+            (std::vector<std::int64_t>{0, 10, 20}));
+  EXPECT_GT(H5Aexists_by_name(file.get(), "observables/stats/pair", "per_sample", H5P_DEFAULT), 0);
+  EXPECT_GT(H5Aexists_by_name(file.get(), "observables/stats/scalar", "per_sample", H5P_DEFAULT),
+            0);
+}

@@ -148,6 +148,10 @@ Dataset create_series(hid_t group, const std::string &name, hid_t type,
 void write_row(const Dataset &dset, hsize_t row, hid_t type,
                const std::vector<hsize_t> &sample_shape, const void *data, const std::string &where,
                const std::string &name);
+// The same for n rows from row `first` on (the dataset grows to first + n rows; n may be 0).
+void write_rows(const Dataset &dset, hsize_t first, hsize_t n, hid_t type,
+                const std::vector<hsize_t> &sample_shape, const void *data,
+                const std::string &where, const std::string &name);
 
 // The H5MD header every narrows output file starts with: /h5md (version = [1, 1], creator
 // name and version) and /parameters/scene; returns the /parameters group for more entries.

@@ -45,6 +45,21 @@ public:
   void append_field(const std::string &name, std::int64_t step, double time,
                     const std::vector<hsize_t> &shape, std::span<const double> values);
 
+  // A dataset of one row per sample beside value, in the same group (append_field below).
+  struct Beside {
+    std::string key;
+    std::vector<hsize_t> shape; // of one sample ({} for a scalar)
+    std::span<const double> values;
+  };
+  // One sample of a field (value [T][shape...]) with more datasets of one row per sample beside
+  // it ([T][their shape...], marked with the attribute per_sample = 1, so that readers join them
+  // over a restart chain as they join value), and at the first append the 1-D `axes` (e.g.
+  // bins). Every sample of a name must have the same keys and shapes.
+  void append_field(const std::string &name, std::int64_t step, double time,
+                    const std::vector<hsize_t> &shape, std::span<const double> values,
+                    const std::vector<Beside> &beside,
+                    const std::vector<std::pair<std::string, std::vector<double>>> &axes);
+
   // A result of the whole run rather than a sample (e.g. a correlation function over lags):
   // /observables/<name>/{step, time} scalars, value of shape [n], and beside it the named
   // 1-D datasets of `beside` (e.g. lags, error). Written once per name. With `shape`, value
@@ -67,6 +82,7 @@ private:
     std::vector<hsize_t> sample_shape; // shape of one sample (value without the T axis)
     hsize_t samples = 0;
     h5::Dataset step, time, value;
+    std::vector<std::pair<std::vector<hsize_t>, h5::Dataset>> beside; // (append_field's)
     // profiles: the named datasets instead of value
     std::vector<std::pair<std::string, h5::Dataset>> fields = {};
   };

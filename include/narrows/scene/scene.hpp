@@ -35,11 +35,18 @@ struct Fluid {
   int sort_every = 20; // counting sort by cell every this many steps (0 = never)
 };
 
-// Force per unit mass on every fluid particle.
+// What the body force drives: the fluid alone (Kanehl (thesis) §5.1: "a constant force acting on
+// each fluid particle"), or the fluid and the colloids, as a pressure gradient does: it pushes a
+// colloid of volume V with sigma V = M a for a neutrally buoyant colloid (M = rho V).
+enum class DriveTarget { fluid, fluid_and_colloids };
+
+// Force per unit mass on every fluid particle (and, with acts_on = fluid_and_colloids, on every
+// colloid: M value).
 struct BodyForce {
   ForceKind kind = ForceKind::constant;
   std::array<double, 3> value{0.0, 0.0, 0.0}; // constant: the acceleration vector
   double amplitude = 0.0; // sine: a_x = amplitude * sin(2 pi y / L_y) (Kolmogorov flow)
+  DriveTarget acts_on = DriveTarget::fluid;
 };
 
 // Mean velocity of the virtual wall particles: at rest with the wall (Tabatabaei (2008) eq 3.14),
@@ -288,6 +295,11 @@ struct Scene {
   std::optional<LgcaColloid> colloid; // engine lgca, [colloid] given
   std::optional<Continuum> continuum; // engine continuum only
 };
+
+// The acceleration of every colloid from fields (its force is M times it): colloids.gravity,
+// plus body_force.value when the body force acts on the colloids too (acts_on =
+// "fluid+colloids"). Zero without [colloids].
+std::array<double, 3> colloid_acceleration(const Scene &s);
 
 // Names used in messages and files.
 const char *to_string(Engine e);

@@ -2,8 +2,10 @@
 // checks, trajectory frames, checkpoints of fluid, colloids and contacts, the closing lines.
 #include "narrows/engines/mpcd/driver.hpp"
 
+#include "narrows/analysis/contact_statistics.hpp"
 #include "narrows/analysis/fluid_observables.hpp"
 #include "narrows/analysis/poiseuille.hpp"
+#include "narrows/colloids/contact_network.hpp"
 #include "narrows/core/error.hpp"
 #include "narrows/core/timer.hpp"
 #include "narrows/engines/mpcd/axial_fields.hpp"
@@ -57,6 +59,7 @@ public:
     energy_ = wants(s, "energy");
     settling_ = wants(s, "settling_velocity");
     positions_ = wants(s, "colloid_positions");
+    contacts_ = wants(s, "contact_statistics");
     if (wants(s, "axial_fields"))
       axial_.emplace(sim.box(), s.output.axial_bin);
   }
@@ -100,6 +103,8 @@ public:
       if (writer_)
         writer_->append_profile("colloid_positions", step, t, ids, x, d);
     }
+    if (contacts_)
+      sample_contacts(step, t);
     if (axial_) {
       Stopwatch watch;
       const colloids::Colloids c = sim_.gather_colloids(); // collective
@@ -155,6 +160,33 @@ public:
   }
 
 private:
+  // contact_statistics: every colloid and contact gathered (each contact is held once, by the
+  // rank of its owner colloid), so the sample is the same on any number of ranks.
+  void sample_contacts(std::int64_t step, double t) {
+    const colloids::Colloids c = sim_.gather_colloids();       // collective
+    const colloids::ContactHistory h = sim_.gather_contacts(); // collective
+    if (!writer_)
+      return;
+    const auto &spec = *sim_.scene().colloids;
+    const colloids::ContactNetwork net =
+        colloids::contact_network(c, h, sim_.box(), sim_.plan().no_slip_params.spring);
+    std::vector<std::size_t> kinds(c.size());
+    for (std::size_t a = 0; a < c.size(); ++a)
+      kinds[a] = spec.kind_of(c.id[a]);
+    const analysis::ContactStatistics st =
+        analysis::contact_statistics(net, c.id, kinds, spec.kind_count());
+    using B = analysis::ContactStatistics;
+    std::vector<double> histogram(2 * B::bins);
+    for (int w = 0; w < 2; ++w)
+      std::copy(st.histogram[w].begin(), st.histogram[w].end(), histogram.begin() + w * B::bins);
+    writer_->append_field("contact_statistics", step, t, {2, B::bins}, histogram,
+                          {{"contacts", {2}, st.contacts},
+                           {"beyond", {2}, st.beyond},
+                           {"sliding_fraction", {2}, st.sliding},
+                           {"coordination", {st.coordination.size()}, st.coordination}},
+                          {{"bins", B::bin_centres()}, {"bin_width", {B::bin_width}}});
+  }
+
   MpcdSimulation &sim_;
   std::unique_ptr<io::ObservablesWriter> writer_;
   analysis::ProfileAccumulator profiles_;
@@ -164,7 +196,8 @@ private:
   double axial_seconds_ = 0.0;
   std::uint64_t axial_samples_ = 0;
   bool temperature_ = false, momentum_ = false, velocity_ = false, density_ = false,
-       viscosity_ = false, energy_ = false, settling_ = false, positions_ = false;
+       viscosity_ = false, energy_ = false, settling_ = false, positions_ = false,
+       contacts_ = false;
 };
 
 } // namespace
@@ -276,13 +309,14 @@ public:
       const std::string file = shell.output_file("trajectory");
       trajectory_.emplace(file, scene.text, sim.box(), particle_count(scene),
                           static_cast<std::uint64_t>(scene.output.trajectory_subsample), comm,
-                          colloids_);
+                          colloids_, springs_);
       log.line("trajectory: " + std::to_string(trajectory_->tracked()) + " fluid particles" +
                (colloids_ ? " and " + std::to_string(colloids_->size()) + " colloids" : "") +
-               " every " + std::to_string(scene.output.trajectory_every) + " steps to " + file +
+               (springs_ ? " with their contact network" : "") + " every " +
+               std::to_string(scene.output.trajectory_every) + " steps to " + file +
                " (ParaView: trajectory" + shell.suffix() + ".xdmf)");
       if (!shell.restarting())
-        trajectory_->write_frame(sim.step(), sim.time(), sim.fluid(), colloids_);
+        write_frame();
     }
     invariants_.emplace(sim);
     n_particles_ = analysis::total_momentum(sim.fluid(), comm).count;
@@ -309,7 +343,14 @@ public:
       if (observer_->axial())
         observer_->axial()->add_local_fraction(all_colloids_);
     }
-    trajectory_->write_frame(sim_->step(), sim_->time(), sim_->fluid(), colloids_);
+    std::optional<colloids::ContactNetwork> network;
+    if (springs_) { // (every contact once: each is held by the rank of its owner colloid)
+      all_contacts_ = sim_->gather_contacts();
+      network = colloids::contact_network(all_colloids_, all_contacts_, sim_->box(),
+                                          sim_->plan().no_slip_params.spring);
+    }
+    trajectory_->write_frame(sim_->step(), sim_->time(), sim_->fluid(), colloids_,
+                             network ? &*network : nullptr);
   }
 
   // Checkpoints: every output.checkpoint_every steps, at the end, and on SIGTERM/SIGUSR1.

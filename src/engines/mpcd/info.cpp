@@ -287,6 +287,13 @@ std::vector<std::string> regime_warnings(const scene::Scene &s) {
       w.push_back("constant force without walls: the mean flow reaches Ma = " +
                   fmt("%.3g", ma_end) + " by the end of the run");
   }
+  if (s.colloids && s.body_force &&
+      s.body_force->acts_on == scene::DriveTarget::fluid_and_colloids &&
+      s.colloids->gravity != std::array<double, 3>{0.0, 0.0, 0.0} &&
+      s.colloids->gravity == s.body_force->value)
+    w.push_back("colloids.gravity equals body_force.value and body_force.acts_on = "
+                "\"fluid+colloids\": the colloids feel the drive twice (M g from each); the "
+                "drive alone is body_force.acts_on");
   if (s.fluid.dt * std::sqrt(s.fluid.kT) < 0.5 && r.nu)
     w.push_back("mean free path " + fmt("%.3g", s.fluid.dt * std::sqrt(s.fluid.kT)) +
                 " < 0.5 a: kinetic-theory transport coefficients may be off by up to ~15 %");

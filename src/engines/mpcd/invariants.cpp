@@ -59,8 +59,8 @@ InvariantCheck::InvariantCheck(const MpcdSimulation &sim) {
       conserved_[k] = false; // the sine force injects sum_i sin(k y_i), which fluctuates
     if (scene.body_force && scene.body_force->kind == scene::ForceKind::constant)
       drive_[k] = scene.body_force->value[k] * static_cast<double>(count_);
-    if (scene.colloids) // gravity on the colloids: force M_a g on each
-      drive_[k] += scene.colloids->gravity[k] * colloid_mass;
+    if (scene.colloids) // gravity (and the drive) on the colloids: force M_a g on each
+      drive_[k] += scene::colloid_acceleration(scene)[k] * colloid_mass;
     // No-slip walls and virtual particles exchange momentum with the fluid; slip walls
     // without virtual particles only reverse v_y, so along the walls the momentum is the force
     // impulse and is checked. In the other channels it is not: the momentum the walls take

@@ -46,6 +46,17 @@ std::string stream_text(const scene::Scene &s, const MpcdPlan &p, const mpcd::Bo
 
 namespace {
 
+// The fields on the colloids, for the pipeline line: ", gravity", ", the body force (M a)" or
+// both.
+std::string colloid_drive_text(const scene::Scene &s) {
+  std::string t;
+  if (s.colloids->gravity != std::array<double, 3>{0.0, 0.0, 0.0})
+    t += ", gravity";
+  if (s.body_force && s.body_force->acts_on == scene::DriveTarget::fluid_and_colloids)
+    t += ", the body force on the colloids too (M a: body_force.acts_on = \"fluid+colloids\")";
+  return t;
+}
+
 // "2 kinds: 100 of r 2 M 125.664, 100 of r 4 M 600" ([[colloids.kind]]).
 std::string kinds_text(const scene::Colloids &c, int dim, double density) {
   std::string t = std::to_string(c.kinds.size()) + " kinds:";
@@ -102,8 +113,7 @@ std::string md_text(const scene::Scene &s, const MpcdPlan &p) {
             ", cut-off " + format_number(colloids::wall_cutoff(lo)) + " to " +
             format_number(colloids::wall_cutoff(hi)) + ")";
   }
-  if (c.gravity != std::array<double, 3>{0.0, 0.0, 0.0})
-    md += ", gravity";
+  md += colloid_drive_text(s);
   return md;
 }
 
@@ -123,8 +133,7 @@ std::string no_slip_text(const scene::Scene &s, const MpcdPlan &p) {
                  format_number(c.spring.mu_cc) + ", mu_cw " + format_number(c.spring.mu_cw) + ", " +
                  std::to_string(c.spring.substeps) + " sub-steps per step)"
            : "ballistically (no contacts)");
-  if (c.gravity != std::array<double, 3>{0.0, 0.0, 0.0})
-    t += ", gravity";
+  t += colloid_drive_text(s);
   return t;
 }
 
@@ -172,7 +181,7 @@ MpcdPlan make_plan(const scene::Scene &s, const mpcd::Box &box, int ranks) {
     p.forces.epsilon = c.epsilon;
     p.forces.sigma_wall = c.wall_sigma; // 0: 2 r_a for each colloid
     p.forces.wall_q = c.wall_q;
-    p.forces.gravity = c.gravity;
+    p.forces.gravity = scene::colloid_acceleration(s);
     if (c.coupling == scene::ColloidCoupling::no_slip) {
       p.no_slip = true;
       auto &q = p.no_slip_params;
@@ -180,7 +189,7 @@ MpcdPlan make_plan(const scene::Scene &s, const mpcd::Box &box, int ranks) {
       q.kT = f.kT;
       q.density = f.density;
       q.seed = s.run.seed;
-      q.gravity = c.gravity;
+      q.gravity = scene::colloid_acceleration(s);
       if (s.body_force && s.body_force->kind == scene::ForceKind::constant)
         q.fluid_accel = s.body_force->value;
       if (s.body_force && s.body_force->kind == scene::ForceKind::sine)

@@ -48,10 +48,10 @@ std::string base_name(const std::string &path) {
 TrajectoryWriter::TrajectoryWriter(const std::string &h5_path, const std::string &scene_text,
                                    const mpcd::Box &box, std::uint64_t total,
                                    std::uint64_t subsample, MPI_Comm comm,
-                                   const colloids::Colloids *colloids)
+                                   const colloids::Colloids *colloids, bool contacts)
     : path_(h5_path), comm_(comm), dim_(box.dim), subsample_(subsample),
       rows_((total + subsample - 1) / subsample),
-      colloid_rows_(colloids != nullptr ? colloids->size() : 0) {
+      colloid_rows_(colloids != nullptr ? colloids->size() : 0), contacts_(contacts) {
   MPI_Comm_rank(comm, &rank_);
   xdmf_path_ = path_.size() > 3 && path_.ends_with(".h5")
                    ? path_.substr(0, path_.size() - 3) + ".xdmf"
@@ -110,7 +110,47 @@ TrajectoryWriter::TrajectoryWriter(const std::string &h5_path, const std::string
     // Once: the radius does not change (the XDMF sizes the glyphs by it).
     h5::write_dataset<double>(group.get(), "radius", colloids->radius, path_);
   }
+  if (contacts_) {
+    const h5::Group g = h5::create_group(file_.get(), "contacts", path_);
+    contact_step_ = h5::create_series(g.get(), "step", H5T_STD_I64LE, {}, path_);
+    contact_time_ = h5::create_series(g.get(), "time", H5T_IEEE_F64LE, {}, path_);
+    contact_first_ = h5::create_series(g.get(), "first", H5T_STD_I64LE, {}, path_);
+    contact_count_ = h5::create_series(g.get(), "count", H5T_STD_I64LE, {}, path_);
+    contact_ids_ = h5::create_series(g.get(), "ids", H5T_STD_I64LE, {2}, path_);
+    contact_normal_ = h5::create_series(g.get(), "normal_force", H5T_IEEE_F64LE, {}, path_);
+    contact_sliding_ = h5::create_series(g.get(), "sliding", H5T_STD_I8LE, {}, path_);
+  }
   h5::flush(file_, path_);
+}
+
+void TrajectoryWriter::write_contacts(std::int64_t step, double time,
+                                      const colloids::ContactNetwork &n) {
+  const hsize_t frame = frame_times_.size(), rows = n.size();
+  std::vector<std::int64_t> ids(2 * rows);
+  std::vector<std::int8_t> sliding(rows);
+  for (std::size_t j = 0; j < rows; ++j) {
+    ids[2 * j] = static_cast<std::int64_t>(n.owner[j]);
+    const std::uint64_t p = n.partner[j];
+    ids[2 * j + 1] = p == colloids::wall_low_id    ? -1
+                     : p == colloids::wall_high_id ? -2
+                                                   : static_cast<std::int64_t>(p);
+    sliding[j] = static_cast<std::int8_t>(n.sliding[j]);
+  }
+  const auto first = static_cast<std::int64_t>(contact_rows_);
+  const auto count = static_cast<std::int64_t>(rows);
+  const std::string g = "/contacts/";
+  h5::write_rows(contact_ids_, contact_rows_, rows, H5T_NATIVE_INT64, {2}, ids.data(), path_,
+                 g + "ids");
+  h5::write_rows(contact_normal_, contact_rows_, rows, H5T_NATIVE_DOUBLE, {}, n.normal.data(),
+                 path_, g + "normal_force");
+  h5::write_rows(contact_sliding_, contact_rows_, rows, H5T_NATIVE_INT8, {}, sliding.data(), path_,
+                 g + "sliding");
+  // The frame's rows last: a reader sees a frame only once its rows are there.
+  h5::write_row(contact_first_, frame, H5T_NATIVE_INT64, {}, &first, path_, g + "first");
+  h5::write_row(contact_count_, frame, H5T_NATIVE_INT64, {}, &count, path_, g + "count");
+  h5::write_row(contact_time_, frame, H5T_NATIVE_DOUBLE, {}, &time, path_, g + "time");
+  h5::write_row(contact_step_, frame, H5T_NATIVE_INT64, {}, &step, path_, g + "step");
+  contact_rows_ += rows;
 }
 
 void TrajectoryWriter::write_series(std::vector<Series> &series, std::int64_t step, double time,
@@ -149,11 +189,16 @@ void TrajectoryWriter::write_colloid_frame(std::int64_t step, double time,
 }
 
 void TrajectoryWriter::write_frame(std::int64_t step, double time, const mpcd::Fluid &fluid,
-                                   const colloids::Colloids *colloids) {
+                                   const colloids::Colloids *colloids,
+                                   const colloids::ContactNetwork *network) {
   if ((colloids != nullptr) != (colloid_rows_ > 0))
     throw Error(ExitCode::other, path_ + ": write_frame " +
                                      (colloids ? "given colloids the file has no group for"
                                                : "without the colloids the file expects"));
+  if ((network != nullptr) != contacts_)
+    throw Error(ExitCode::other, path_ + ": write_frame " +
+                                     (network ? "given contacts the file has no group for"
+                                              : "without the contacts the file expects"));
   // This rank's tracked particles: row, then the values of the trajectory fields.
   const std::vector<const std::vector<double> *> columns = trajectory_columns(table(fluid));
   const std::size_t width = columns.size();
@@ -207,6 +252,8 @@ void TrajectoryWriter::write_frame(std::int64_t step, double time, const mpcd::F
   write_series(fluid_series_, step, time, values_, rows_, width);
   if (colloids != nullptr)
     write_colloid_frame(step, time, *colloids);
+  if (network != nullptr)
+    write_contacts(step, time, *network);
   h5::flush(file_, path_);
   frame_times_.push_back(time);
   write_xdmf();
