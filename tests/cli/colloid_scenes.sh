@@ -27,8 +27,11 @@ f = h5py.File(sys.argv[1], "r")["observables"]
 for name in f:
     if f[name + "/step"].ndim == 0:
         continue  # a result of the whole run (colloid statistics: tests/cli/colloid_statistics.sh)
-    v = f[name + "/value"][()]
-    assert v.shape[0] == 2 and np.all(np.isfinite(v)), (name, v)
+    # value, or every sampled dataset of a set of profiles (axial_fields: phi, velocity, ...)
+    keys = ["value"] if "value" in f[name] else [k for k in f[name] if k not in ("step", "time", "bins")]
+    for key in keys:
+        v = f[name + "/" + key][()]
+        assert v.shape[0] == 2 and np.all(np.isfinite(v)), (name, key, v)
 PY'
 done
 # The density-wake tool on the wake scene's 100 steps (3 frames of every fluid particle).
