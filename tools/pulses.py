@@ -476,6 +476,10 @@ def main(argv=None):
         print(f"{key} = {res[key]:.6g} +- {res[key + '_error']:.3g}")
     print(f"v0 = {res['v0']:.6g} ({res['v0_source']})")
     print(f"state = {res['state']}")
+    periods = res["f_pt"] * (fields.t[-1] - fields.t[0])
+    if not periods >= 2:
+        print(f"warning: the record holds {periods:.2g} periods of f_pt (fewer than 2): f_pt is "
+              "not resolved; run longer")
     if res["ridge_step_over_spacing"] > 0.4:
         print(f"warning: the pulses move {res['ridge_step_over_spacing']:.2f} spacings between "
               "samples: c may be aliased; sample more often (output.every)")

@@ -121,6 +121,17 @@ def travelling(tmp):
                   for key in ("mean_velocity", "v0", "relative_variance", "f_pt", "pulse_speed",
                               "spacing")), res)
         check(f"a) {name}: PNG written", os.path.getsize(os.path.join(path, "pulses.png")) > 0)
+        periods = f * (t[-1] - t[0])
+        check(f"a) {name}: a warning exactly when the record holds fewer than 2 periods "
+              f"({periods:.3g})", ("f_pt is not resolved" in out) == (periods < 2), out)
+    # a pulse period longer than the record: f_pt is not resolved, and the tool says so
+    c, lam = -0.1, L / 2
+    v = 0.3 + 0.2 * np.cos(2 * np.pi / lam * (x[None, :] - c * t[:, None]))
+    path = os.path.join(tmp, "slow")
+    write_run(path, t, x, v, 0.75 + 0 * v, L)
+    res, out = run_tool(path, "--v0", "3.0")
+    check("a) a period longer than the record: the unresolved-f_pt warning",
+          res is not None and "f_pt is not resolved" in out, out)
 
 
 def classification(tmp):
