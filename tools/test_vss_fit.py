@@ -57,12 +57,13 @@ def pulls():
     rng = np.random.default_rng(2026)
     sigma = rng.uniform(0.002, 0.008, len(PHI))
     start = TRUE * np.array([1.2, 1.3, 1.025, 0.9, 0.9, 1.02])
-    out, chi = [], []
+    out, chi, bound = [], [], 0
     for _ in range(60):
         v = vss_fit.eq_6_4(PHI, *TRUE) + rng.normal(0.0, sigma)
-        p, err, cov, chi2, dof = vss_fit.fit(PHI, v, sigma, start)
+        p, err, cov, chi2, dof, at_bound = vss_fit.fit(PHI, v, sigma, start)
         out.append((p - TRUE) / err)
         chi.append(chi2 / dof)
+        bound += bool(at_bound)
     out = np.array(out)
     for i, name in enumerate(vss_fit.NAMES):
         m, s = out[:, i].mean(), out[:, i].std(ddof=1)
@@ -70,6 +71,14 @@ def pulls():
         check(f"pull of {name}: mean within 0.45 of 0", abs(m) < 0.45, m)
         check(f"pull of {name}: std in [0.7, 1.35]", 0.7 <= s <= 1.35, s)
     check("chi2/dof averages 1 within 0.15", abs(np.mean(chi) - 1) < 0.15, np.mean(chi))
+    check("data that fix every parameter: no fit ends at a bound", bound == 0, bound)
+    # data without a jump (a straight decline): the width is not fixed by them and the fit
+    # says so instead of returning a negative width
+    line = 2.0 - 2.5 * PHI
+    p, err, cov, chi2, dof, at_bound = vss_fit.fit(PHI, line + rng.normal(0, sigma), sigma, start)
+    check("no jump in the data: every parameter within its physical range, the unfixed ones "
+          "named", p[1] > 0 and p[0] >= 0 and PHI.min() <= p[2] <= PHI.max() and
+          (p[0] < 0.01 or len(at_bound) > 0), (p, at_bound))
     e3 = (TRUE[3] + TRUE[4] * TRUE[2]) / (TRUE[2] - TRUE[5]) ** 2
     check("eq 6.4 is continuous at phi_c (e3 of Table 6.2)",
           abs(vss_fit.eq_6_4(TRUE[2] - 1e-12, *TRUE) - vss_fit.eq_6_4(TRUE[2], *TRUE)) < 1e-9 and

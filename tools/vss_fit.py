@@ -29,7 +29,10 @@ with e3 = (e1 + e2 phi_c) / (phi_c - phi_q)^2 (continuity at phi_c) is fitted by
 squares (scipy.optimize.curve_fit, sigma = the standard errors, absolute_sigma=True; started
 from Table 6.2's column nearest in mu), giving delta_v, delta_phi, phi_c, e1, e2, phi_q with
 errors (the square roots of the covariance's diagonal), e3 and its error (propagated with the covariance),
-chi^2 and its degrees of freedom. The JSON holds narrows' own table and Table 6.2's column
+chi^2 and its degrees of freedom. The parameters are kept in their physical ranges (delta_v
+in [0, 10], delta_phi in [1e-4, 0.05], phi_c inside the measured phi, e1 > 0, e2 <= 0, phi_q
+between the smallest phi and 1); one that ends on its bound is not fixed by the data and is
+listed in at_bound (and marked in the printout). The JSON holds narrows' own table and Table 6.2's column
 beside it; the PNG shows the points with error bars, the fit, and Table 6.2's curve dashed.
 Velocities are in the runs' units (b / t0 for the MPCD runs of Table 6.1, Table 6.2's units).
 """
@@ -209,13 +212,20 @@ def fit(phi, v, err, start):
     drops = np.argsort(vs[1:] - vs[:-1])[:6]
     starts = [tuple(start)] + [tuple(start[:2]) + (0.5 * (ps[i] + ps[i + 1]),) + tuple(start[3:])
                                for i in drops if ps[i + 1] > ps[i]]
+    # The parameters stay physical (eq 6.4's meaning; continuum.vss refuses others): a step
+    # down (delta_v >= 0) of positive width, phi_c inside the measured range, a free-flow branch
+    # that falls (e2 <= 0) from a positive e1, phi_q at most 1. Without these, data without a
+    # visible jump end in a negative width or a phi_c outside the data, with meaningless errors.
+    lower = [0.0, 1e-4, ps[0], 1e-9, -50.0, ps[0]]
+    upper = [10.0, 0.05, ps[-1], 50.0, 0.0, 1.0]
     best = None
     for p0 in starts:
+        p0 = np.clip(p0, np.add(lower, 1e-9), np.subtract(upper, 1e-9))
         try:
             with np.errstate(all="ignore"), warnings.catch_warnings():
                 warnings.simplefilter("ignore")
                 p, cov = curve_fit(eq_6_4, phi, v, p0=p0, sigma=err, absolute_sigma=True,
-                                   maxfev=20000)
+                                   bounds=(lower, upper), maxfev=20000)
         except RuntimeError:
             continue
         chi2 = float(np.sum(((v - eq_6_4(phi, *p)) / err) ** 2))
@@ -224,7 +234,9 @@ def fit(phi, v, err, start):
     if best is None:
         raise InputError("the least-squares fit of eq 6.4 did not converge from any start")
     p, cov, chi2 = best
-    return p, np.sqrt(np.diag(cov)), cov, chi2, len(phi) - len(NAMES)
+    at_bound = [n for n, x, lo, hi in zip(NAMES, p, lower, upper)
+                if abs(x - lo) < 1e-6 * max(1.0, abs(lo)) or abs(x - hi) < 1e-6 * max(1.0, abs(hi))]
+    return p, np.sqrt(np.diag(cov)), cov, chi2, len(phi) - len(NAMES), at_bound
 
 
 def e3_with_error(p, cov):
@@ -247,9 +259,10 @@ def fit_all(groups):
     for mu, (phi, v, err, n) in groups.items():
         column = table_column(mu)
         start = TABLE_6_2[column]
-        p, perr, cov, chi2, dof = fit(phi, v, err, start)
+        p, perr, cov, chi2, dof, at_bound = fit(phi, v, err, start)
         e3, e3err = e3_with_error(p, cov)
-        r = {"mu": mu, "points": int(len(phi)), "runs": int(n.sum()), "chi2": chi2, "dof": dof}
+        r = {"mu": mu, "points": int(len(phi)), "runs": int(n.sum()), "chi2": chi2, "dof": dof,
+             "at_bound": at_bound}
         for name, value, e in zip(NAMES, p, perr):
             r[name], r[name + "_error"] = float(value), float(e)
         r["e3"], r["e3_error"] = e3, e3err
@@ -329,7 +342,9 @@ def main(argv=None):
             if name == "e3":
                 t = res["table_6_2"]
                 table = (t["e1"] + t["e2"] * t["phi_c"]) / (t["phi_c"] - t["phi_q"]) ** 2
-            print(f"  {name:6s} = {res[name]:10.5g} +- {res[name + '_error']:.2g}    {table:.5g}")
+            bound = "  (at its bound: the data do not fix it)" if name in res["at_bound"] else ""
+            print(f"  {name:9s} = {res[name]:10.5g} +- {res[name + '_error']:.2g}    {table:.5g}"
+                  + bound)
     draw(results, args.out + ".png")
     print(f"wrote {args.out}.json (every mu), {args.out}-mu<mu>.json (one mu each, for "
           f"continuum.vss_fit) and {args.out}.png")
