@@ -19,7 +19,8 @@ v0, the colloid-free centre speed of the same channel and drive (§6.2.1):
   a run without [colloids]: with them it is the suspension's), else the kinetic theory narrows
   prints (srd, at in 2D/3D, at+a in 3D; 2D at+a has none: give --nu, e.g.
   Kanehl (thesis) Table 6.1: nu = 1.98); for a continuum run the model's own v_ss(phi = 0) of
-  eq 6.4 (= e1 + dv [1 + tanh(phi_c / dphi)] with Table 6.2's column `continuum.mu`), the speed
+  eq 6.4 (= e1 + dv [1 + tanh(phi_c / dphi)] with the parameters the run used, from
+  /parameters/continuum, or Table 6.2's column `continuum.mu`), the speed
   of colloid-free flow in the model's units. v0 only enters <v>/v0 and the state.
 
 Measures (<...> = mean over x and t after the transient; dv = v - <v>):
@@ -148,9 +149,15 @@ def particle_v0(run, scene, nu, transient):
     return g * w * w / (2 * nu), f"g w^2/(2 nu), g = {g:g}, w = {w:g}, nu = {nu:.5g} ({source})"
 
 
-def continuum_v0(scene):
-    """(v0, source) of a continuum jamming run: v_ss(0) of eq 6.4 with Table 6.2."""
+def continuum_v0(scene, params=None):
+    """(v0, source) of a continuum jamming run: v_ss(0) of eq 6.4 with the parameters the run
+    used (/parameters/continuum: a preset, continuum.vss or continuum.vss_fit), or for a file
+    without them with Table 6.2's column continuum.mu."""
     from jamming_plot import Model, TABLE_6_2
+    if params and all(k in params for k in ("delta_v", "delta_phi", "phi_c", "e1")):
+        v0 = params["e1"] + params["delta_v"] * (1 + math.tanh(params["phi_c"] / params["delta_phi"]))
+        return float(v0), f"v_ss(phi = 0) of eq 6.4 with the run's parameters " \
+            f"({params.get('vss_source', 'parameters/continuum')})"
     mu = str(scene.get("continuum", {}).get("mu", "1"))
     if mu not in TABLE_6_2:
         raise NarrowsDataError(None, f"continuum.mu = {mu!r}", ", ".join(TABLE_6_2))
@@ -203,7 +210,7 @@ def load(run_dir, v0=None, nu=None, transient=0.0):
         x = np.asarray(phi["bins"], float)
         length = float(scene["continuum"].get("length", np.median(np.diff(x)) * len(x)))
         if v0 is None:
-            v0, source = continuum_v0(scene)
+            v0, source = continuum_v0(scene, run.parameter_attributes("continuum"))
         else:
             source = "--v0"
         return Fields(vel.time, x, vel.value, phi.value, length, v0, source)
