@@ -26,6 +26,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import narrows_h5  # noqa: E402
+from selftest import check, summary  # noqa: E402
 from narrows_h5 import NarrowsDataError  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -42,16 +43,7 @@ collision = "srd"
 dt = 0.1
 """
 
-passed = failed = 0
 
-
-def check(name, condition, detail=None):
-    global passed, failed
-    if condition:
-        passed += 1
-    else:
-        failed += 1
-        print(f"FAIL: {name}" + ("" if detail is None else f" ({detail})"))
 
 
 def close(a, b):
@@ -103,8 +95,7 @@ def main():
         checks()
     except Exception as e:  # noqa: BLE001  (a check that cannot even run is a failure)
         check("the checks ran to the end", False, f"{type(e).__name__}: {e}")
-    print(f"{passed} passed, {failed} failed")
-    return 1 if failed else 0
+    return summary()
 
 
 def checks():

@@ -15,17 +15,9 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import narrows_h5  # noqa: E402
+from selftest import check, summary  # noqa: E402
 
-passed = failed = 0
 
-
-def check(name, condition, detail=None):
-    global passed, failed
-    if condition:
-        passed += 1
-    else:
-        failed += 1
-        print(f"FAIL: {name}" + (f" ({detail})" if detail is not None else ""))
 
 
 def synthetic(path):
@@ -74,8 +66,7 @@ def main():
         check("no contact_statistics: exit 2, one line naming it", done.returncode == 2 and
               "contact_statistics" in done.stderr and len(done.stderr.strip().splitlines()) == 1,
               (done.returncode, done.stderr))
-    print(f"{passed} passed, {failed} failed")
-    return 1 if failed else 0
+    return summary()
 
 
 if __name__ == "__main__":

@@ -40,9 +40,9 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import narrows_h5  # noqa: E402
+from selftest import check, summary  # noqa: E402
 import vss_fit  # noqa: E402  (eq 6.4 with Table 6.2, written independently of jamming_plot)
 
-passed = failed = 0
 
 SCENE = """[run]
 dimensions = 2
@@ -60,14 +60,6 @@ dt = 0.02
 value = [{g}, 0.0]
 """
 
-
-def check(name, condition, detail=None):
-    global passed, failed
-    if condition:
-        passed += 1
-    else:
-        failed += 1
-        print(f"FAIL: {name}" + ("" if detail is None else f" ({detail})"))
 
 
 def write_run(path, t, x, v, phi, length, g=0.05, extra=None):
@@ -291,8 +283,7 @@ def main():
             continuum(tmp, sys.argv[1])
         except Exception as e:  # noqa: BLE001
             check("continuum ran to the end", False, f"{type(e).__name__}: {e}")
-    print(f"{passed} passed, {failed} failed")
-    return 1 if failed else 0
+    return summary()
 
 
 if __name__ == "__main__":

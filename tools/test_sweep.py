@@ -39,17 +39,9 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 SCENE = os.path.join(os.path.dirname(HERE), "run", "continuum_jamming_pulses.toml")
 sys.path.insert(0, HERE)
 import narrows_h5  # noqa: E402
+from selftest import check, summary  # noqa: E402
 
-passed = failed = 0
 
-
-def check(name, condition, detail=None):
-    global passed, failed
-    if condition:
-        passed += 1
-    else:
-        failed += 1
-        print(f"FAIL: {name}" + ("" if detail is None else f" ({detail})"))
 
 
 def sweep_cmd(narrows, out, *extra):
@@ -212,8 +204,7 @@ def main():
                 part(tmp, narrows)
             except Exception as e:  # noqa: BLE001
                 check(f"{part.__name__} ran to the end", False, f"{type(e).__name__}: {e}")
-    print(f"{passed} passed, {failed} failed")
-    return 1 if failed else 0
+    return summary()
 
 
 if __name__ == "__main__":

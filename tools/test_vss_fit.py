@@ -33,19 +33,11 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import narrows_h5  # noqa: E402
+from selftest import check, summary  # noqa: E402
 from continuum_run import find_narrows  # noqa: E402
 import vss_fit  # noqa: E402
 
-passed = failed = 0
 
-
-def check(name, condition, detail=None):
-    global passed, failed
-    if condition:
-        passed += 1
-    else:
-        failed += 1
-        print(f"FAIL: {name}" + ("" if detail is None else f" ({detail})"))
 
 
 TRUE = np.array(vss_fit.TABLE_6_2["1"])
@@ -216,8 +208,7 @@ def main():
                 part(tmp) if part is not pulls else part()
             except Exception as e:  # noqa: BLE001
                 check(f"{part.__name__} ran to the end", False, f"{type(e).__name__}: {e}")
-    print(f"{passed} passed, {failed} failed")
-    return 1 if failed else 0
+    return summary()
 
 
 if __name__ == "__main__":
