@@ -410,7 +410,10 @@ def slurm_script(args, points, path):
         f"#SBATCH --ntasks={args.mpi}",
         f"#SBATCH --time={args.slurm_time}",
         "#SBATCH --signal=USR1@300",
-        f"#SBATCH --output={rel(args.out)}/slurm-%A_%a.out",
+        # in the submission folder: SLURM opens it before the script runs, and the sweep's own
+        # folder need not exist yet on a fresh checkout
+        f"#SBATCH --output=slurm-sweep-{safe(os.path.basename(os.path.abspath(args.out)))}"
+        "-%A_%a.out",
         "set -euo pipefail",
         'cd "${SLURM_SUBMIT_DIR:-.}"',
         f"NARROWS=${{NARROWS:-{shlex.quote(rel(args.narrows_path))}}}",
