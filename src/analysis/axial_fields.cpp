@@ -10,6 +10,50 @@
 
 namespace narrows::analysis {
 
+namespace {
+
+// Sums of phi_i A_ib and phi_i A_ib u_i over the bins along x, A_ib the part of cell i in bin b.
+// Bin k (any integer; bin k mod bins inside the box) spans [k L / bins, (k + 1) L / bins): the
+// same expression for an edge from either side, so neighbouring pieces share it exactly.
+struct BinSums {
+  double L, nb;
+  std::vector<double> weight, momentum;
+  BinSums(double length, std::size_t bins)
+      : L(length), nb(static_cast<double>(bins)), weight(bins, 0.0), momentum(bins, 0.0) {}
+
+  // One cell spanning [lo, hi] along x; piece(a, b) is its area (volume) between x = a and b.
+  template <class Piece> void add(double lo, double hi, double phi, double u, Piece piece) {
+    const auto first = static_cast<long long>(std::floor(lo / L * nb));
+    const auto last = static_cast<long long>(std::floor(hi / L * nb));
+    const auto m = static_cast<long long>(weight.size());
+    for (long long k = first; k <= last; ++k) {
+      const double part = piece(edge(k), edge(k + 1));
+      if (!(part > 0.0))
+        continue;
+      const auto b = static_cast<std::size_t>(((k % m) + m) % m);
+      weight[b] += phi * part;
+      momentum[b] += phi * part * u;
+    }
+  }
+
+  // phi per bin (bin_measure: a bin's area or volume) and the material-weighted velocity.
+  void finish(double bin_measure, std::vector<double> &phi, std::vector<double> &velocity) const {
+    const std::size_t bins = weight.size();
+    phi.resize(bins);
+    velocity.resize(bins);
+    for (std::size_t b = 0; b < bins; ++b) {
+      phi[b] = weight[b] / bin_measure;
+      velocity[b] =
+          weight[b] > 0.0 ? momentum[b] / weight[b] : std::numeric_limits<double>::quiet_NaN();
+    }
+  }
+
+private:
+  double edge(long long k) const { return static_cast<double>(k) * L / nb; }
+};
+
+} // namespace
+
 std::size_t axial_bin_count(double length, double bin) {
   if (!(bin > 0.0) || !(length > 0.0) || bin > length * (1.0 + 1e-9))
     return 0;
@@ -31,11 +75,7 @@ ColloidAxialFields colloid_axial_fields(std::span<const double> x, std::span<con
   out.cells = power_cells(x, y, r, length, {true, periodic_y});
   const double nan = std::numeric_limits<double>::quiet_NaN();
   out.local_fraction.assign(n, nan);
-  std::vector<double> weight(bins, 0.0), momentum(bins, 0.0); // sum phi_i A_ib (u_i)
-  const double L = length[0], nb = static_cast<double>(bins);
-  // Bin k (any integer; bin k mod bins inside the box) spans [k L / bins, (k + 1) L / bins):
-  // the same expression for an edge from either side, so neighbouring pieces share it exactly.
-  const auto edge = [&](long long k) { return static_cast<double>(k) * L / nb; };
+  BinSums sums(length[0], bins);
   for (std::size_t i = 0; i < n; ++i) {
     const auto &cell = out.cells.polygon[i];
     const double area = out.cells.area[i];
@@ -48,25 +88,10 @@ ColloidAxialFields colloid_axial_fields(std::span<const double> x, std::span<con
       lo = std::min(lo, v[0]);
       hi = std::max(hi, v[0]);
     }
-    const auto first = static_cast<long long>(std::floor(lo / L * nb));
-    const auto last = static_cast<long long>(std::floor(hi / L * nb));
-    for (long long k = first; k <= last; ++k) {
-      const double piece = polygon_area(clip_x_strip(cell, edge(k), edge(k + 1)));
-      if (!(piece > 0.0))
-        continue;
-      const long long m = static_cast<long long>(bins);
-      const auto b = static_cast<std::size_t>(((k % m) + m) % m);
-      weight[b] += phi * piece;
-      momentum[b] += phi * piece * u[i];
-    }
+    sums.add(lo, hi, phi, u[i],
+             [&](double a, double b) { return polygon_area(clip_x_strip(cell, a, b)); });
   }
-  const double bin_area = L / nb * length[1];
-  out.phi.resize(bins);
-  out.velocity.resize(bins);
-  for (std::size_t b = 0; b < bins; ++b) {
-    out.phi[b] = weight[b] / bin_area;
-    out.velocity[b] = weight[b] > 0.0 ? momentum[b] / weight[b] : nan;
-  }
+  sums.finish(length[0] / static_cast<double>(bins) * length[1], out.phi, out.velocity);
   return out;
 }
 
@@ -83,9 +108,7 @@ ColloidAxialFields3 colloid_axial_fields_3d(std::span<const double> x, std::span
   out.cells = power_cells_3d(x, y, z, r, length, {true, periodic_y, true});
   const double nan = std::numeric_limits<double>::quiet_NaN();
   out.local_fraction.assign(n, nan);
-  std::vector<double> weight(bins, 0.0), momentum(bins, 0.0);
-  const double L = length[0], nb = static_cast<double>(bins);
-  const auto edge = [&](long long k) { return static_cast<double>(k) * L / nb; };
+  BinSums sums(length[0], bins);
   for (std::size_t i = 0; i < n; ++i) {
     const Polyhedron &cell = out.cells.cell[i];
     const double volume = out.cells.volume[i];
@@ -99,25 +122,10 @@ ColloidAxialFields3 colloid_axial_fields_3d(std::span<const double> x, std::span
         lo = std::min(lo, v[0]);
         hi = std::max(hi, v[0]);
       }
-    const auto first = static_cast<long long>(std::floor(lo / L * nb));
-    const auto last = static_cast<long long>(std::floor(hi / L * nb));
-    for (long long k = first; k <= last; ++k) {
-      const double piece = polyhedron_volume(clip_x_slab(cell, edge(k), edge(k + 1)));
-      if (!(piece > 0.0))
-        continue;
-      const long long m = static_cast<long long>(bins);
-      const auto b = static_cast<std::size_t>(((k % m) + m) % m);
-      weight[b] += phi * piece;
-      momentum[b] += phi * piece * u[i];
-    }
+    sums.add(lo, hi, phi, u[i],
+             [&](double a, double b) { return polyhedron_volume(clip_x_slab(cell, a, b)); });
   }
-  const double bin_volume = L / nb * length[1] * length[2];
-  out.phi.resize(bins);
-  out.velocity.resize(bins);
-  for (std::size_t b = 0; b < bins; ++b) {
-    out.phi[b] = weight[b] / bin_volume;
-    out.velocity[b] = weight[b] > 0.0 ? momentum[b] / weight[b] : nan;
-  }
+  sums.finish(length[0] / static_cast<double>(bins) * length[1] * length[2], out.phi, out.velocity);
   return out;
 }
 
