@@ -586,11 +586,13 @@ void parse_continuum_scene(const Checker &c, const toml::value &root, Scene &s) 
 }
 
 void check_continuum_observables(const Checker &c, const Scene &s) {
-  // Each model writes exactly the observables it writes by default (scene/schema.hpp).
+  // Each model writes the observables it writes by default and those it writes on request
+  // (scene/schema.hpp), no others.
   std::vector<std::string> mine;
   std::string list;
   for (const auto &o : engine_schema(Engine::continuum).observables)
-    if (o.by_default(s)) {
+    if ((o.by_default != nullptr && o.by_default(s)) ||
+        (o.on_request != nullptr && o.on_request(s))) {
       mine.emplace_back(o.name);
       list += (list.empty() ? "\"" : ", \"") + std::string(o.name) + "\"";
     }

@@ -197,6 +197,19 @@ const EngineSchema &continuum_schema() {
            "segregation only: the steady profile phi_i at the cell centres (shooting, see above), "
            "written once per observables file",
            segregation},
+          {"collective_diffusivity",
+           "`/observables/collective_diffusivity/value [phis][kinds][kinds]`, `bins [phis]`, "
+           "`structure_factor [phis]`, `viscosity [phis]`, `composition [kinds]`, `scale "
+           "[kinds]`, `step`, `time`",
+           "segregation only: the model's coefficients against the total fraction phi (`bins`: "
+           "200 points k phi_M / 200, 0 to just below phi_M) at the scene's composition (kind i "
+           "at phi_i = phi f_i, `composition` f_i = its share of the mean fractions): `value` "
+           "D_C^ij / (K_d D_0^i) of eq 5.23-5.28 (diagonal 1 / S(phi), off-diagonal phi_i / ((1 "
+           "- phi_j)^2 S(phi)); Kanehl (thesis) fig 5.3 is the diagonal in 2D at c_L = c_S, "
+           "a_L / a_S = 2), `scale` K_d D_0^i (D_C^ij = value scale_i), `structure_factor` "
+           "S(phi) of eq 5.19-5.22, `viscosity` eta / eta_0 of eq 5.29; written once per "
+           "observables file; tools/segregation_theory.py draws them",
+           nullptr, false, segregation},
       }};
   return schema;
 }

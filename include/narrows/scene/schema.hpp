@@ -37,6 +37,8 @@ struct ObservableSpec {
   bool (*by_default)(const Scene &) = nullptr;
   // An mpcd observable of the colloids: needs [colloids].
   bool follows_colloids = false;
+  // Continuum: whether a scene may list it although it does not write it by default.
+  bool (*on_request)(const Scene &) = nullptr;
 };
 
 struct EngineSchema {

@@ -3,6 +3,7 @@
 
 #include "narrows/core/error.hpp"
 #include "narrows/engines/continuum/field_run.hpp"
+#include "narrows/engines/continuum/segregation_curves.hpp"
 #include "narrows/engines/continuum/segregation_model.hpp"
 #include "narrows/engines/continuum/segregation_plan.hpp"
 #include "narrows/engines/continuum/segregation_solver.hpp"
@@ -164,6 +165,17 @@ public:
       writer->write_result("steady_density", st, t, steady_, {{"bins", bins_}}, {cells, n});
       steady_written_ = true;
     }
+    if (wants(scene_, "collective_diffusivity") && !curves_written_) {
+      const SegregationCurves c = segregation_curves(segregation_);
+      writer->write_result("collective_diffusivity", st, t, c.value,
+                           {{"bins", c.phi},
+                            {"structure_factor", c.structure},
+                            {"viscosity", c.viscosity},
+                            {"composition", c.composition},
+                            {"scale", c.scale}},
+                           {c.phi.size(), n, n});
+      curves_written_ = true;
+    }
   }
   void summary(run::Log &log, std::int64_t step) const override {
     for (std::size_t i = 0; i < n_; ++i) {
@@ -191,7 +203,7 @@ private:
   const std::vector<double> &bins_;
   std::vector<double> steady_;
   std::vector<double> row_, c0_;
-  bool steady_written_ = false;
+  bool steady_written_ = false, curves_written_ = false;
 };
 
 } // namespace

@@ -62,6 +62,15 @@ double SegregationModel::structure_factor(const double *phi) const {
   return u * u * u * u / (v * v - delta);
 }
 
+void SegregationModel::collective_diffusivity(const double *phi, double *dc) const {
+  const double diag = p_.k_d / structure_factor(phi);
+  for (std::size_t i = 0; i < n_; ++i) {
+    const double dii = diag * p_.kinds[i].diffusivity;
+    for (std::size_t k = 0; k < n_; ++k)
+      dc[i * n_ + k] = k == i ? dii : dii * phi[i] / ((1.0 - phi[k]) * (1.0 - phi[k]));
+  }
+}
+
 double SegregationModel::shear_rate(const double *phi, double y) const {
   const double base = 2.0 * p_.centre_speed * std::abs(y) / (w_ * w_);
   if (p_.shear == scene::SegregationShear::poiseuille)
@@ -86,16 +95,14 @@ void SegregationModel::coefficients(const double *phi, double y, double *m, doub
     g_phi = -gdot * log_eta;
   }
   const double common = p_.k_c * g_phi + p_.k_eta * gdot * log_eta;
-  const double diag = p_.k_d / structure_factor(phi);
+  double dc[max_segregation_kinds * max_segregation_kinds];
+  collective_diffusivity(phi, dc);
   for (std::size_t i = 0; i < n_; ++i) {
     double s = 0.0;
     for (std::size_t j = 0; j < n_; ++j)
       s += a_[i][j] * phi[j];
-    const double dii = diag * p_.kinds[i].diffusivity;
-    for (std::size_t k = 0; k < n_; ++k) {
-      const double dik = k == i ? dii : dii * phi[i] / ((1.0 - phi[k]) * (1.0 - phi[k]));
-      m[i * n_ + k] = phi[i] * p_.k_c * gdot * a_[i][k] + phi[i] * s * common + dik;
-    }
+    for (std::size_t k = 0; k < n_; ++k)
+      m[i * n_ + k] = phi[i] * p_.k_c * gdot * a_[i][k] + phi[i] * s * common + dc[i * n_ + k];
     b[i] = phi[i] * s * p_.k_c * g_y;
   }
 }

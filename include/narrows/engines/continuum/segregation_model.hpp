@@ -34,6 +34,9 @@ public:
   double structure_factor(const double *phi) const;
   // eta / eta_0 of eq 5.29 at the total fraction.
   double viscosity(double total) const;
+  // D_C (row-major n x n) at the fractions phi: D_C^ii = K_d D_0^i / S(phi) (eq 5.23-5.24),
+  // D_C^ij = D_C^ii phi_i / (1 - phi_j)^2 (eq 5.28); the diffusive part of M.
+  void collective_diffusivity(const double *phi, double *dc) const;
   // The shear rate at y (its sign-free size |dv/dy|).
   double shear_rate(const double *phi, double y) const;
   // M (row-major n x n) and b of J = -(M phi' + b) at the fractions phi and position y.
