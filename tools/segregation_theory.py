@@ -5,6 +5,7 @@ curves need (docs/segregation.md).
 
   /usr/bin/python3 tools/segregation_theory.py fig5_3 [--out DIR]
   /usr/bin/python3 tools/segregation_theory.py d0 [--out DIR]
+  /usr/bin/python3 tools/segregation_theory.py scan [--out DIR]
 
 fig5_3: runs the model's observable collective_diffusivity (a run of no length) for the 2D
 mixture of fig 5.3 (c_L = c_S, a_L / a_S = 2: phi_L / phi_S = 4) and a 3D one, reads them
@@ -25,6 +26,11 @@ thesis gives no g). The steady state (centre values, c(0)/c_mean, the wall ratio
 / (K_d D_0)) is what `narrows check` prints. Prints one table per dimension and writes it to
 DIR/d0_conventions.md; K_d is the value that gives each convention the thesis' K_d D_0^S (K_d /
 K_c = 7.46 with its Stokes-Einstein D_0 at nu = 3.22; 0.61 at 3.15 in 3D).
+
+scan: 2D, the small disks' wall ratio and the large disks' central peak at phi_L / phi_S = 0.67,
+0.5, 0.4 (fig 5.8) against f = K_c v0 / (K_d D_0^S) in units of its value at Pe_S = 1 (f = 1 to
+8), for D_L / D_S of Table 5.1 (0.71) and of Stokes-Einstein (1/2): whether any single speed
+gives both the thesis' wall ratio ~ 3 and a rising peak. Writes DIR/d0_scan.md.
 """
 
 import argparse
@@ -175,6 +181,30 @@ def d0_table(rows, dims):
     return "\n".join(lines)
 
 
+def scan(narrows):
+    """2D: the S wall ratio (phi_L/phi_S = 1) and c_L(0)/c_mean at 0.67, 0.5, 0.4 against the
+    speed factor f = K_c v0 / (K_d D_0^S) over its value at Pe_S = 1, for D_L / D_S of Table 5.1
+    and of Stokes-Einstein (1/2)."""
+    ds = CHANNEL[2][4]
+    lines = ["| D_L / D_S | f | wall ratio S | c_L(0)/c_mean at 0.67, 0.5, 0.4 | rises |",
+             "|---|---|---|---|---|"]
+    with tempfile.TemporaryDirectory() as work:
+        for ratio in (CHANNEL[2][5] / ds, 0.5):
+            for f in (1, 1.5, 2, 3, 4, 6, 8):
+                v0 = f * W * W * ds / A_S ** 3
+                got = [steady(narrows, work, 2, v0, ds, ds * ratio, r, CHANNEL[2][2])
+                       for r in (1.0, 0.67, 0.5, 0.4)]
+                if any(g is None for g in got):
+                    lines.append(f"| {ratio:.3g} | {f:g} | no steady state at some phi_L/phi_S |"
+                                 " | |")
+                    continue
+                peak = [g[1][2] for g in got[1:]]
+                lines.append(f"| {ratio:.3g} | {f:g} | {got[0][0][3]:.3g} | " +
+                             ", ".join(f"{p:.3g}" for p in peak) + " | " +
+                             ("yes" if peak[0] < peak[1] < peak[2] else "no") + " |")
+    return "\n".join(lines)
+
+
 def curves(narrows, work, dims, kinds, name):
     out = os.path.join(work, name)
     path = out + ".toml"
@@ -235,7 +265,7 @@ def fig5_3(narrows, out_dir):
 
 def main(argv):
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("what", choices=["fig5_3", "d0"])
+    p.add_argument("what", choices=["fig5_3", "d0", "scan"])
     p.add_argument("--out", default=os.path.join("out", "segregation_theory"),
                    help="folder of the PNG / table (default out/segregation_theory)")
     p.add_argument("--narrows", help="the narrows binary (default: $NARROWS, build/narrows, "
@@ -248,6 +278,12 @@ def main(argv):
         os.makedirs(a.out, exist_ok=True)
         if a.what == "fig5_3":
             fig5_3(narrows, a.out)
+            return 0
+        if a.what == "scan":
+            out = scan(narrows)
+            print(out)
+            with open(os.path.join(a.out, "d0_scan.md"), "w") as f:
+                f.write(out + "\n")
             return 0
         text = []
         for dims in a.dimensions:
