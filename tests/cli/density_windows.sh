@@ -71,6 +71,7 @@ assert v["value"].shape == (9, 2, 128) and v["weight"].shape == (9, 2, 128)
 w = v["weight"][()]
 assert np.all(np.isnan(v["value"][()][w == 0])) and np.all(np.isfinite(v["value"][()][w > 0]))
 PY'
+check "the log gives the cost of the windows" 'grep -q "^kde windows: .* ms per sample on rank 0 .* ms per window closed .*; 9 windows of 20 steps" "$tmp/log1"'
 check "the log ends with the steady-state line" 'grep -q "^evolution: \(steady\|NOT steady\) after 9 windows: Delta = .* over the last 4 windows" "$tmp/log1" || { grep evolution "$tmp/log1"; false; }'
 # The same samples averaged over the whole run (kde_window = 0, steps 20..180): density_kde is
 # the sample-weighted mean of the first eight windows, the velocity profile their
@@ -128,4 +129,6 @@ refused "kde_window without density_kde" "output.kde_window = 20 windows density
   "$narrows" check "$tmp/w.toml" --set 'output.observables=["colloid_velocity_profile"]'
 refused "evolution without windows" 'output.observables lists "evolution", Delta(t) of the density_kde windows, without them' \
   "$narrows" check "$tmp/w.toml" --set output.kde_window=0
+refused "kde_window with another engine" 'output.kde_window = 10 windows the mpcd colloid profiles; allowed with run.engine = "lgca": 0' \
+  "$narrows" check "$src/run/lgca_channel.toml" --set output.kde_window=10 --set output.every=10
 finish density_windows

@@ -153,6 +153,7 @@ public:
   }
   // evolution's steady-state line (rank 0; empty without it).
   std::string steady_line() const { return colloid_stats_.steady_line(); }
+  std::string window_cost_line() const { return colloid_stats_.window_cost_line(); }
   // When the run ends: the results of the whole run (colloid statistics).
   void finish() {
     if (writer_ && colloid_stats_.active()) {
@@ -459,6 +460,8 @@ public:
                     1e3 * s, static_cast<long long>(scene_.colloids->count));
       log.line(text);
     }
+    if (const std::string cost = observer_->window_cost_line(); !cost.empty())
+      log.line(cost);
     if (const std::string steady = observer_->steady_line(); !steady.empty())
       log.line(steady);
     observer_->finish();

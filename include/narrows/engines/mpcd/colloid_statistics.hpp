@@ -42,6 +42,8 @@ public:
   void restore(const std::string &checkpoint, MPI_Comm comm);
   // Rank 0: the steady-state line of evolution (empty without it).
   std::string steady_line() const;
+  // Rank 0: what the windows cost this run (empty without windows).
+  std::string window_cost_line() const;
 
 private:
   // Appends the open window (ending at step `end`) and starts the next.
@@ -63,6 +65,9 @@ private:
   std::optional<analysis::KernelWindow> windows_; // the open window's profiles
   std::vector<double> reference_;                 // evolution: the first window's F_k
   std::vector<double> delta_time_, delta_;        // evolution: Delta(t) of the closed windows
+  // The windows' cost in this run (rank 0): samples, windows closed, their seconds.
+  std::int64_t window_samples_ = 0, windows_closed_ = 0;
+  double sample_seconds_ = 0.0, close_seconds_ = 0.0;
 };
 
 } // namespace narrows::mpcd
