@@ -118,6 +118,8 @@ runs "first part to 70, 1 rank" "$narrows" run "$tmp/w.toml" --set run.steps=70 
 runs --err "$tmp/err4" "restart at 70, 2 ranks" "${mpi[@]}" -n 2 "$narrows" run "$tmp/w.toml" --restart "$tmp/part" --out "$tmp/part" > "$tmp/log4"
 check "first part: the windows closed by step 70 are the run's" 'bitwise "$tmp/one/observables.h5" "$tmp/part/observables.h5" 0'
 check "restart inside a window: the continuation's windows are bitwise the run's" 'bitwise "$tmp/one/observables.h5" "$tmp/part/observables-0000000070.h5" 2'
+runs "join_observables.py on the chain" $py "$src/tools/join_observables.py" "$tmp/part" > /dev/null
+check "the joined chain holds bitwise the windows of the uninterrupted run" 'bitwise "$tmp/one/observables.h5" "$tmp/part/observables-joined.h5" 0 && $py -c "import h5py,sys; assert h5py.File(sys.argv[1])[\"observables/evolution/value\"].shape == (9,)" "$tmp/part/observables-joined.h5"'
 check "the continuation's steady line sees the whole chain" 'grep -q "^evolution: .* after 9 windows" "$tmp/log4"'
 mkdir -p "$tmp/chain" && cp "$tmp/one/checkpoint-0000000120.h5" "$tmp/chain/"
 runs --err "$tmp/err5" "restart from the run's checkpoint at 120, 3 ranks" "${mpi[@]}" -n 3 "$narrows" run "$tmp/w.toml" --restart "$tmp/chain" --out "$tmp/chain" > /dev/null
