@@ -28,26 +28,38 @@ std::vector<double> KernelDensity::centres() const {
   return y;
 }
 
-void KernelDensity::add(std::span<const double> y, std::span<const std::size_t> kind) {
-  std::fill(one_.begin(), one_.end(), 0.0);
-  std::vector<double> n(kinds_, 0.0);
-  const double h = length_ / static_cast<double>(bins_);
-  const auto nb = static_cast<long>(bins_);
+void kernel_sums(std::span<const double> y, std::span<const std::size_t> kind, double length,
+                 bool periodic, double eps, std::size_t bins, std::span<double> density,
+                 std::span<const double> vx, std::span<double> velocity) {
+  const double h = length / static_cast<double>(bins);
+  const auto nb = static_cast<long>(bins);
+  const bool with_v = !vx.empty();
   for (std::size_t i = 0; i < y.size(); ++i) {
-    n[kind[i]] += 1.0;
     // The bins whose centres lie within eps of y_i (wrapped along a periodic axis).
-    const long lo = static_cast<long>(std::floor((y[i] - eps_) / h - 0.5));
-    const long hi = static_cast<long>(std::ceil((y[i] + eps_) / h - 0.5));
+    const long lo = static_cast<long>(std::floor((y[i] - eps) / h - 0.5));
+    const long hi = static_cast<long>(std::ceil((y[i] + eps) / h - 0.5));
     for (long j = lo; j <= hi; ++j) {
       long jj = j;
-      if (periodic_)
+      if (periodic)
         jj = ((j % nb) + nb) % nb;
       else if (j < 0 || j >= nb)
         continue;
       const double centre = (static_cast<double>(j) + 0.5) * h; // unwrapped: the right image
-      one_[kind[i] * bins_ + static_cast<std::size_t>(jj)] += epanechnikov(centre - y[i], eps_);
+      const double k = epanechnikov(centre - y[i], eps);
+      const std::size_t at = kind[i] * bins + static_cast<std::size_t>(jj);
+      density[at] += k;
+      if (with_v)
+        velocity[at] += k * vx[i];
     }
   }
+}
+
+void KernelDensity::add(std::span<const double> y, std::span<const std::size_t> kind) {
+  std::fill(one_.begin(), one_.end(), 0.0);
+  std::vector<double> n(kinds_, 0.0);
+  for (std::size_t i = 0; i < y.size(); ++i)
+    n[kind[i]] += 1.0;
+  kernel_sums(y, kind, length_, periodic_, eps_, bins_, one_);
   const std::size_t b = std::min(t_ / block_len_, blocks_ - 1);
   for (std::size_t k = 0; k < kinds_; ++k) {
     if (n[k] == 0.0)

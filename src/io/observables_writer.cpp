@@ -164,7 +164,7 @@ void ObservablesWriter::append_field(
       throw Error(ExitCode::other, path_ + ": field '" + name + "': dataset '" + b.key +
                                        "' beside value has " + std::to_string(b.values.size()) +
                                        " values for shape " + shape_string(b.shape));
-  if (shape.empty() || elements(shape) == 0 || values.size() != elements(shape))
+  if (elements(shape) == 0 || values.size() != elements(shape))
     throw Error(ExitCode::other, path_ + ": field '" + name + "' has " +
                                      std::to_string(values.size()) + " values for shape " +
                                      shape_string(shape));

@@ -113,6 +113,21 @@ void parse_output(const Checker &c, const value *o, Engine engine, Output &out) 
   if (const value *v = find(o, "axial_bin"))
     out.axial_bin = c.number(*v, "output.axial_bin", "a number > 0 (cell units)",
                              [](double x) { return x > 0.0; });
+  if (const value *v = find(o, "kde_window"))
+    out.kde_window = c.integer(*v, "output.kde_window",
+                               "an integer >= 0 (steps; 0 = one average over the whole run)",
+                               [](std::int64_t n) { return n >= 0; });
+  if (out.kde_window > 0 && out.kde_window % out.every != 0)
+    c.fail("output.kde_window",
+           "output.kde_window = " + std::to_string(out.kde_window) +
+               " is not a multiple of output.every = " + std::to_string(out.every) +
+               "; allowed: 0 or a multiple of output.every (each window "
+               "holds whole samples)");
+  if (engine != Engine::mpcd && out.kde_window > 0)
+    c.fail("output.kde_window", "output.kde_window = " + std::to_string(out.kde_window) +
+                                    " windows the mpcd colloid profiles; allowed with "
+                                    "run.engine = \"" +
+                                    to_string(engine) + "\": 0");
   if (const value *v = find(o, "progress")) {
     if (!v->is_boolean())
       c.wrong_type("output.progress", *v, "true or false");

@@ -69,6 +69,18 @@ void check_mpcd_observables(const Checker &c, const Scene &s) {
            "only with [walls] and a body_force.value whose x component is non-zero");
   if (listed("axial_fields"))
     check_axial_fields(c, s);
+  if (s.output.kde_window > 0 && !listed("density_kde"))
+    c.fail("output.kde_window",
+           "output.kde_window = " + std::to_string(s.output.kde_window) +
+               " windows density_kde, which output.observables does not list; allowed: 0, or "
+               "list \"density_kde\"");
+  if (listed("evolution") && (!listed("density_kde") || s.output.kde_window == 0))
+    c.fail("output.observables",
+           "output.observables lists \"evolution\", Delta(t) of the density_kde windows, "
+           "without them (output.kde_window = " +
+               std::to_string(s.output.kde_window) +
+               (listed("density_kde") ? "" : ", density_kde not listed") +
+               "); allowed only with \"density_kde\" and output.kde_window > 0");
   // The fit needs two distinct values of y (L - y) over the unit bins: two bins are symmetric.
   if (listed("viscosity") && s.domain.size[1] < 3.0)
     c.fail("output.observables", "output.observables lists \"viscosity\" with domain.size[1] = " +

@@ -50,7 +50,13 @@ const SectionSpec &output_section() {
        {"axial_bin", "number", "2.0",
         "> 0; with `axial_fields`: at most `domain.size[0]`, which must be a whole number of "
         "bins",
-        "cells", "width of the bins along x of the mpcd observable `axial_fields`"}}};
+        "cells", "width of the bins along x of the mpcd observable `axial_fields`"},
+       {"kde_window", "integer", "0",
+        ">= 0; when > 0 a multiple of `output.every`, mpcd only, needs `density_kde`", "steps",
+        "windows of the colloid profiles (`density_kde`, `evolution`, "
+        "`colloid_velocity_profile`): consecutive windows of this many steps from "
+        "`colloids.statistics_from`, each written when it closes; 0: one average over the whole "
+        "run"}}};
   return section;
 }
 

@@ -203,10 +203,28 @@ const EngineSchema &mpcd_schema() {
         "number of colloid partners per colloid of each kind (needs `contacts = \"spring\"`)",
         nullptr, true},
        {"density_kde",
-        "`/observables/density_kde/{value, error} [kinds][bins]`, `bins [bins]` (y), `width`, "
-        "`counts [kinds]`, `samples`",
+        "`output.kde_window` = 0: `/observables/density_kde/{value, error} [kinds][bins]`, "
+        "`bins [bins]` (y), `width`, `counts [kinds]`, `samples`; > 0: `value "
+        "[windows][kinds][bins]`, `step`, `time` (the window's end), `samples [windows]`, "
+        "`bins`, `width`, `counts` (no `error`)",
         "per-kind kernel density profile across y, eq 5.2 with ε = `colloids.kde_width`, "
-        "normalised to 1 per kind, time average of samples every `output.every` steps",
+        "normalised to 1 per kind, time average of samples every `output.every` steps (over the "
+        "whole run, or over each window of `output.kde_window` steps)",
+        nullptr, true},
+       {"evolution",
+        "`/observables/evolution/value [windows]`, `by_kind [windows][kinds]`, `step`, `time`",
+        "Δ(t) of Kanehl (thesis) eq 5.31 per `density_kde` window, against the first window: "
+        "`value` of the total number density Σ_k N_k F_k(y), `by_kind` of each F_k alone (needs "
+        "`density_kde` and `output.kde_window` > 0); the run log ends with the steady-state "
+        "criterion",
+        nullptr, true},
+       {"colloid_velocity_profile",
+        "`/observables/colloid_velocity_profile/{value, weight} [windows][kinds][bins]`, `step`, "
+        "`time`, `bins [bins]` (y)",
+        "per kind the kernel-weighted mean x velocity of the colloids across y, "
+        "Σ K(y − y_i) v_x,i / Σ K(y − y_i) over the window's samples (kernel and bins of "
+        "`density_kde`; NaN where the weight is 0), per `output.kde_window` window (0: one "
+        "window, the whole run, written at the end)",
         nullptr, true}}};
   return schema;
 }

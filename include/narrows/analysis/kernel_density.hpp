@@ -16,6 +16,13 @@ namespace narrows::analysis {
 // The Epanechnikov kernel 3/(4 eps^3) (eps^2 - u^2) for |u| < eps, else 0 (eq 5.2).
 double epanechnikov(double u, double eps);
 
+// One sample's kernel sums at the centres of `bins` equal bins of [0, length): for every
+// colloid i, density[kind_i][j] += K(y_j - y_i) and, when `vx` is given,
+// velocity[kind_i][j] += K(y_j - y_i) vx_i (minimum images along a periodic axis).
+void kernel_sums(std::span<const double> y, std::span<const std::size_t> kind, double length,
+                 bool periodic, double eps, std::size_t bins, std::span<double> density,
+                 std::span<const double> vx = {}, std::span<double> velocity = {});
+
 class KernelDensity {
 public:
   KernelDensity(std::size_t kinds, double length, bool periodic, double width, std::size_t bins,

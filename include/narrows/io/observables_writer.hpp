@@ -54,7 +54,8 @@ public:
   // One sample of a field (value [T][shape...]) with more datasets of one row per sample beside
   // it ([T][their shape...], marked with the attribute per_sample = 1, so that readers join them
   // over a restart chain as they join value), and at the first append the 1-D `axes` (e.g.
-  // bins). Every sample of a name must have the same keys and shapes.
+  // bins). Every sample of a name must have the same keys and shapes. An empty `shape` is a
+  // scalar sample: value [T].
   void append_field(const std::string &name, std::int64_t step, double time,
                     const std::vector<hsize_t> &shape, std::span<const double> values,
                     const std::vector<Beside> &beside,

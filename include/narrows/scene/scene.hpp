@@ -165,6 +165,9 @@ struct Output {
       0; // fluid frames to trajectory.h5 every this many steps (0 = none)
   std::int64_t trajectory_subsample = 1; // frames hold the particles whose id is a multiple of this
   double axial_bin = 2.0; // width of the bins along x of the mpcd observable axial_fields
+  // Windows of the colloid profiles (mpcd density_kde, evolution, colloid_velocity_profile) in
+  // steps from colloids.statistics_from; 0: one average over the whole run.
+  std::int64_t kde_window = 0;
 };
 
 // Engine "kmc": the three-state lattice gas of Tabatabaei (2008) ch.2

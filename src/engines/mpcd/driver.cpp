@@ -74,7 +74,7 @@ public:
     const auto step = sim_.step();
     const double t = sim_.time();
     const MPI_Comm comm = sim_.comm();
-    colloid_stats_.on_observe(sim_);
+    colloid_stats_.on_observe(sim_, writer_.get());
     if (temperature_) {
       const double kT = analysis::temperature(sim_.fluid(), comm);
       if (writer_)
@@ -151,6 +151,9 @@ public:
   double axial_seconds_per_sample() const {
     return axial_samples_ > 0 ? axial_seconds_ / static_cast<double>(axial_samples_) : 0.0;
   }
+  // evolution's steady-state line (rank 0; empty without it).
+  std::string steady_line() const { return colloid_stats_.steady_line(); }
+  std::string window_cost_line() const { return colloid_stats_.window_cost_line(); }
   // When the run ends: the results of the whole run (colloid statistics).
   void finish() {
     if (writer_ && colloid_stats_.active()) {
@@ -457,6 +460,10 @@ public:
                     1e3 * s, static_cast<long long>(scene_.colloids->count));
       log.line(text);
     }
+    if (const std::string cost = observer_->window_cost_line(); !cost.empty())
+      log.line(cost);
+    if (const std::string steady = observer_->steady_line(); !steady.empty())
+      log.line(steady);
     observer_->finish();
   }
 
