@@ -22,7 +22,10 @@ b) whole run (value and error [kinds][bins]): the same 4 realisations, --d0 tabl
    table/d as separate runs of the tool: K_d within 3 half widths of 5, and the two K_d in the
    ratio d = 2, and their interval ends too, to 1e-3 (the two fits solve at different K_d D_0,
    so they differ by the spline's interpolation and the scan's step, 8 sigma / 4000 ~ 1e-4 in
-   log K_d here; measured 2e-5).
+   log K_d here; measured 2e-5). The 1 sigma half width (log K_d) equals the Fisher sigma of
+   the same model (amplitudes and log K_d; derivative from two more continuum solves at K_d
+   e^{+-0.02}) with the known errors, times sqrt(max(1, chi2/dof)), to 10 % (the chi^2 is not
+   quite a parabola over +-1 sigma and the data are one noisy draw).
 c) one windowed realisation with --from-step S: the windows used are those ending after S;
    the error of c_L(0)/c_S(0) from the block errors.
 d) one-line errors, exit 2: a realisation of another scene (kind 1's count differs: the key is
@@ -102,19 +105,19 @@ def fractions():
     return [n * math.pi * a * a / (2 * W * 2 * W) for a, n in KINDS]
 
 
-def truth(narrows, tmp):
-    """The steady phi [cells][kinds] of the continuum engine at K_D, and its cell centres."""
+def truth(narrows, tmp, k_d=K_D):
+    """The steady phi [cells][kinds] of the continuum engine at k_d, and its cell centres."""
     text = ('[run]\nengine = "continuum"\n[continuum]\nmodel = "segregation"\ndimensions = 2\n'
             f"half_width = {W}\ncells = {CELLS}\ncentre_speed = {V0}\nk_c = 1.0\nk_eta = 1.51\n"
-            f"k_d = {K_D}\ntime = 1e-9\nsamples = 1\n")
+            f"k_d = {k_d!r}\ntime = 1e-9\nsamples = 1\n")
     for (a, _), f, d in zip(KINDS, fractions(), D_TABLE):
         text += f"[[continuum.kind]]\nradius = {a}\nfraction = {f!r}\ndiffusivity = {d}\n"
     text += '[output]\nobservables = ["steady_density"]\nprogress = false\n'
     path = os.path.join(tmp, "truth.toml")
     with open(path, "w") as f:
         f.write(text)
-    subprocess.run([narrows, "run", path, "--out", os.path.join(tmp, "truth")], check=True,
-                   capture_output=True)
+    subprocess.run([narrows, "run", path, "--out", os.path.join(tmp, "truth"), "--overwrite"],
+                   check=True, capture_output=True)
     s = narrows_h5.open_run(os.path.join(tmp, "truth")).series("steady_density")
     return s.bins, s.value
 
@@ -178,6 +181,31 @@ def tool(args, tmp, name):
         with open(out) as f:
             got = json.load(f)
     return r, got
+
+
+def fisher_sigma(narrows, tmp, y, err):  # err: the one error of every fit bin
+    """sigma of log K_d from the Fisher matrix of the fit's model (amplitude A_k per kind, one
+    log K_d) at the true K_d, over the fit bins (|y - w| <= w - 2 a_L, every 2 kernel widths)
+    with the error err in each; the derivative by central differences at +- 0.02."""
+    keep = np.nonzero(np.abs(y - W) <= W - 2 * KINDS[0][0])[0][::int(round(2 * KDE_WIDTH /
+                                                                            (y[1] - y[0])))]
+    m = {}
+    for h in (-0.02, 0.02):
+        ym, phi = truth(narrows, tmp, K_D * math.exp(h))
+        m[h] = np.stack([np.interp(y[keep] - W, ym, phi[:, k]) / phi[:, k].mean()
+                         for k in range(len(KINDS))])
+    ym, phi = truth(narrows, tmp)
+    m0 = np.stack([np.interp(y[keep] - W, ym, phi[:, k]) / phi[:, k].mean()
+                   for k in range(len(KINDS))])
+    du = (m[0.02] - m[-0.02]) / 0.04
+    nk, nb = m0.shape
+    jac = np.zeros((nk * nb, 1 + nk))
+    jac[:, 0] = du.ravel()
+    for k in range(nk):
+        jac[k * nb:(k + 1) * nb, 1 + k] = m0[k]
+    wgt = np.full(nk * nb, 1.0 / err ** 2)
+    cov = np.linalg.inv(jac.T @ (wgt[:, None] * jac))
+    return math.sqrt(cov[0, 0]), keep
 
 
 def half_log(res):
@@ -273,6 +301,13 @@ def main(argv):
             tol = 3 * math.sqrt(2.0 / t["dof"])
             check("b: chi2/dof about 1", abs(t["chi2"] / t["dof"] - 1) <= tol,
                   f"{t['chi2'] / t['dof']:.3f}")
+            # the whole-run errors are the sigmas given: the mean's is sqrt(sum sigma^2) / 4
+            sig_f, _ = fisher_sigma(narrows, tmp, y, math.sqrt(sum(x * x for x in sigmas)) / 4)
+            ratio = half_log(t) / (math.sqrt(t["rise"]) * sig_f)
+            print(f"   1 sigma half width in log K_d {half_log(t):.5f}, Fisher "
+                  f"{sig_f:.5f} x sqrt(max(1, chi2/dof)) = {math.sqrt(t['rise']) * sig_f:.5f}")
+            check("b: 1 sigma interval = the Fisher sigma (x sqrt(max(1, chi2/dof)))",
+                  abs(ratio - 1) < 0.1, f"ratio {ratio:.4f}")
             check("b: separate fits: K_d ratio = d", abs(td["k_d"] / t["k_d"] / 2 - 1) < 1e-3,
                   f"{td['k_d'] / t['k_d']:.6f}")
             check("b: separate fits: interval ratio = d",
