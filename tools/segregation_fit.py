@@ -23,27 +23,32 @@ The onset is found from Delta(t) (Kanehl (thesis) eq 5.31; observable evolution 
 file, value and each kind's by_kind, or computed from the windows by the same formula when the
 run has no evolution) by the criterion of the windowed layout: a least-squares line through
 Delta over a tail of the windows is flat when |slope| <= 2 sigma_slope (sigma from the
-residuals); the onset is the first window from which every tail of at least K = max(4,
-ceil(windows / 4)) windows is flat for every curve. A run whose last K windows are not flat is
-refused (exit 2; --from-step overrides). The profile of a realisation is the mean over its
+residuals); the onset is the first window whose tail (to the last window, at least K = max(4,
+ceil(windows / 4)) windows) is flat for every curve and which itself lies within 2 sigma of the
+tail's line. When not even the last K windows are flat, a warning and those windows
+(--from-step chooses). The profile of a realisation is the mean over its
 steady windows, its error the block error over them (each window one block: the error is too
 small when the profile stays correlated over more than a window). Velocity and viscosity are
 averaged over their samples after the steady onset (whole-run layout: their second half).
 
-Combining. Per bin the realisations are combined with inverse-variance weights; the chi^2 of
-the realisations about that mean (within-run errors) is printed as the realisation scatter
-(about 1 per dof when the block errors are right). As a cross-check the fit's chi^2 is also
-given with per-bin errors from the spread across the realisations (t-distributed residuals:
-expected chi^2/dof = (R - 1)/(R - 3) for R > 3 realisations).
+Combining. The realisations' profiles are averaged with equal weights (one scene: the same
+statistics up to run length), the error of the mean from their errors, sqrt(sum sigma_r^2) / R.
+Printed beside: the variance of that mean from the spread across the realisations over the one
+from their errors, averaged over the fit bins (about 1 when the errors are right; below 1 by
+chance, well above 1 when windows are correlated), and as a cross-check the fit's chi^2 with
+per-bin errors from the spread (R - 1 dof each: t-distributed residuals, expected chi^2/dof =
+(R - 1)/(R - 3) for R > 3). Errors estimated from few windows or realisations have the same
+bias: chi^2/dof is about (n - 1)/(n - 3) for n blocks.
 
 D_0 (--d0): only K_d D_0 enters the steady profiles, so K_d is relative to the D_0 taken.
 "table": --diffusivity as given (Kanehl (thesis) Table 5.1's D per kind, in the order of
 [[colloids.kind]]); "table/d": those divided by d (the thesis' tabulated D are d times its eq
 4.51); "stokes-einstein": D_0 = kT / (6 pi eta a) with eta = rho nu, rho = fluid.density (unit
-particle mass), kT = fluid.kT and nu from the runs' viscosity observable or --nu; "all": the
-three. Conventions with the same ratio of the kinds' D_0 (table and table/d) give the same
-profiles and chi^2, their K_d differing by the D_0 ratio; a different ratio (Stokes-Einstein:
-D_0 ~ 1/a) changes the shapes, and the chi^2 tells which one the profiles support.
+particle mass), kT = fluid.kT and nu from the runs' viscosity observable or --nu (the same
+formula in 2D, where it is a convention only: Stokes' paradox); "all": the three. Conventions
+with the same ratio of the kinds' D_0 (table and table/d) give the same profiles and chi^2,
+their K_d differing by the D_0 ratio; a different ratio (Stokes-Einstein: D_0 ~ 1/a) changes
+the shapes, and the chi^2 tells which one the profiles support.
 
 The fit. For each trial K_d the continuum engine computes the steady profiles (narrows run of a
 [continuum] model = "segregation" scene with K_c = 1, K_eta = --k-eta; observable
@@ -51,10 +56,14 @@ steady_density, by shooting; --jobs runs at a time). Data and model are compared
 <= w - exclude (default: twice the largest radius, the wall layers the theory does not have)
 at bins every 2 kernel widths (nearly independent), each kind with its own amplitude (fitted,
 linear: the data's wall layers hold part of the mass), all kinds jointly with one K_d:
-chi^2 = sum ((c - A_k m_k) / sigma)^2, dof = bins x kinds - kinds - 1. K_d minimises chi^2 on
-grids in log K_d refined around the minimum; its 1 sigma interval is where chi^2 reaches the
-minimum + max(1, chi^2/dof), found by scanning log K_d on each side (asymmetric intervals are
-kept; an end of --range reached is reported as open).
+chi^2 = sum ((c - A_k m_k) / sigma)^2, dof = bins x kinds - kinds - 1. The engine solves on a
+coarse grid in log K_d over --range, around its minimum and at the minimum +- 1 and 2 sigma
+until those are covered (about 25 solves per D_0 ratio); between the solved points every fit
+bin's model value is a cubic spline in log K_d, and chi^2 is scanned on 4001 points of log K_d
+(then 4001 within 4 sigma of the minimum). K_d is the scan's minimum (its chi^2 then solved
+exactly); the 1 sigma interval is where chi^2 reaches the minimum + max(1, chi^2/dof) on each
+side (the profile likelihood: asymmetric intervals are kept; an end of --range reached is
+reported as open, "<lo" or ">hi").
 
 Output: the line "K_d = X +- Y (1σ [lo, hi]), chi2/dof = A/B, convention C" (the convention of
 the smallest chi^2; Y half the interval), a table per convention, and c_L(0)/c_S(0) (two kinds:
@@ -519,7 +528,8 @@ def main(argv):
         else:
             missing = [r["path"] for r in runs if r["v0"] is None]
             if missing:
-                raise NarrowsDataError(missing[0], "no velocity_profile for v0", "--centre-speed V0")
+                raise NarrowsDataError(missing[0], "no velocity_profile for v0",
+                                       "--centre-speed V0")
             v0 = float(np.mean([r["v0"] for r in runs]))
             v0_from = "velocity_profile"
         d0 = {}
@@ -666,7 +676,8 @@ def main(argv):
                                            if res["same_profiles_as"] else ""))
         print(f"  K_d = {res['k_d']:.5g}, 1σ {interval(res)} (chi^2 + {res['rise']:.3g}), "
               f"K_d D_0 = " + ", ".join(f"{res['k_d'] * d:.4g}" for d in res["d0"]))
-        print(f"  chi2/dof = {res['chi2']:.4g}/{res['dof']} = {res['chi2'] / max(res['dof'], 1):.3g}"
+        print(f"  chi2/dof = {res['chi2']:.4g}/{res['dof']} = "
+              f"{res['chi2'] / max(res['dof'], 1):.3g}"
               + ("" if res["chi2_scatter"] is None else
                  f"; with errors from the realisation scatter {res['chi2_scatter']:.4g}/"
                  f"{res['dof']} = {res['chi2_scatter'] / max(res['dof'], 1):.3g}"

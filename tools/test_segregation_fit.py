@@ -12,7 +12,8 @@ a) windows: 4 realisations of 40 windows, a transient relaxing from the uniform 
    windows, evolution (eq 5.31) written for three and left for the tool to compute for one;
    --d0 all. Checks: the table K_d within 3 of its 1 sigma half widths (log K_d) of 5;
    chi2/dof within 3 sqrt(2/dof) of 1; K_d(table/d) = d K_d(table) (the same D_0 ratio,
-   to 1e-9); Stokes-Einstein's chi^2 larger (the data carry Table 5.1's D ratio 1.41, not 2)
+   to 1e-9); Stokes-Einstein's chi^2 larger by > 9 (3 sigma; the data carry Table 5.1's D
+   ratio 1.41, not its 2; measured + 34)
    and the one line naming the table convention; the steady onset after the first 3 windows
    (where the transient, 1 - exp(-i / 1.5) of the steady profile, stands out of the noise of
    Delta) and before the last quarter;
@@ -261,7 +262,7 @@ def main(argv):
             d_se = [1.0 / (6 * math.pi * 10 * NU * a) for a, _ in KINDS]
             check("a: stokes-einstein D_0 = kT/(6 pi rho nu a)",
                   np.allclose(se["d0"], d_se, rtol=1e-3), f"{se['d0']} vs {d_se}")
-            check("a: stokes-einstein fits worse", se["chi2"] > t["chi2"] + 25,
+            check("a: stokes-einstein fits worse", se["chi2"] > t["chi2"] + 9,
                   f"{se['chi2']:.1f} vs {t['chi2']:.1f}")
             check("a: one line names the table convention", got["best"] == "table" and
                   r.stdout.startswith("K_d = ") and "convention table" in
