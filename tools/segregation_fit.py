@@ -202,6 +202,9 @@ def read_realisation(run_dir, from_step):
     since = None  # the step after which samples are steady (None: the second half)
     if value.ndim == 2:
         out["layout"] = "whole run"
+        if from_step is not None:
+            print(f"segregation_fit: warning: {run.path}: a whole-run density_kde (no windows); "
+                  "--from-step does not apply to it", file=sys.stderr)
         out["c"] = 2 * w * value
         out["error"] = 2 * w * np.asarray(g["error"], float)
         out["windows"] = None
