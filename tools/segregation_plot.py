@@ -11,7 +11,8 @@ JSON object instead):
   evolution RUN_DIR [RUN_DIR...] [--radius-over-w A_W ...] [--thesis-radius-over-w A_W ...]
   velocity  RUN_DIR [--from-step S] [--uniform RUN_DIR]
   viscosity RUN_DIR [--continuum STEADY.h5|auto] [--nu NU | --fluid-run RUN_DIR]
-            [--diffusivity D_1 [D_2]] [--degree 8] [--force local|uniform] [--from-step S]
+            [--diffusivity D_1 [D_2]] [--k-d K] [--k-eta K] [--shear poiseuille|viscous]
+            [--degree 8] [--force local|uniform] [--from-step S] [--uniform-steps FROM TO]
   fig54     RUN_DIR [RUN_DIR...] [--nu NU] [--from-step S] [--to-step S]
 
 What the run must hold (the particle-side layout of issue 32): /observables/density_kde with
@@ -39,7 +40,8 @@ the current J ~ K_c a^2 gdot phi (eq 5.14; Kanehl (thesis) sec 5.3.1: "J ~ a^2")
 t ~ w^2 / (a^2 gdot) to cross w; with gdot ~ v_c / w the colloids at the centre travel
 d = v_c t ~ w^3 / a^2 meanwhile: d / w ~ (w / a)^2, independent of the speed. Hence d / w at
 the thesis' a / w is (d / w measured) x ((a/w)_run / (a/w)_thesis)^2. The thesis' own numbers
-obey it in 2D: d_L ~ 100 w, d_S ~ 400 w at a_L / a_S = 2 (ratio 4 = 2^2, as sec 5.3.1 says);
+obey it in 2D: d_L ~ 100 w, d_S ~ 400 w at a_L / a_S = 2 (ratio 4 = 2^2, as sec 5.3.1 says;
+with a_L / w = 0.1 and a_S / w = 0.05 both are d / w ~ (w / a)^2 with a prefactor of ~ 1);
 in 3D (sec 5.4.1) d_L ~ 100 w, d_S ~ 500 w, ratio 5, "roughly" (there the Peclet numbers,
 hence the share of diffusion, differ more between the kinds, PeL ~ 16, PeS ~ 1). The argument
 is one of the shear-driven part of the current alone: diffusion (D_0, the Peclet number) sets
@@ -52,6 +54,9 @@ velocity (figs 5.5b, 5.10b). Per kind v_x(y) of colloid_velocity_profile, the wi
 --from-step on (default: the last K windows, those of the steady criterion) merged with their
 kernel weights, against the parabola v = v0 (1 - y^2 / w^2) + b of the uniform suspension:
 least squares to the first window of the run (kinds merged), or to every window of --uniform.
+The first window stands for the uniform suspension: start the statistics
+(colloids.statistics_from) after the flow has developed (~ w^2 / nu) and keep kde_window short
+against the migration (d_sat / v_c).
 
 viscosity (fig 5.5c). eta(y) = -F(y) / gdot(y) (eq 5.33, integrated from the centre: F(y) =
 int_0^y f dy', f the force per volume), gdot = dv_x/dy of the steady colloid velocity (kinds
@@ -71,7 +76,8 @@ centres (density_kde, the same windows), as the continuum model's phi_i. eta_0 =
 phi/phi_M)^-2 at the mean phi (eq 5.29; the thesis' eta_0 of fig 5.5c), eta_f = rho nu: nu from
 --nu, or from --fluid-run (a run without colloids: its viscosity observable or velocity_profile
 fit, see fig54); without either, eta_0 is the measured viscosity of this suspension while still
-uniform (eq 4.49 on the fluid velocity_profile before --from-step; output says which). Against
+uniform (eq 4.49 on the fluid velocity_profile samples of the first window, or
+--uniform-steps FROM TO; the output says which). Against
 eq 5.29 with phi(y) of (a) the continuum engine's steady profiles (--continuum FILE: an
 observables file with steady_density; auto: run narrows on a [continuum] model = "segregation"
 scene from the run's kinds, as tools/segregation_fit.py builds it, with centre_speed the v0 of
@@ -695,14 +701,20 @@ def cmd_viscosity(a):
         eta0 = ch.rho * nu_f * (1 - ch.phi / phim) ** -2
         how_eta0 = f"eq 5.29 at phi = {ch.phi:.4g}, eta_f = rho nu, nu = {nu_f:.5g} from {how_nu}"
     else:
-        nu_s, _, how, rng = poiseuille_nu(run, ch, 0, int(dens["step"][0]) if a.uniform_to is None
-                                          else a.uniform_to)
+        if a.uniform_steps:
+            lo, hi = a.uniform_steps
+        else:  # the samples of the first window
+            st = dens["step"]
+            hi = int(st[0])
+            lo = hi - int(st[1] - st[0]) + 1 if len(st) > 1 else 0
+        nu_s, _, how, rng = poiseuille_nu(run, ch, lo, hi)
         eta0 = ch.rho * nu_s
         how_eta0 = (f"measured: rho nu_eff of the uniform suspension, eq 4.49 ({how}, steps "
                     f"{rng[0]}..{rng[1]}); give --nu for eq 5.29's")
     v0u, bu = uniform_parabola(run, ch, True)
     curves = {}
     eta529_part = (1 - np.interp(s, s_d, phi_part) / phim) ** -2 / (1 - ch.phi / phim) ** -2
+    eta529_part[~ok] = np.nan  # no colloid centres there (the wall layers)
     curves["particles"] = (eta529_part, "phi(y) of the particles (density_kde)")
     if a.continuum:
         with tempfile.TemporaryDirectory() as work:
@@ -750,8 +762,10 @@ def cmd_viscosity(a):
     out.pop("profile")
     print(f"{a.run_dir}: steady windows ending at steps {out['windows'][0]}..{out['windows'][1]},"
           f" phi = {ch.phi:.4g}, phi_M = {phim:g}")
-    print(f"  force per volume: {'rho g (eq 5.33 as printed)' if a.force == 'uniform' else 'local, acts_on = ' + ch.acts_on}"
-          f"; gdot from an even polynomial of degree {a.degree} per half")
+    force = ("rho g (eq 5.33 as printed)" if a.force == "uniform"
+             else f"local, acts_on = {ch.acts_on}")
+    print(f"  force per volume: {force}; gdot from an even polynomial of degree {a.degree} "
+          "per half")
     print(f"  eta_0 = {eta0:.5g} ({how_eta0})")
     if out["eta_centre_over_eta0"] is not None:
         print(f"  eta / eta_0 next to the centre: {out['eta_centre_over_eta0']:.4g}")
@@ -850,8 +864,9 @@ def parser():
     h.add_argument("--continuum", help="STEADY.h5 (steady_density) or auto")
     h.add_argument("--nu", type=float, help="nu of the pure fluid")
     h.add_argument("--fluid-run", help="a run without colloids for nu of the pure fluid")
-    h.add_argument("--uniform-to", type=int, help="last step of the uniform-suspension "
-                   "samples for the measured eta_0 (default: the first window's end)")
+    h.add_argument("--uniform-steps", type=int, nargs=2, metavar=("FROM", "TO"),
+                   help="the fluid samples of the uniform suspension for the measured eta_0 "
+                   "(default: those of the first window)")
     h.add_argument("--degree", type=int, default=8, help="even polynomial degree (>= 2)")
     h.add_argument("--force", choices=("local", "uniform"), default="local")
     h.add_argument("--diffusivity", type=float, nargs="+")
