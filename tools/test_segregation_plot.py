@@ -31,6 +31,10 @@ d) fig54: five runs (phi = 0 ... 0.4, 2D) whose fluid velocity_profile is the Po
    of them with the viscosity observable only (g / (2 a), as narrows writes it): eta/eta_f over
    eq 5.29 must be 1 to 1e-9; a 3D run set uses phi_M = 0.64; a run without colloids gives
    nu_f; without it and without --nu: exit 2 with one line.
+e) velocity: six windows, the first a parabola v0 (1 - y^2/w^2) with v0 = 0.1, then plugs of
+   0.2 (weight 1) and 0.26 (weight 3): the steady centre over the last K = 4 windows is their
+   weight-merged mean 0.245 (to 1e-12), from --from-step 5000 on 0.26; the uniform parabola has
+   v0 = 0.1 and wall speed 0 (to 1e-9).
 Prints FAIL lines and "N passed, M failed"; exit 1 on any failure.
 """
 
@@ -258,6 +262,39 @@ def test_viscosity(tmp):
           done.returncode == 0 and "largest |relative difference|" in done.stdout, done.stderr)
 
 
+# ---- e) velocity ----------------------------------------------------------------------------
+
+
+def test_velocity(tmp):
+    w, bins, n_win = 10.0, 80, 6
+    y = (np.arange(bins) + 0.5) * 2 * w / bins
+    s = y - w
+    value = np.empty((n_win, 2, bins))
+    weight = np.ones((n_win, 2, bins))
+    value[0] = 0.1 * (1 - (s / w) ** 2)  # the uniform suspension: v0 = 0.1, no slip
+    value[1:4] = 0.2
+    value[4:] = 0.26
+    weight[4:] = 3.0
+    weight[1:, 1] *= 2.0  # kind 1 weighs twice kind 0 (it does not change the merged plug)
+    step = (np.arange(n_win) + 1) * 1000
+    p = os.path.join(tmp, "vel")
+    write(p, scene(w, 40, [(1.0, 10), (0.5, 20)]), {"colloid_velocity_profile": {
+        "step": step, "time": step * 0.01, "value": value, "weight": weight, "bins": y}})
+    res, err = tool("velocity", p)
+    if res is None:
+        check("e) velocity runs", False, err)
+        return
+    # the last K = 4 windows (2..5): (0.2 * 1 * 2 + 0.26 * 3 * 2) / (2 + 6) = 0.245
+    check("e) steady centre: the last 4 windows weight-merged = 0.245",
+          rel(res["steady_centre"], 0.245) < 1e-12, res["steady_centre"])
+    check("e) the uniform parabola of the first window: v0 = 0.1, wall 0",
+          rel(res["uniform_v0"], 0.1) < 1e-9 and abs(res["uniform_wall"]) < 1e-9,
+          (res["uniform_v0"], res["uniform_wall"]))
+    res, err = tool("velocity", p, "--from-step", "5000")
+    check("e) --from-step 5000: the last two windows = 0.26",
+          res is not None and rel(res["steady_centre"], 0.26) < 1e-12, err)
+
+
 # ---- d) fig 5.4 ------------------------------------------------------------------------------
 
 
@@ -325,6 +362,7 @@ def main():
         test_evolution(tmp)
         test_viscosity(tmp)
         test_fig54(tmp)
+        test_velocity(tmp)
     return summary()
 
 
