@@ -3,8 +3,8 @@
 written in the particle-side segregation layout of issue 32 (windowed density_kde, evolution,
 colloid_velocity_profile) and the fluid's velocity_profile / viscosity.
 
-Usage: /usr/bin/python3 tools/test_segregation_plot.py [NARROWS_BINARY]   (the binary is unused;
-the continuum curve of `viscosity` is given as a steady_density file written here)
+Usage: /usr/bin/python3 tools/test_segregation_plot.py [NARROWS_BINARY]   (the binary only for
+f); a) to e) give the continuum curve of `viscosity` as a steady_density file written here)
 
 a) evolution: Delta(d) = D_inf (1 - exp(-d / d_tau)) + Gaussian noise (sd 0.005, fixed seed) in
    80 windows over d = 0..160 w, d_tau = 20 w (kind 0) and 40 w (kind 1; the total: 20 w), v_c
@@ -35,6 +35,13 @@ e) velocity: six windows, the first a parabola v0 (1 - y^2/w^2) with v0 = 0.1, t
    0.2 (weight 1) and 0.26 (weight 3): the steady centre over the last K = 4 windows is their
    weight-merged mean 0.245 (to 1e-12), from --from-step 5000 on 0.26; the uniform parabola has
    v0 = 0.1 and wall speed 0 (to 1e-9).
+f) with NARROWS_BINARY: viscosity --continuum auto on the plug run of c) (2D, one kind,
+   --diffusivity 0.00137): the continuum engine runs on the scene built from the run's kinds;
+   phi(y) recovered from its eq 5.29 curve (inverting eq 5.29) has the run's mean fraction
+   (within 1e-4: the run's bins cover [-w, w] and the curve is interpolated from the 400
+   continuum cells; measured 2.5e-7)
+   and is enriched at the centre (phi(0) > mean: shear-induced migration); without
+   --diffusivity in 2D: exit 2, one line naming --diffusivity.
 Prints FAIL lines and "N passed, M failed"; exit 1 on any failure.
 """
 
@@ -357,12 +364,39 @@ def test_fig54(tmp):
           done.returncode == 2 and len(done.stderr.splitlines()) == 1, done.stderr)
 
 
+def test_auto(tmp, narrows):
+    p = os.path.join(tmp, "plug")
+    done = subprocess.run([sys.executable, TOOL, "viscosity", p, "--nu", "0.5", "--continuum",
+                           "auto", "--diffusivity", "0.00137", "--json"], capture_output=True,
+                          text=True, env=dict(os.environ, NARROWS=narrows))
+    if done.returncode != 0:
+        check("f) viscosity --continuum auto runs", False, done.stderr)
+        return
+    res = json.loads(done.stdout)
+    phim, phibar = res["max_packing"], res["phi"]
+    y = np.array(res["profile"]["y"])
+    rel_eta = np.array(res["profile"]["eq_5_29_continuum"], float)
+    phi = phim * (1 - (1 - phibar / phim) / np.sqrt(rel_eta))
+    check("f) the continuum phi(y) has the run's mean fraction (1e-4)",
+          rel(phi.mean(), phibar) < 1e-4, (phi.mean(), phibar))
+    check("f) the continuum phi(y) is enriched at the centre",
+          np.interp(0.0, y, phi) > phibar, np.interp(0.0, y, phi))
+    done = subprocess.run([sys.executable, TOOL, "viscosity", p, "--nu", "0.5", "--continuum",
+                           "auto"], capture_output=True, text=True,
+                          env=dict(os.environ, NARROWS=narrows))
+    check("f) 2D auto without --diffusivity: exit 2, one line naming --diffusivity",
+          done.returncode == 2 and "--diffusivity" in done.stderr
+          and len(done.stderr.splitlines()) == 1, done.stderr)
+
+
 def main():
     with tempfile.TemporaryDirectory() as tmp:
         test_evolution(tmp)
         test_viscosity(tmp)
         test_fig54(tmp)
         test_velocity(tmp)
+        if len(sys.argv) > 1:
+            test_auto(tmp, sys.argv[1])
     return summary()
 
 
