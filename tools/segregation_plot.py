@@ -61,9 +61,11 @@ against the migration (d_sat / v_c).
 viscosity (fig 5.5c). eta(y) = -F(y) / gdot(y) (eq 5.33, integrated from the centre: F(y) =
 int_0^y f dy', f the force per volume), gdot = dv_x/dy of the steady colloid velocity (kinds
 and windows merged with their weights). Smoothing: on each half of the channel separately a
-least-squares even polynomial v = sum_j c_j y^(2j), j = 0..degree/2 (--degree, default 8),
-weighted with the kernel weight sums (the number of samples behind each bin), differentiated
-exactly. Why: eq 5.33 divides by gdot, which vanishes at the centre; an even polynomial has
+least-squares even polynomial v = sum_j c_j y^(2j), j = 0..degree/2, weighted with the kernel
+weight sums (the number of samples behind each bin), differentiated exactly; the degree is
+--degree, or by default the highest of 8, 6, 4, 2 whose fit falls monotonically from the centre
+to the wall on that half (the shear stress -F(y) has one sign on each half, so gdot must too: a
+fit whose gdot changes sign follows noise or layering, and gives eta < 0 or poles). Why: eq 5.33 divides by gdot, which vanishes at the centre; an even polynomial has
 gdot(0) = 0 and gdot odd, so eta = F / gdot is a ratio of two odd functions and stays finite at
 the centre, where a finite difference of noisy data would make eta swing wildly; a fit per half
 leaves each half its own profile (a one-sided plug). The force f: with body_force.acts_on =
@@ -110,6 +112,7 @@ import os
 import subprocess
 import sys
 import tempfile
+import warnings
 
 import numpy as np
 
@@ -349,9 +352,14 @@ def saturation_fit(d, delta):
     # the first guess: d_tau where Delta first passes 63 % of the late mean
     passed = np.nonzero(delta >= 0.632 * late)[0]
     tau0 = float(d[passed[0]]) if len(passed) and d[passed[0]] > 0 else float(d[-1]) / 3.0
+    lo, hi = 1e-3 * d[1], 1e3 * d[-1]  # d_tau from well inside the first window to far beyond
     try:
-        p, cov = curve_fit(model, d, delta, p0=[late, max(tau0, 1e-12)], sigma=sigma,
-                           absolute_sigma=True, maxfev=20000)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # an unresolved d_tau: infinite errors, said below
+            p, cov = curve_fit(model, d, delta, p0=[late, min(max(tau0, 2 * lo), hi / 2)],
+                               sigma=sigma, absolute_sigma=True, bounds=([-np.inf, lo],
+                                                                         [np.inf, hi]),
+                               max_nfev=20000)
     except (RuntimeError, ValueError) as e:
         out["fit_error"] = str(e)
         return out
@@ -362,7 +370,12 @@ def saturation_fit(d, delta):
     out.update({"delta_inf": float(p[0]), "delta_inf_error": float(err[0]),
                 "d_tau": float(p[1]), "d_tau_error": float(err[1]),
                 "d_sat": 3.0 * float(p[1]), "d_sat_error": 3.0 * float(err[1]),
-                "chi2_dof": chi2 / dof})
+                "chi2_dof": chi2 / dof,
+                "resolved": bool(d[1] < 3.0 * p[1] < d[-1])})
+    if 3.0 * p[1] <= d[1]:
+        out["note"] = "saturated before the second window: d_sat unresolved (shorter kde_window)"
+    elif 3.0 * p[1] >= d[-1]:
+        out["note"] = "d_sat beyond the end of the run (an extrapolation)"
     return out
 
 
@@ -448,7 +461,7 @@ def cmd_evolution(a):
             r.pop(key)
     out = {"runs": results}
     if a.json:
-        print(json.dumps(out, indent=1))
+        print(json.dumps(finite(out), indent=1))
         return 0
     for r in results:
         print(f"{r['run']}: {r['dimensions']}D, phi = {r['phi']:.4g}, radii {r['radii']}, "
@@ -461,6 +474,8 @@ def cmd_evolution(a):
                   f"{r['late_windows']} windows)")
         else:
             print(f"  no saturation fit: {r.get('fit_error')}")
+        if r.get("note"):
+            print(f"  note: {r['note']}")
         print(f"  steady: {'yes' if r['steady'] else 'no'} (slope of Delta over the last "
               f"{r['late_windows']} windows {r['late_slope']:.3g} +- "
               f"{r['late_slope_error']:.2g} per w)")
@@ -475,6 +490,17 @@ def cmd_evolution(a):
                   f"{r['scale']:.4g} = (a/w run / a/w thesis)^2; thesis: d_L ~ 100 w, d_S ~ "
                   f"{'400' if r['dimensions'] == 2 else '500'} w)")
     return 0
+
+
+def finite(x):
+    """x with every non-finite float replaced by None (strict JSON)."""
+    if isinstance(x, dict):
+        return {k: finite(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [finite(v) for v in x]
+    if isinstance(x, float) and not math.isfinite(x):
+        return None
+    return x
 
 
 def nan_list(x):
@@ -559,7 +585,7 @@ def cmd_velocity(a):
     ax.legend(fontsize=8)
     save(fig, a, a.run_dir, "velocity")
     if a.json:
-        print(json.dumps(out, indent=1))
+        print(json.dumps(finite(out), indent=1))
         return 0
     print(f"{a.run_dir}: steady windows ending at steps {out['windows'][0]}..{out['windows'][1]}"
           f" ({len(win)} windows, weight-merged)")
@@ -571,6 +597,9 @@ def cmd_velocity(a):
 
 
 # ---- viscosity (fig 5.5c) --------------------------------------------------------------------
+
+
+AUTO_DEGREE = 8
 
 
 def even_fit(s, v, wt, degree, w):
@@ -689,12 +718,18 @@ def cmd_viscosity(a):
     s = y_all
     ok = (wt > 0) & np.isfinite(v)
     eta = np.full_like(s, np.nan)
+    degrees = []
     for side in (s > 0, s < 0):
         m = ok & side
-        if np.count_nonzero(m) < a.degree // 2 + 2:
+        top = a.degree or AUTO_DEGREE
+        if np.count_nonzero(m) < top // 2 + 2:
             raise NarrowsDataError(run.path, "colloid_velocity_profile: too few bins with "
-                                   f"colloids on one half for a degree-{a.degree} fit")
-        _, slope = even_fit(np.abs(s[m]), v[m], wt[m], a.degree, ch.w)
+                                   f"colloids on one half for a degree-{top} fit")
+        for deg in ([a.degree] if a.degree else range(AUTO_DEGREE, 0, -2)):
+            _, slope = even_fit(np.abs(s[m]), v[m], wt[m], deg, ch.w)
+            if np.all(slope(np.abs(s[m])) <= 0):  # v falls from the centre to the wall
+                break
+        degrees.append(deg)
         sd = np.abs(s[side])
         gd = slope(sd) * np.sign(s[side])  # dv/dy on this half
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -730,7 +765,8 @@ def cmd_viscosity(a):
     region = ok & (np.abs(s) > ch.w / 4) & (np.abs(s) < ch.w - 2 * a_l)
     out = {"run": a.run_dir, "windows": [int(steps[win[0]]), int(steps[win[-1]])],
            "phi": ch.phi, "max_packing": phim, "eta0": eta0, "eta0_from": how_eta0,
-           "force": a.force, "acts_on": ch.acts_on, "degree": a.degree,
+           "force": a.force, "acts_on": ch.acts_on, "degree": degrees,
+           "eta_positive": bool(np.all(eta[np.isfinite(eta)] >= 0)),
            "region": [ch.w / 4, ch.w - 2 * a_l], "region_bins": int(np.count_nonzero(region)),
            "eta_centre_over_eta0": None, "compare": {}}
     eta_rel = eta / eta0
@@ -762,15 +798,19 @@ def cmd_viscosity(a):
     ax.legend(fontsize=7)
     save(fig, a, a.run_dir, "viscosity")
     if a.json:
-        print(json.dumps(out, indent=1))
+        print(json.dumps(finite(out), indent=1))
         return 0
     out.pop("profile")
     print(f"{a.run_dir}: steady windows ending at steps {out['windows'][0]}..{out['windows'][1]},"
           f" phi = {ch.phi:.4g}, phi_M = {phim:g}")
     force = ("rho g (eq 5.33 as printed)" if a.force == "uniform"
              else f"local, acts_on = {ch.acts_on}")
-    print(f"  force per volume: {force}; gdot from an even polynomial of degree {a.degree} "
-          "per half")
+    print(f"  force per volume: {force}; gdot from an even polynomial per half of degree "
+          f"{degrees[0]} (y > 0), {degrees[1]} (y < 0)"
+          + ("" if a.degree else " (auto: the highest <= 8 with v falling toward the walls)"))
+    if not out["eta_positive"]:
+        print("  warning: eta < 0 somewhere: the fitted v_x rises toward a wall even at degree "
+              "2 (too noisy, or not a pressure-driven steady state)")
     print(f"  eta_0 = {eta0:.5g} ({how_eta0})")
     if out["eta_centre_over_eta0"] is not None:
         print(f"  eta / eta_0 next to the centre: {out['eta_centre_over_eta0']:.4g}")
@@ -827,7 +867,7 @@ def cmd_fig54(a):
     out = {"dimensions": dims, "max_packing": phim, "nu_f": nu_f, "nu_f_from": how_f,
            "runs": rows}
     if a.json:
-        print(json.dumps(out, indent=1))
+        print(json.dumps(finite(out), indent=1))
         return 0
     print(f"{dims}D, pure fluid nu = {nu_f:.5g} ({how_f}), phi_M = {phim:g}")
     print(f"{'phi':>7} {'nu_eff':>9} {'eta/eta_f':>9} {'eq 5.29':>8} {'ratio':>6}  run (source, "
@@ -872,7 +912,8 @@ def parser():
     h.add_argument("--uniform-steps", type=int, nargs=2, metavar=("FROM", "TO"),
                    help="the fluid samples of the uniform suspension for the measured eta_0 "
                    "(default: those of the first window)")
-    h.add_argument("--degree", type=int, default=8, help="even polynomial degree (>= 2)")
+    h.add_argument("--degree", type=int, help="even polynomial degree (>= 2; default: auto, "
+                   f"the highest <= {8} whose v_x falls toward the walls)")
     h.add_argument("--force", choices=("local", "uniform"), default="local")
     h.add_argument("--diffusivity", type=float, nargs="+")
     h.add_argument("--k-d", type=float)
@@ -894,7 +935,7 @@ def parser():
 def main(argv):
     a = parser().parse_args(argv)
     try:
-        if getattr(a, "degree", 2) < 2 or getattr(a, "degree", 2) % 2:
+        if getattr(a, "degree", None) is not None and (a.degree < 2 or a.degree % 2):
             raise InputError(f"--degree {a.degree}: allowed: an even number >= 2")
         for key in ("nu", "max_packing"):
             val = getattr(a, key, None)
