@@ -34,7 +34,10 @@ curve_fit with every point's error the noise of the late windows (the residual s
 the least-squares line through the last K = max(4, ceil(windows / 4)) windows; errors scaled
 by sqrt(chi^2/dof) when that exceeds 1); d_sat = 3 d_tau (Delta at 95 % of Delta_inf) +- 3
 sigma(d_tau), in units of w. Steady (the criterion of the layout): the slope of that line is
-within 2 of its standard errors of 0.
+within 2 of its standard errors of 0. Delta has a floor from sampling noise (c(y, 0) and c(y, t)
+are averages over finite windows): printed as the mean of int (c_i - c_(i+1))^2 / int c_0^2 over
+consecutive late windows, which is what noise alone adds to Delta in a steady state; Delta_inf
+well above it is segregation.
 Scaling to the thesis' channel. Shear-induced migration moves a colloid across the channel with
 the current J ~ K_c a^2 gdot phi (eq 5.14; Kanehl (thesis) sec 5.3.1: "J ~ a^2"), so it takes
 t ~ w^2 / (a^2 gdot) to cross w; with gdot ~ v_c / w the colloids at the centre travel
@@ -46,7 +49,7 @@ in 3D (sec 5.4.1) d_L ~ 100 w, d_S ~ 500 w, ratio 5, "roughly" (there the Peclet
 hence the share of diffusion, differ more between the kinds, PeL ~ 16, PeS ~ 1). The argument
 is one of the shear-driven part of the current alone: diffusion (D_0, the Peclet number) sets
 the steady Delta_inf and shifts d_sat when Pe is not large, so compare runs at the thesis' Pe.
-(a/w)_run comes from --radius-over-w or the scene (a run of one kind); (a/w)_thesis from
+(a/w)_run comes from --radius-over-w or the scene (a run whose kinds have one radius); (a/w)_thesis from
 --thesis-radius-over-w or, by default, the run's radius over the thesis' w = 40 b (Table 5.1:
 a_S = 2 b -> 0.05, a_L = 4 b -> 0.1, the same radius in cells as the thesis).
 
@@ -379,6 +382,27 @@ def saturation_fit(d, delta):
     return out
 
 
+def noise_floor(run, ch):
+    """The part of Delta that sampling noise alone gives: the mean over consecutive pairs of the
+    last K windows of int (c_i - c_(i+1))^2 dy / int c_0^2 dy, c = sum_k N_k F_k of density_kde
+    (in a steady state E[(c_i - c_0)^2] = bias^2 + 2 var = bias^2 + E[(c_i - c_(i+1))^2])."""
+    if not run.has("density_kde"):
+        return None
+    dens = density(run)
+    F = dens["value"]
+    if F.shape[0] < 3:
+        return None
+    counts = np.array([k["count"] for k in ch.kinds], float)
+    if F.shape[1] != len(counts):
+        raise NarrowsDataError(run.path, f"density_kde has {F.shape[1]} kinds, the scene "
+                               f"{len(counts)}", "the run's own observables")
+    c = np.einsum("k,wkb->wb", counts, F)
+    k = min(F.shape[0] - 1, steady_window_count(F.shape[0]))
+    late = c[-k - 1:]
+    den = float(np.sum(c[0] ** 2))
+    return float(np.mean(np.sum(np.diff(late, axis=0) ** 2, axis=1)) / den) if den > 0 else None
+
+
 def centre_speed(run, ch):
     """(v_c, how): colloid_velocity_profile at y = w merged over kinds and windows, else the
     largest mean x velocity of the fluid's velocity_profile."""
@@ -416,6 +440,7 @@ def cmd_evolution(a):
         r = {"run": path, "v_c": vc, "v_c_from": how, "w": ch.w, "dimensions": ch.dims,
              "phi": ch.phi, "radii": [k["radius"] for k in ch.kinds]}
         r.update(saturation_fit(d, delta))
+        r["noise_floor"] = noise_floor(run, ch)
         by = ev.get("by_kind")
         r["by_kind"] = []
         if by is not None:
@@ -426,10 +451,11 @@ def cmd_evolution(a):
                                      ("delta_inf", "delta_inf_error", "d_sat", "d_sat_error",
                                       "steady")})
         a_w = pick(a.radius_over_w, i)
-        if a_w is None and len(ch.kinds) == 1:
+        one_radius = len({k["radius"] for k in ch.kinds}) == 1
+        if a_w is None and one_radius:
             a_w = ch.kinds[0]["radius"] / ch.w
         a_th = pick(a.thesis_radius_over_w, i)
-        if a_th is None and len(ch.kinds) == 1:
+        if a_th is None and one_radius:
             a_th = ch.kinds[0]["radius"] / THESIS_W
         if a_w and a_th and "d_sat" in r:
             f = (a_w / a_th) ** 2
@@ -476,6 +502,9 @@ def cmd_evolution(a):
             print(f"  no saturation fit: {r.get('fit_error')}")
         if r.get("note"):
             print(f"  note: {r['note']}")
+        if r.get("noise_floor") is not None:
+            print(f"  Delta from sampling noise alone (consecutive late windows of density_kde): "
+                  f"{r['noise_floor']:.3g}")
         print(f"  steady: {'yes' if r['steady'] else 'no'} (slope of Delta over the last "
               f"{r['late_windows']} windows {r['late_slope']:.3g} +- "
               f"{r['late_slope_error']:.2g} per w)")

@@ -12,7 +12,11 @@ a) evolution: Delta(d) = D_inf (1 - exp(-d / d_tau)) + Gaussian noise (sd 0.005,
    d_tau within 3 of its standard errors of the truth (a pull; measured 19.92 +- 0.22) and the
    error below 10 % (the fit is informative); d_sat = 3 d_tau; steady yes. A run of d_tau = 500 w seen to 160 w: steady
    no, with the note that d_sat lies beyond the run; d_tau = 0.5 w with windows 2 w apart: the
-   note that it saturated before the second window (d_sat unresolved). The scaling to the thesis: a/w = 0.1 run, default thesis a/w = radius / 40 = 0.025:
+   note that it saturated before the second window (d_sat unresolved). The noise floor of Delta
+   (consecutive late windows of density_kde): 0 for noiseless windows; with independent noise
+   of sd 0.005 on each kind's F = 0.05 per bin (two kinds of 20), c = 20 (F_0 + F_1), the floor
+   2 * 2 * 20^2 sd^2 / 2^2 = 0.01 within 15 % (20 pairs of 80 bins: a relative sd of the
+   estimate of ~4 %). The scaling to the thesis: a/w = 0.1 run, default thesis a/w = radius / 40 = 0.025:
    factor 16. Without colloid_velocity_profile v_c comes from the fluid velocity_profile
    maximum, and the output says so.
 b) viscosity, uniform suspension: v_x = f (w^2 - y^2) / (2 eta) with f = rho g (1 - phi)
@@ -101,7 +105,7 @@ def rel(a, b):
 # ---- a) evolution ----------------------------------------------------------------------------
 
 
-def evolution_run(path, d_tau, d_tau_kind1, with_velocity=True, seed=1):
+def evolution_run(path, d_tau, d_tau_kind1, with_velocity=True, seed=1, kde_noise=0.0):
     w, vc, n_win, bins = 10.0, 0.05, 80, 80
     rng = np.random.default_rng(seed)
     d_over_w = np.linspace(0, 160, n_win)
@@ -115,7 +119,7 @@ def evolution_run(path, d_tau, d_tau_kind1, with_velocity=True, seed=1):
     by[0] = 0.0
     y = (np.arange(bins) + 0.5) * 2 * w / bins
     series = {"evolution": {"step": step, "time": time, "value": value, "by_kind": by}}
-    kde = np.full((n_win, 2, bins), 1 / (2 * w))
+    kde = np.full((n_win, 2, bins), 1 / (2 * w)) + kde_noise * rng.normal(size=(n_win, 2, bins))
     series["density_kde"] = {"step": step, "time": time, "value": kde, "bins": y,
                              "samples": np.full(n_win, 10), "width": np.array([0.25]),
                              "counts": np.array([20, 20])}
@@ -127,11 +131,7 @@ def evolution_run(path, d_tau, d_tau_kind1, with_velocity=True, seed=1):
         series["velocity_profile"] = {"step": step, "time": time, "bins": y,
                                       "value": np.stack([np.stack([vc * (1 - ((y - w) / w) ** 2),
                                                                    0 * y], axis=1)] * n_win)}
-    write(path, scene(w, 40, [(1.0, 20), (1.0, 20)]), series)
-    # one kind for the a/w scaling: rewrite the scene with a single kind of radius 1
-    text = scene(w, 40, [(1.0, 40)])
-    series["density_kde"]["counts"] = np.array([40])
-    write(path, text, series)
+    write(path, scene(w, 40, [(1.0, 20), (1.0, 20)]), series)  # two kinds of one radius
 
 
 def test_evolution(tmp):
@@ -168,6 +168,15 @@ def test_evolution(tmp):
           res is not None and res["runs"][0]["steady"] is False
           and res["runs"][0]["resolved"] is False and "beyond" in res["runs"][0].get("note", ""),
           err if res is None else res["runs"][0])
+    check("a) no noise in density_kde: noise floor 0", r["noise_floor"] == 0.0, r["noise_floor"])
+    q = os.path.join(tmp, "evo_noisy")
+    evolution_run(q, 20.0, 40.0, seed=5, kde_noise=0.005)
+    res, err = tool("evolution", q)
+    floor = None if res is None else res["runs"][0]["noise_floor"]
+    # c = 20 (F_0 + F_1): mean 2, consecutive differences of variance 2 * 2 * 20^2 * sd^2 per bin
+    want = 2 * 2 * 20 ** 2 * 0.005 ** 2 / 2.0 ** 2
+    check(f"a) density_kde noise sd 0.005 per kind and bin: noise floor {want:g} within 15 %",
+          floor is not None and rel(floor, want) < 0.15, err if res is None else floor)
     q = os.path.join(tmp, "evo_fast")
     evolution_run(q, 0.5, 0.5, seed=4)
     res, err = tool("evolution", q)
