@@ -168,7 +168,8 @@ class Channel:
             if "kind" in col:
                 raw = [(float(k["radius"]), k.get("count"), k.get("mass")) for k in col["kind"]]
             else:
-                raw = [(float(col["radius"]), col.get("count"), col.get("mass"))]
+                n = col.get("count", len(col.get("positions", [])) or None)
+                raw = [(float(col["radius"]), n, col.get("mass"))]
             if counts is not None and len(counts) == len(raw):
                 raw = [(a, int(n), m) for (a, _, m), n in zip(raw, counts)]
             elif col.get("placement") == "packing":
@@ -182,6 +183,10 @@ class Channel:
                                                      for a, n, _ in raw)
                     raw = [(a, round(n * factor), m) for a, n, m in raw]
             for a, n, m in raw:
+                if n is None:
+                    raise NarrowsDataError(self.path, "the number of colloids is neither in "
+                                           "the scene nor in density_kde/counts",
+                                           'a run with "density_kde" (placement = "file")')
                 v = body_volume(a, self.dims)
                 mass = float(m) if m is not None else self.rho * v
                 self.kinds.append({"radius": a, "count": int(n), "volume": v,
@@ -729,6 +734,9 @@ def cmd_viscosity(a):
     run, ch = open_channel(a.run_dir)
     if not ch.kinds:
         raise NarrowsDataError(run.newest, "the scene has no colloids", "a suspension run")
+    if ch.g == 0:
+        raise NarrowsDataError(run.newest, "body_force.value[0] = 0 (or not constant): no "
+                               "drive f for eq 5.33", "a pressure-driven channel run")
     phim = a.max_packing or max_packing(ch.dims)
     y_all, per_kind, (v, wt), win, steps = steady_velocity(run, ch, a.from_step)
     dens = density(run)
