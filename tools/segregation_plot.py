@@ -454,7 +454,7 @@ def cmd_evolution(a):
                 fk = saturation_fit(d, by[:, k])
                 r["by_kind"].append({key: fk.get(key) for key in
                                      ("delta_inf", "delta_inf_error", "d_sat", "d_sat_error",
-                                      "steady")})
+                                      "steady", "resolved", "note")})
         a_w = pick(a.radius_over_w, i)
         one_radius = len({k["radius"] for k in ch.kinds}) == 1
         if a_w is None and one_radius:
@@ -482,7 +482,9 @@ def cmd_evolution(a):
             x = np.linspace(0, r["_d"][-1], 200)
             ax.plot(x, r["delta_inf"] * (1 - np.exp(-x / r["d_tau"])), "-", color=c)
             ax.axvline(r["d_sat"], color=c, ls=":")
-    ax.set_xlabel("d / w  (d = v_c t)")
+        if r.get("noise_floor") is not None:
+            ax.axhline(r["noise_floor"], color=c, ls="-.", lw=0.6)
+    ax.set_xlabel("d / w  (d = v_c t; dotted: d_sat, dash-dotted: noise floor)")
     ax.set_ylabel("Delta (eq 5.31)")
     ax.legend(fontsize=7)
     save(fig, a, results[0]["run"], "evolution")
