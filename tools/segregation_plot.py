@@ -12,7 +12,7 @@ JSON object instead):
   velocity  RUN_DIR [--from-step S] [--uniform RUN_DIR]
   viscosity RUN_DIR [--continuum STEADY.h5|auto] [--nu NU | --fluid-run RUN_DIR]
             [--diffusivity D_1 [D_2]] [--k-d K] [--k-eta K] [--shear poiseuille|viscous]
-            [--degree 8] [--force local|uniform] [--from-step S] [--uniform-steps FROM TO]
+            [--degree D] [--force local|uniform] [--from-step S] [--uniform-steps FROM TO]
   fig54     RUN_DIR [RUN_DIR...] [--nu NU] [--from-step S] [--to-step S]
 
 What the run must hold (the particle-side layout of issue 32): /observables/density_kde with
@@ -49,9 +49,10 @@ in 3D (sec 5.4.1) d_L ~ 100 w, d_S ~ 500 w, ratio 5, "roughly" (there the Peclet
 hence the share of diffusion, differ more between the kinds, PeL ~ 16, PeS ~ 1). The argument
 is one of the shear-driven part of the current alone: diffusion (D_0, the Peclet number) sets
 the steady Delta_inf and shifts d_sat when Pe is not large, so compare runs at the thesis' Pe.
-(a/w)_run comes from --radius-over-w or the scene (a run whose kinds have one radius); (a/w)_thesis from
---thesis-radius-over-w or, by default, the run's radius over the thesis' w = 40 b (Table 5.1:
-a_S = 2 b -> 0.05, a_L = 4 b -> 0.1, the same radius in cells as the thesis).
+(a/w)_run comes from --radius-over-w or the scene (a run whose kinds have one radius);
+(a/w)_thesis from --thesis-radius-over-w or, by default, the run's radius over the thesis'
+w = 40 b (Table 5.1: a_S = 2 b -> 0.05, a_L = 4 b -> 0.1, the same radius in cells as the
+thesis).
 
 velocity (figs 5.5b, 5.10b). Per kind v_x(y) of colloid_velocity_profile, the windows from
 --from-step on (default: the last K windows, those of the steady criterion) merged with their
