@@ -63,36 +63,37 @@ The first window stands for the uniform suspension: start the statistics
 against the migration (d_sat / v_c).
 
 viscosity (fig 5.5c). eta(y) = -F(y) / gdot(y) (eq 5.33, integrated from the centre: F(y) =
-int_0^y f dy', f the force per volume), gdot = dv_x/dy of the steady colloid velocity (kinds
-and windows merged with their weights). Smoothing: on each half of the channel separately a
+int_0^y f dy', f the force per volume), gdot = dv_x/dy of the steady colloid velocity (kinds and
+windows merged with their weights). Smoothing: on each half of the channel separately a
 least-squares even polynomial v = sum_j c_j y^(2j), j = 0..degree/2, weighted with the kernel
 weight sums (the number of samples behind each bin), differentiated exactly; the degree is
 --degree, or by default the highest of 8, 6, 4, 2 whose fit falls monotonically from the centre
 to the wall on that half (the shear stress -F(y) has one sign on each half, so gdot must too: a
-fit whose gdot changes sign follows noise or layering, and gives eta < 0 or poles). Why: eq 5.33 divides by gdot, which vanishes at the centre; an even polynomial has
-gdot(0) = 0 and gdot odd, so eta = F / gdot is a ratio of two odd functions and stays finite at
-the centre, where a finite difference of noisy data would make eta swing wildly; a fit per half
-leaves each half its own profile (a one-sided plug). The force f: with body_force.acts_on =
-"fluid" (the default) it acts on the fluid particles only, which fill the fraction 1 - phi(y)
-of the slab at y, so f(y) = rho g (1 - phi(y)); with "fluid+colloids" each colloid adds M g, so
-f = rho g (1 - phi) + g sum_k (M_k / V_k) phi_k = rho g for density-matched colloids
-(--force local, the default: the momentum balance of the run); --force uniform takes f = rho g,
-eq 5.33 as printed. phi(y) = sum_k N_k F_k(y) V_k / (L_x [L_z]) is the local fraction of colloid
-centres (density_kde, the same windows), as the continuum model's phi_i. eta_0 = eta_f (1 -
-phi/phi_M)^-2 at the mean phi (eq 5.29; the thesis' eta_0 of fig 5.5c), eta_f = rho nu: nu from
---nu, or from --fluid-run (a run without colloids: its viscosity observable or velocity_profile
-fit, see fig54); without either, eta_0 is the measured viscosity of this suspension while still
-uniform (eq 4.49 on the fluid velocity_profile samples of the first window, or
---uniform-steps FROM TO; the output says which). Against
-eq 5.29 with phi(y) of (a) the continuum engine's steady profiles (--continuum FILE: an
-observables file with steady_density; auto: run narrows on a [continuum] model = "segregation"
-scene from the run's kinds, as tools/segregation_fit.py builds it, with centre_speed the v0 of
-the uniform parabola above and D_0 from --diffusivity, or in 3D Stokes-Einstein kT / (6 pi rho
-nu a) as the thesis says it did (sec 5.2.4; in 2D there is no such relation, the Stokes
-paradox, so --diffusivity is required); --k-d, --k-eta, --shear pass on) and (b) phi(y) of the particles.
-Printed: the largest relative difference |eta_5.33 / eta_5.29 - 1| over w/4 < |y| < w - 2 a_L
-(a_L the largest radius; away from the centre, where both gdot and F vanish, and from the
-walls), for each eq 5.29 curve (Kanehl (thesis) fig 5.5c; acceptance 3 of issue 32).
+fit whose gdot changes sign follows noise or layering, and gives eta < 0 or poles). Why: eq 5.33
+divides by gdot, which vanishes at the centre; an even polynomial has gdot(0) = 0 and gdot odd,
+so eta = F / gdot is a ratio of two odd functions and stays finite at the centre, where a finite
+difference of noisy data would make eta swing wildly; a fit per half leaves each half its own
+profile (a one-sided plug). The force f: with body_force.acts_on = "fluid" (the default) it acts
+on the fluid particles only, which fill the fraction 1 - phi(y) of the slab at y, so f(y) = rho
+g (1 - phi(y)); with "fluid+colloids" each colloid adds M g, so f = rho g (1 - phi) + g sum_k
+(M_k / V_k) phi_k = rho g for density-matched colloids (--force local, the default: the momentum
+balance of the run); --force uniform takes f = rho g, eq 5.33 as printed. phi(y) = sum_k N_k
+F_k(y) V_k / (L_x [L_z]) is the local fraction of colloid centres (density_kde, the same
+windows), as the continuum model's phi_i. eta_0 = eta_f (1 - phi/phi_M)^-2 at the mean phi (eq
+5.29; the thesis' eta_0 of fig 5.5c), eta_f = rho nu: nu from --nu, or from --fluid-run (a run
+without colloids: its viscosity observable or velocity_profile fit, see fig54); without either,
+eta_0 is the measured viscosity of this suspension while still uniform (eq 4.49 on the fluid
+velocity_profile samples of the first window, or --uniform-steps FROM TO; the output says
+which). Against eq 5.29 with phi(y) of (a) the continuum engine's steady profiles (--continuum
+FILE: an observables file with steady_density; auto: run narrows on a [continuum] model =
+"segregation" scene from the run's kinds, as tools/segregation_fit.py builds it, with
+centre_speed the v0 of the uniform parabola above and D_0 from --diffusivity, or in 3D
+Stokes-Einstein kT / (6 pi rho nu a) as the thesis says it did (sec 5.2.4; in 2D there is no
+such relation, the Stokes paradox, so --diffusivity is required); --k-d, --k-eta, --shear pass
+on) and (b) phi(y) of the particles. Printed: the largest relative difference |eta_5.33 /
+eta_5.29 - 1| over w/4 < |y| < w - 2 a_L (a_L the largest radius; away from the centre, where
+both gdot and F vanish, and from the walls), for each eq 5.29 curve (Kanehl (thesis) fig 5.5c;
+acceptance 3 of issue 32).
 
 fig54 (fig 5.4). For each run the mean fraction phi (the kinds' volumes over the box) and the
 effective viscosity of eq 4.49, nu_eff = g_eff w^2 / (2 v0): v0 from a least-squares parabola

@@ -7,18 +7,18 @@ Usage: /usr/bin/python3 tools/test_segregation_plot.py [NARROWS_BINARY]   (the b
 f); a) to e) give the continuum curve of `viscosity` as a steady_density file written here)
 
 a) evolution: Delta(d) = D_inf (1 - exp(-d / d_tau)) + Gaussian noise (sd 0.005, fixed seed) in
-   80 windows over d = 0..160 w, d_tau = 20 w (kind 0) and 40 w (kind 1; the total: 20 w), v_c
-   = 0.05 in colloid_velocity_profile (a plug, so the centre value is exact). The fit must give
+   80 windows over d = 0..160 w, d_tau = 20 w (kind 0) and 40 w (kind 1; the total: 20 w), v_c =
+   0.05 in colloid_velocity_profile (a plug, so the centre value is exact). The fit must give
    d_tau within 3 of its standard errors of the truth (a pull; measured 19.92 +- 0.22) and the
-   error below 10 % (the fit is informative); d_sat = 3 d_tau; steady yes. A run of d_tau = 500 w seen to 160 w: steady
-   no, with the note that d_sat lies beyond the run; d_tau = 0.5 w with windows 2 w apart: the
-   note that it saturated before the second window (d_sat unresolved). The noise floor of Delta
-   (consecutive late windows of density_kde): 0 for noiseless windows; with independent noise
-   of sd 0.005 on each kind's F = 0.05 per bin (two kinds of 20), c = 20 (F_0 + F_1), the floor
-   2 * 2 * 20^2 sd^2 / 2^2 = 0.01 within 15 % (20 pairs of 80 bins: a relative sd of the
-   estimate of ~4 %). The scaling to the thesis: a/w = 0.1 run, default thesis a/w = radius / 40 = 0.025:
-   factor 16. Without colloid_velocity_profile v_c comes from the fluid velocity_profile
-   maximum, and the output says so.
+   error below 10 % (the fit is informative); d_sat = 3 d_tau; steady yes. A run of d_tau = 500
+   w seen to 160 w: steady no, with the note that d_sat lies beyond the run; d_tau = 0.5 w with
+   windows 2 w apart: the note that it saturated before the second window (d_sat unresolved).
+   The noise floor of Delta (consecutive late windows of density_kde): 0 for noiseless windows;
+   with independent noise of sd 0.005 on each kind's F = 0.05 per bin (two kinds of 20), c = 20
+   (F_0 + F_1), the floor 2 * 2 * 20^2 sd^2 / 2^2 = 0.01 within 15 % (20 pairs of 80 bins: a
+   relative sd of the estimate of ~4 %). The scaling to the thesis: a/w = 0.1 run, default
+   thesis a/w = radius / 40 = 0.025: factor 16. Without colloid_velocity_profile v_c comes from
+   the fluid velocity_profile maximum, and the output says so.
 b) viscosity, uniform suspension: v_x = f (w^2 - y^2) / (2 eta) with f = rho g (1 - phi)
    (acts_on = "fluid", phi = 0.314), eta = eta_0 = rho nu (1 - phi/phi_M)^-2 (nu given):
    eta(y) / eta_0 = 1 to 1e-6 over the compared region (the parabola is in the polynomial
