@@ -384,6 +384,7 @@ def saturation_fit(d, delta):
                 "resolved": bool(d[1] < 3.0 * p[1] < d[-1])})
     if 3.0 * p[1] <= d[1]:
         out["note"] = "saturated before the second window: d_sat unresolved (shorter kde_window)"
+        out["d_tau_error"] = out["d_sat_error"] = math.inf  # only d_sat < d[1] is known
     elif 3.0 * p[1] >= d[-1]:
         out["note"] = "d_sat beyond the end of the run (an extrapolation)"
     return out
