@@ -87,10 +87,11 @@ velocity_profile samples of the first window, or --uniform-steps FROM TO; the ou
 which). Against eq 5.29 with phi(y) of (a) the continuum engine's steady profiles (--continuum
 FILE: an observables file with steady_density; auto: run narrows on a [continuum] model =
 "segregation" scene from the run's kinds, as tools/segregation_fit.py builds it, with
-centre_speed the v0 of the uniform parabola above and D_0 from --diffusivity, or in 3D
-Stokes-Einstein kT / (6 pi rho nu a) as the thesis says it did (sec 5.2.4; in 2D there is no
-such relation, the Stokes paradox, so --diffusivity is required); --k-d, --k-eta, --shear pass
-on) and (b) phi(y) of the particles. Printed: the largest relative difference |eta_5.33 /
+centre_speed the v0 of the uniform parabola above and D_0 from --diffusivity, or
+Stokes-Einstein kT / (6 pi rho nu a) with the pure fluid's nu (--nu, --fluid-run) as the thesis
+says it did (sec 5.2.4), in 2D too although the Stokes paradox leaves it no basis there: the
+model's default K_d (7.46 2D, 0.61 3D) belongs to that convention (docs/segregation.md, "D_0:
+which convention"); --k-d, --k-eta, --shear pass on) and (b) phi(y) of the particles. Printed: the largest relative difference |eta_5.33 /
 eta_5.29 - 1| over w/4 < |y| < w - 2 a_L (a_L the largest radius; away from the centre, where
 both gdot and F vanish, and from the walls), for each eq 5.29 curve (Kanehl (thesis) fig 5.5c;
 acceptance 3 of issue 32).
@@ -693,13 +694,9 @@ def continuum_steady(a, ch, v0, nu_f, work):
                              f"{len(ch.kinds)} kinds; allowed: one D_0 > 0 per kind")
         D = list(a.diffusivity)
         how_d = "--diffusivity"
-    elif nu_f is not None and ch.dims == 3:
+    elif nu_f is not None:
         D = [ch.kT / (6 * math.pi * ch.rho * nu_f * k["radius"]) for k in ch.kinds]
         how_d = "Stokes-Einstein kT / (6 pi rho nu a)"
-    elif ch.dims == 2:
-        raise InputError("--continuum auto in 2D needs D_0 of each kind: --diffusivity D_1 [D_2] "
-                         "(no Stokes-Einstein relation in 2D, the Stokes paradox; Kanehl "
-                         "(thesis) Table 5.1 measured 0.00137 for a = 2, 0.000973 for a = 4)")
     else:
         raise InputError("--continuum auto needs D_0: --diffusivity D_1 [D_2], or --nu / "
                          "--fluid-run for Stokes-Einstein")

@@ -48,8 +48,9 @@ f) with NARROWS_BINARY: viscosity --continuum auto on the plug run of c) (2D, on
    phi(y) recovered from its eq 5.29 curve (inverting eq 5.29) has the run's mean fraction
    (within 1e-4: the run's bins cover [-w, w] and the curve is interpolated from the 400
    continuum cells; measured 2.5e-7)
-   and is enriched at the centre (phi(0) > mean: shear-induced migration); without
-   --diffusivity in 2D: exit 2, one line naming --diffusivity.
+   and is enriched at the centre (phi(0) > mean: shear-induced migration); without --diffusivity
+   D_0 is Stokes-Einstein's with --nu (the convention of the model's default K_d); without
+   either: exit 2, one line naming --diffusivity.
 Prints FAIL lines and "N passed, M failed"; exit 1 on any failure.
 """
 
@@ -398,6 +399,7 @@ def test_fig54(tmp):
 
 
 def test_auto(tmp, narrows):
+    os.environ["NARROWS"] = narrows  # the binary under test, for every call below
     p = os.path.join(tmp, "plug")
     done = subprocess.run([sys.executable, TOOL, "viscosity", p, "--nu", "0.5", "--continuum",
                            "auto", "--diffusivity", "0.00137", "--json"], capture_output=True,
@@ -414,10 +416,13 @@ def test_auto(tmp, narrows):
           rel(phi.mean(), phibar) < 1e-4, (phi.mean(), phibar))
     check("f) the continuum phi(y) is enriched at the centre",
           np.interp(0.0, y, phi) > phibar, np.interp(0.0, y, phi))
-    done = subprocess.run([sys.executable, TOOL, "viscosity", p, "--nu", "0.5", "--continuum",
-                           "auto"], capture_output=True, text=True,
+    res, err = tool("viscosity", p, "--nu", "0.5", "--continuum", "auto")
+    check("f) without --diffusivity: D_0 of Stokes-Einstein with --nu",
+          res is not None and "Stokes-Einstein" in res["compare"]["continuum"]["from"], err)
+    done = subprocess.run([sys.executable, TOOL, "viscosity", os.path.join(tmp, "parabola_exact"),
+                           "--continuum", "auto"], capture_output=True, text=True,
                           env=dict(os.environ, NARROWS=narrows))
-    check("f) 2D auto without --diffusivity: exit 2, one line naming --diffusivity",
+    check("f) auto without --diffusivity and without nu: exit 2, one line naming --diffusivity",
           done.returncode == 2 and "--diffusivity" in done.stderr
           and len(done.stderr.splitlines()) == 1, done.stderr)
 
