@@ -87,14 +87,14 @@ velocity_profile samples of the first window, or --uniform-steps FROM TO; the ou
 which). Against eq 5.29 with phi(y) of (a) the continuum engine's steady profiles (--continuum
 FILE: an observables file with steady_density; auto: run narrows on a [continuum] model =
 "segregation" scene from the run's kinds, as tools/segregation_fit.py builds it, with
-centre_speed the v0 of the uniform parabola above and D_0 from --diffusivity, or
-Stokes-Einstein kT / (6 pi rho nu a) with the pure fluid's nu (--nu, --fluid-run) as the thesis
-says it did (sec 5.2.4), in 2D too although the Stokes paradox leaves it no basis there: the
-model's default K_d (7.46 2D, 0.61 3D) belongs to that convention (docs/segregation.md, "D_0:
-which convention"); --k-d, --k-eta, --shear pass on) and (b) phi(y) of the particles. Printed: the largest relative difference |eta_5.33 /
-eta_5.29 - 1| over w/4 < |y| < w - 2 a_L (a_L the largest radius; away from the centre, where
-both gdot and F vanish, and from the walls), for each eq 5.29 curve (Kanehl (thesis) fig 5.5c;
-acceptance 3 of issue 32).
+centre_speed the v0 of the uniform parabola above and D_0 from --diffusivity, or Stokes-Einstein
+kT / (6 pi rho nu a) with the pure fluid's nu (--nu, --fluid-run) as the thesis says it did (sec
+5.2.4), in 2D too although the Stokes paradox leaves it no basis there: the model's default K_d
+(7.46 2D, 0.61 3D) belongs to that convention (docs/segregation.md, "D_0: which convention");
+--k-d, --k-eta, --shear pass on) and (b) phi(y) of the particles. Printed: the largest relative
+difference |eta_5.33 / eta_5.29 - 1| over w/4 < |y| < w - 2 a_L (a_L the largest radius; away
+from the centre, where both gdot and F vanish, and from the walls), for each eq 5.29 curve
+(Kanehl (thesis) fig 5.5c; acceptance 3 of issue 32).
 
 fig54 (fig 5.4). For each run the mean fraction phi (the kinds' volumes over the box) and the
 effective viscosity of eq 4.49, nu_eff = g_eff w^2 / (2 v0): v0 from a least-squares parabola
