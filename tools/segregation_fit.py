@@ -192,6 +192,10 @@ def read_realisation(run_dir, from_step):
     value = np.asarray(g["value"], float)
     out = {"path": run.path, "dir": run_dir, "scene": scene, "y": np.asarray(g.bins, float),
            "width": g.number("width"), "seed": scene.get("run", {}).get("seed")}
+    # the colloids per kind as the run placed them (with placement = "packing" the scene's
+    # counts are only the number ratio)
+    out["counts"] = (np.asarray(g["counts"], float).ravel() if "counts" in g
+                     else np.array([float(k.get("count", 0)) for k in kinds]))
     if value.ndim not in (2, 3) or value.shape[-2] != len(kinds):
         raise NarrowsDataError(run.path, f"/observables/density_kde/value of shape "
                                f"{list(value.shape)}: {value.shape[-2] if value.ndim >= 2 else 0}"
@@ -483,6 +487,13 @@ def main(argv):
     p.add_argument("--range", type=float, nargs=2, default=[0.01, 1000.0],
                    metavar=("LO", "HI"), help="search interval of K_d")
     p.add_argument("--exclude", type=float, help="wall strip left out (default 2 max radius)")
+    p.add_argument("--no-mirror", dest="mirror", action="store_false",
+                   help="fit both halves as measured (default: each profile averaged with its "
+                   "mirror image about the centre, one half fitted)")
+    p.add_argument("--errors", choices=("scaled", "blocks"), default="scaled",
+                   help="scaled (default): with >= 3 realisations whose spread exceeds their "
+                   "block errors, the block errors scaled up by the pooled ratio; blocks: as "
+                   "measured")
     p.add_argument("--centre-width", type=float,
                    help="half width of the centre average of c_L(0)/c_S(0) (default the "
                         "largest radius; 0: the value at the centre)")
@@ -514,11 +525,10 @@ def main(argv):
         w = float(size[1]) / 2.0
         volume = float(np.prod(size))
         kinds = []
-        for k in scene["colloids"]["kind"]:
+        for k, n in zip(scene["colloids"]["kind"], ref["counts"]):
             r = float(k["radius"])
             body = math.pi * r * r if dims == 2 else 4.0 / 3.0 * math.pi * r ** 3
-            kinds.append({"radius": r, "count": int(k.get("count", 0)),
-                          "fraction": k.get("count", 0) * body / volume})
+            kinds.append({"radius": r, "count": int(n), "fraction": n * body / volume})
         nk = len(kinds)
         if any(c in conventions for c in ("table", "table/d")):
             if a.diffusivity is None:
@@ -562,24 +572,42 @@ def main(argv):
         y = ref["y"]
         exclude = a.exclude if a.exclude is not None else 2.0 * max(k["radius"] for k in kinds)
         stride = max(1, int(round(2.0 * ref["width"] / (y[1] - y[0])))) if len(y) > 1 else 1
-        keep = np.nonzero(np.abs(y - w) <= w - exclude)[0][::stride]
+        region = np.abs(y - w) <= w - exclude
+        if a.mirror:
+            # the channel is symmetric about its centre: each profile averaged with its mirror
+            # image (bins (j + 1/2) h, so bin j mirrors bin n - 1 - j), one half fitted
+            if not np.allclose(y[::-1], 2 * w - y, rtol=0, atol=1e-9 * w):
+                raise NarrowsDataError(ref["path"], "density_kde bins not symmetric about the "
+                                       "channel centre", "--no-mirror")
+            for r in runs:
+                r["c"] = 0.5 * (r["c"] + r["c"][:, ::-1])
+                r["error"] = 0.5 * np.sqrt(r["error"] ** 2 + r["error"][:, ::-1] ** 2)
+            region &= y >= w - 1e-9 * w
+        keep = np.nonzero(region)[0][::stride]
         if len(keep) < 3:
             raise InputError(f"--exclude {exclude:g}: fewer than 3 bins left in the channel")
-        for r in runs:
-            if np.any(~(r["error"][:, keep] > 0)):
-                raise NarrowsDataError(r["path"], "density_kde errors of 0 (or not finite) in "
-                                       "the fit region", "runs with samples in every block or "
-                                       "window")
         cs = np.stack([r["c"][:, keep] for r in runs])
         es = np.stack([r["error"][:, keep] for r in runs])
         R = len(runs)
         data = cs.mean(axis=0)  # realisations of one scene: equal weights
         err = np.sqrt(np.sum(es ** 2, axis=0)) / R
+        if np.any(~(err > 0)):
+            raise NarrowsDataError(ref["path"], "density_kde errors of 0 (or not finite) in "
+                                   "the fit region in every realisation", "runs with samples "
+                                   "in every block or window (or a larger --exclude)")
         scatter = None
         if R >= 2:
             err_scatter = cs.std(axis=0, ddof=1) / math.sqrt(R)
-            scatter = {"variance_ratio": float(np.mean(err_scatter ** 2 / err ** 2)),
-                       "bins": int(data.size)}
+            # pooled over the fit bins (sums, not a mean of ratios: a bin whose block errors
+            # are near 0 in most realisations would dominate a mean)
+            ratio2 = float(np.sum(err_scatter ** 2) / np.sum(err ** 2))
+            scatter = {"variance_ratio": ratio2, "bins": int(data.size), "scaled": False}
+            if a.errors == "scaled" and R >= 3 and ratio2 > 1:
+                # the block errors miss correlations longer than a block (a cluster of large
+                # colloids that stays off-centre for the whole run): scaled up by the pooled
+                # spread of the realisations, sum over (kinds x bins) of R - 1 dof each
+                err = err * math.sqrt(ratio2)
+                scatter["scaled"] = True
         dof = data.size - nk - 1
         chi2_flat = amplitude_chi2(data, err, np.ones_like(data))[0]
         setup = {"dims": dims, "w": w, "kinds": kinds, "v0": v0, "y_fit": y[keep] - w}
@@ -705,8 +733,10 @@ def main(argv):
               ("met" if ratio["issue_criterion_met"] else "not met"))
     if scatter is not None:
         print(f"realisation scatter: variance of the mean from the {R} realisations' spread / "
-              f"from their block errors = {scatter['variance_ratio']:.3g} (mean over the "
-              f"{scatter['bins']} fit bins; 1 when the block errors are right)")
+              f"from their block errors = {scatter['variance_ratio']:.3g} (pooled over the "
+              f"{scatter['bins']} fit bins; 1 when the block errors are right)" +
+              ("; the errors of the fit are the block errors scaled by its square root "
+               "(--errors scaled)" if scatter["scaled"] else ""))
     for r in runs:
         win = r["windows"]
         print(f"{r['dir']}: seed {r['seed']}, {r['layout']}" +

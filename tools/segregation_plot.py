@@ -10,7 +10,8 @@ JSON object instead):
 
   evolution RUN_DIR [RUN_DIR...] [--radius-over-w A_W ...] [--thesis-radius-over-w A_W ...]
   velocity  RUN_DIR [--from-step S] [--uniform RUN_DIR]
-  viscosity RUN_DIR [--continuum STEADY.h5|auto] [--nu NU | --fluid-run RUN_DIR]
+  viscosity RUN_DIR [--with RUN_DIR...] [--mirror] [--continuum STEADY.h5|auto]
+            [--nu NU | --fluid-run RUN_DIR]
             [--diffusivity D_1 [D_2]] [--k-d K] [--k-eta K] [--shear poiseuille|viscous]
             [--degree D] [--force local|uniform] [--from-step S] [--uniform-steps FROM TO]
   fig54     RUN_DIR [RUN_DIR...] [--nu NU] [--from-step S] [--to-step S]
@@ -102,9 +103,10 @@ v = a y (2w - y) + b through the fluid's velocity_profile averaged over the samp
 --from-step to --to-step (default: the second half of the run; the flow needs ~ w^2 / nu to
 develop and the suspension should not have migrated yet), nu_eff = g_eff / (2 a), g_eff = g
 (1 - phi) with acts_on = "fluid" (the force per volume over rho), g with "fluid+colloids"
-(density-matched); the run's viscosity observable (its mean over those samples, corrected the
-same way: it uses g) when it has no velocity_profile. Over the pure fluid's nu: a run among
-them without colloids (their mean), or --nu. Against eq 5.29 with phi_M = 0.82 (2D) or 0.64
+(density-matched), and beside it the same with g as applied (eq 4.49 as printed, which the
+thesis' fig 5.4 seems to use); the run's viscosity observable (its mean over those samples,
+corrected the same way: it uses g) when it has no velocity_profile. Over the pure fluid's nu:
+a run among them without colloids (their mean), or --nu. Against eq 5.29 with phi_M = 0.82 (2D) or 0.64
 (3D) (--max-packing). Prints the table.
 
 Bad input (missing observables, bad options): one line naming the file and what is missing,
@@ -746,6 +748,26 @@ def cmd_viscosity(a):
                         else a.from_step)
     phi_k = particle_phi(ch, dens, dwin)
     s_d = dens["bins"] - ch.w
+    # more realisations of the same scene (--with): velocities merged by their kernel weights,
+    # the fractions averaged with equal weights
+    for extra in a.with_runs or []:
+        xrun, xch = open_channel(extra)
+        xy, _, (xv, xwt), xwin, xsteps = steady_velocity(xrun, xch, a.from_step)
+        xdens = density(xrun)
+        if xy.shape != y_all.shape or xdens["bins"].shape != dens["bins"].shape or \
+                not np.isclose(xch.w, ch.w) or len(xch.kinds) != len(ch.kinds):
+            raise InputError(f"--with {extra}: another channel or other bins than {a.run_dir}")
+        v, wt = merge(np.stack([v, xv]), np.stack([wt, xwt]))
+        xdwin = pick_windows(xdens["step"], int(xsteps[xwin[0]]) if a.from_step is None
+                             else a.from_step)
+        phi_k = phi_k + particle_phi(xch, xdens, xdwin)
+    phi_k = phi_k / (1 + len(a.with_runs or []))
+    if a.mirror:
+        # the channel is symmetric about its centre: each profile merged with its mirror image
+        if not (np.allclose(y_all, -y_all[::-1]) and np.allclose(s_d, -s_d[::-1])):
+            raise InputError(f"{a.run_dir}: bins not symmetric about the centre; drop --mirror")
+        v, wt = merge(np.stack([v, v[::-1]]), np.stack([wt, wt[::-1]]))
+        phi_k = 0.5 * (phi_k + phi_k[:, ::-1])
     phi_part = phi_k.sum(axis=0)
 
     if a.force == "uniform":
@@ -834,6 +856,12 @@ def cmd_viscosity(a):
             ax.axvline(sg * x / ch.w, color="0.7", lw=0.6)
     ax.set_xlabel("y / w")
     ax.set_ylabel("eta / eta_0")
+    # log scale, clipped: eq 5.29 of the particles' layered phi(y) diverges where a layer
+    # exceeds phi_M, and would hide the rest
+    ax.set_yscale("log")
+    finite_eta = np.asarray(eta_rel, float)[np.isfinite(eta_rel) & (np.asarray(eta_rel) > 0)]
+    if finite_eta.size:
+        ax.set_ylim(max(1e-2, 0.3 * finite_eta.min()), 30 * finite_eta.max())
     ax.legend(fontsize=7)
     save(fig, a, a.run_dir, "viscosity")
     if a.json:
@@ -889,13 +917,20 @@ def cmd_fig54(a):
                          "or --nu")
     for r in rows:
         r["eta_over_eta_f"] = r["nu_eff"] / nu_f
+        # eq 4.49 with the force as applied (on the fluid particles only, g per particle): what
+        # the thesis' formula gives when read as printed
+        r["eta_over_eta_f_applied_g"] = r["eta_over_eta_f"] / r["g_eff_over_g"]
         r["eq_5_29"] = (1 - r["phi"] / phim) ** -2
         r["ratio"] = r["eta_over_eta_f"] / r["eq_5_29"]
+        r["ratio_applied_g"] = r["eta_over_eta_f_applied_g"] / r["eq_5_29"]
     rows.sort(key=lambda r: r["phi"])
     plt = narrows_h5.pyplot()
     fig, ax = plt.subplots(figsize=(5, 4))
     ax.plot([r["phi"] for r in rows], [r["eta_over_eta_f"] for r in rows], "o",
-            label="runs (eq 4.49)")
+            label="runs (eq 4.49, force per volume)")
+    if any(r["g_eff_over_g"] != 1 for r in rows):
+        ax.plot([r["phi"] for r in rows], [r["eta_over_eta_f_applied_g"] for r in rows], "s",
+                mfc="none", label="runs (eq 4.49, g as applied)")
     x = np.linspace(0, max([r["phi"] for r in rows] + [0.1]) * 1.1, 200)
     x = x[x < phim * 0.98]
     ax.plot(x, (1 - x / phim) ** -2, "-", label=f"eq 5.29, phi_M = {phim:g}")
@@ -909,12 +944,15 @@ def cmd_fig54(a):
         print(json.dumps(finite(out), indent=1))
         return 0
     print(f"{dims}D, pure fluid nu = {nu_f:.5g} ({how_f}), phi_M = {phim:g}")
-    print(f"{'phi':>7} {'nu_eff':>9} {'eta/eta_f':>9} {'eq 5.29':>8} {'ratio':>6}  run (source, "
-          "steps, g_eff/g)")
+    print(f"{'phi':>7} {'nu_eff':>9} {'eta/eta_f':>9} {'eq 5.29':>8} {'ratio':>6} "
+          f"{'g applied':>9} {'ratio':>6}  run (source, steps, g_eff/g)")
     for r in rows:
         print(f"{r['phi']:7.4f} {r['nu_eff']:9.5g} {r['eta_over_eta_f']:9.4g} "
-              f"{r['eq_5_29']:8.4g} {r['ratio']:6.3f}  {r['run']} ({r['from']}, "
+              f"{r['eq_5_29']:8.4g} {r['ratio']:6.3f} {r['eta_over_eta_f_applied_g']:9.4g} "
+              f"{r['ratio_applied_g']:6.3f}  {r['run']} ({r['from']}, "
               f"{r['steps'][0]}..{r['steps'][1]}, {r['g_eff_over_g']:.3g})")
+    print("  eta/eta_f: eq 4.49 with the mean force per volume over rho (g_eff); 'g applied': "
+          "with g itself, eq 4.49 as printed")
     return 0
 
 
@@ -945,6 +983,10 @@ def parser():
     h = sub.add_parser("viscosity", help="eta(y) of eq 5.33 against eq 5.29 (fig 5.5c)")
     h.add_argument("run_dir")
     h.add_argument("--from-step", type=int)
+    h.add_argument("--with", dest="with_runs", nargs="+", metavar="RUN_DIR",
+                   help="more realisations of the scene, merged with RUN_DIR")
+    h.add_argument("--mirror", action="store_true",
+                   help="merge v_x(y) and phi(y) with their mirror images about the centre")
     h.add_argument("--continuum", help="STEADY.h5 (steady_density) or auto")
     h.add_argument("--nu", type=float, help="nu of the pure fluid")
     h.add_argument("--fluid-run", help="a run without colloids for nu of the pure fluid")

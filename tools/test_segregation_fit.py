@@ -29,9 +29,12 @@ b) whole run (value and error [kinds][bins]): the same 4 realisations, --d0 tabl
    quite a parabola over +-1 sigma and the data are one noisy draw).
 c) one windowed realisation with --from-step S: the windows used are those ending after S;
    the error of c_L(0)/c_S(0) from the block errors.
+e) whole-run realisations whose block errors understate their noise by 2: the default
+   --errors scaled finds the variance ratio ~4 and scales the errors (chi2/dof ~1), --errors
+   blocks does not (chi2/dof ~4); the mirrored fit (default) has half the bins of --no-mirror.
 d) one-line errors, exit 2: a realisation of another scene (kind 1's count differs: the key is
    named), a realisation whose density_kde lacks a kind, stokes-einstein without viscosity.
-Prints FAIL lines and "N passed, M failed"; exit 1 on any failure. ~30 s.
+Prints FAIL lines and "N passed, M failed"; exit 1 on any failure. ~45 s.
 """
 
 import json
@@ -314,6 +317,44 @@ def main(argv):
             check("b: separate fits: interval ratio = d",
                   abs(td["lo"] / t["lo"] / 2 - 1) < 1e-3 and abs(td["hi"] / t["hi"] / 2 - 1) <
                   1e-3, f"{td['lo'] / t['lo']:.5f} {td['hi'] / t['hi']:.5f}")
+
+        # e) block errors that understate the noise by 2 (the realisations scatter twice as
+        # much as their errors say, as runs whose profiles stay correlated longer than a
+        # block): --errors scaled (default) scales them by the pooled spread (variance ratio
+        # ~4: 2 kinds x 12 bins x 3 dof, so within [2.5, 6.5] at >3 sigma) and chi2/dof is ~1;
+        # --errors blocks keeps them and chi2/dof is ~4; --no-mirror fits both halves.
+        under = []
+        for seed, s in zip(seeds, sigmas):
+            d = os.path.join(tmp, f"under{seed}")
+            write_run(d, 100 + seed, c_steady, y, s, rng)
+            with narrows_h5.h5py.File(os.path.join(d, "observables.h5"), "r+") as f:
+                f["observables/density_kde/error"][...] *= 0.5
+            under.append(d)
+        runs_e = {}
+        for name, extra in (("scaled", []), ("blocks", ["--errors", "blocks"]),
+                            ("both halves", ["--no-mirror"])):
+            r, got = tool(under + ["--diffusivity"] + [str(d) for d in D_TABLE] + extra, tmp,
+                          "e" + name.replace(" ", ""))
+            check(f"e: {name}: exit 0", r.returncode == 0, r.stderr.strip())
+            if got:
+                runs_e[name] = got
+        if len(runs_e) == 3:
+            sc, bl, nm = (runs_e[k] for k in ("scaled", "blocks", "both halves"))
+            t, tb = sc["conventions"]["table"], bl["conventions"]["table"]
+            vr = sc["scatter"]["variance_ratio"]
+            print(f"e) errors understated by 2: variance ratio {vr:.3f}; chi2/dof scaled "
+                  f"{t['chi2']:.1f}/{t['dof']}, blocks {tb['chi2']:.1f}/{tb['dof']}; both "
+                  f"halves dof {nm['conventions']['table']['dof']}")
+            check("e: variance ratio ~4 and the errors scaled",
+                  2.5 <= vr <= 6.5 and sc["scatter"]["scaled"], f"{vr:.3f}")
+            tol = 3 * math.sqrt(2.0 / t["dof"])
+            check("e: scaled: chi2/dof about 1", abs(t["chi2"] / t["dof"] - 1) <= tol,
+                  f"{t['chi2'] / t['dof']:.3f}")
+            check("e: blocks: chi2/dof about 4 (> 2: 2.4 sd below)", tb["chi2"] / tb["dof"] > 2 and
+                  not bl["scatter"]["scaled"], f"{tb['chi2'] / tb['dof']:.3f}")
+            check("e: mirrored: half the bins of --no-mirror",
+                  abs((nm["conventions"]["table"]["dof"] + 3) / (t["dof"] + 3) - 2) < 0.2,
+                  f"{t['dof']} vs {nm['conventions']['table']['dof']}")
 
         # c) one realisation, --from-step
         r, got = tool([dirs[0], "--diffusivity"] + [str(d) for d in D_TABLE] +

@@ -252,6 +252,23 @@ def test_viscosity(tmp):
         worst = float(np.max(np.abs(e[region] - 1)))
         check(f"b) parabola ({label}): eta(y) / eta_0 = 1 within {tol:g} over w/4 < |y| < w - 2a",
               worst < tol, worst)
+        if label != "exact":
+            # two noisy realisations (--with) merged with their mirror images (--mirror): four
+            # times the samples, so the noise of eta falls; the same curve within the tolerance
+            q = os.path.join(tmp, "parabola_noise_b")
+            viscosity_run(q, w, a, n, lambda s: f * (w * w - s * s) / (2 * eta0),
+                          lambda s: np.full_like(s, phi), "fluid", g, rho, noise,
+                          fluid_nu=eta0 / rho, seed=7)
+            res2, err2 = tool("viscosity", p, "--with", q, "--mirror", "--nu", str(nu))
+            if res2 is None:
+                check("b) --with --mirror runs", False, err2)
+            else:
+                e2 = np.array([np.nan if x is None else x
+                               for x in res2["profile"]["eta_over_eta0"]])
+                worst2 = float(np.max(np.abs(e2[region] - 1)))
+                symmetric = np.allclose(e2, e2[::-1], equal_nan=True)
+                check("b) --with and --mirror: eta(y) / eta_0 = 1 within the tolerance, and "
+                      "mirror-symmetric", worst2 < tol and symmetric, worst2)
         if label == "exact":
             d = res["compare"]["particles"]["max_relative_difference"]
             check("b) eq 5.29 with the particles' uniform phi agrees to 1e-6", d < 1e-6, d)
@@ -378,6 +395,10 @@ def test_fig54(tmp):
           len(res["runs"]) == 4 and rel(res["nu_f"], 0.8) < 1e-9, res["nu_f"])
     check("d) the viscosity observable is used when there is no velocity_profile",
           any(r["from"] == "viscosity observable" for r in res["runs"]))
+    # eq 4.49 with g as applied (fluid-only drive): the force per volume over rho is g (1 - phi)
+    worst = max(abs(r["eta_over_eta_f_applied_g"] * (1 - r["phi"]) / r["eta_over_eta_f"] - 1)
+                for r in res["runs"])
+    check("d) 'g applied' = eta/eta_f / (1 - phi) with the fluid-only drive", worst < 1e-9, worst)
     paths3 = []
     for i, phi in enumerate((0.1, 0.3)):
         p = os.path.join(tmp, f"u3_{i}")
