@@ -13,9 +13,39 @@ short=(--set continuum.time=40.0 --set continuum.samples=20 --set continuum.cell
 runs "check" "$narrows" check "$scene" > "$tmp/check.out" 2>&1
 check "check: the fit of Table 6.2 (mu = 1)" \
   'grep -q "^friction: .*0.0413 \[1 + tanh((0.762 - phi) / 0.0025)\]" "$tmp/check.out"'
-check "check: the unstable band of eq 6.11 at phi = 0.75" \
-  'grep -q "^stability (eq 6.11) of phi = 0.75.*unstable band 0 < k < 0.757" "$tmp/check.out" &&
-   grep -q "^stability boundary .* unstable to long waves for drive < 1.258" "$tmp/check.out"'
+# The band edge and the critical drive printed by check against the linearised PDE computed
+# here (issue 33 item 2): v_ss of Table 6.2 (mu = 1) written out, the 2x2 matrix of a mode e^{ikx}
+# about the uniform state (xi' by a central difference), its eigenvalues by numpy, the edge where
+# the larger real part changes sign (brentq) and the drive where long waves (k = 1e-3) turn
+# unstable. check prints phi, the edge and the drive to 6 digits: agreement within 1e-5
+# relative (measured 4e-6 for the edge, from phi's rounding; the O(k^2) of
+# the long-wave limit at k = 1e-3 is ~1e-6).
+check "check: the unstable band of eq 6.11 and the stability boundary at phi = 0.75" \
+  '/usr/bin/python3 - "$tmp/check.out" <<PY
+import re, sys
+import numpy as np
+from scipy.optimize import brentq
+text = open(sys.argv[1]).read()
+m = re.search(r"^stability \(eq 6.11\) of phi = ([0-9.]+), .*unstable band 0 < k < ([0-9.]+) ", text, re.M)
+b = re.search(r"^stability boundary .* unstable to long waves for drive < ([0-9.]+) ", text, re.M)
+assert m and b, "stability lines missing"
+phi0, edge, drive_c = float(m.group(1)), float(m.group(2)), float(b.group(1))
+dv, dphi, phic, e1, e2, phiq = 0.0413, 0.0025, 0.762, 2.56, -3.24, 0.845
+def vss(p):
+    step = dv * (1 + np.tanh((phic - p) / dphi))
+    return step + (e1 + e2 * p if p < phic else (e1 + e2 * phic) / (phic - phiq) ** 2 * (p - phiq) ** 2)
+def rate(k, sigma, D=1.0):
+    xi = lambda p: sigma / vss(p)
+    v0, h = vss(phi0), 1e-6
+    s_phi = -(xi(phi0 + h) - xi(phi0 - h)) / (2 * h) * v0
+    a = np.array([[-1j * k * v0 - D * k * k, -1j * k * phi0], [s_phi, -1j * k * v0 - xi(phi0)]])
+    return np.linalg.eigvals(a).real.max()
+ref_edge = brentq(lambda k: rate(k, 1.0), 0.1, 5.0, xtol=1e-12)
+ref_drive = brentq(lambda s: rate(1e-3, s), 0.5, 3.0, xtol=1e-12)
+print("band edge", edge, "reference", ref_edge, "; critical drive", drive_c, "reference", ref_drive)
+assert abs(edge - ref_edge) < 1e-5 * ref_edge, (edge, ref_edge)
+assert abs(drive_c - ref_drive) < 1e-5 * ref_drive, (drive_c, ref_drive)
+PY'
 check "check: time step and steps" 'grep -q "^time: 400 in 108400 steps" "$tmp/check.out"'
 
 runs "uninterrupted run" "$narrows" run "$scene" "${short[@]}" --set output.checkpoint_every=1360 \
