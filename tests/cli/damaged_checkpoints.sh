@@ -239,6 +239,7 @@ for edit, dst in zip(sys.argv[2::2], sys.argv[3::2]):
           f["/parameters/step"][()] = 2**62
 PY
 edits=(outside:"position/value row .* component 0 = 1.0000000000000001e+300; allowed: inside the box"
+  beyond_wall:"position/value row .* component 1 = 12.5; allowed: inside the box, 0 to 12$"
   nan:"velocity/value row .* = nan; allowed: a finite number"
   duplicate:"id/value row .* holds id 0, as does row 0; allowed: every id"
   all_zero:"id/value row 1 holds id 0, as does row 0"
