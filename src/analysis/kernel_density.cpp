@@ -21,12 +21,14 @@ KernelDensity::KernelDensity(std::size_t kinds, double length, bool periodic, do
   one_.assign(kinds_ * bins_, 0.0);
 }
 
-std::vector<double> KernelDensity::centres() const {
-  std::vector<double> y(bins_);
-  for (std::size_t j = 0; j < bins_; ++j)
-    y[j] = (static_cast<double>(j) + 0.5) * length_ / static_cast<double>(bins_);
+std::vector<double> bin_centres(double length, std::size_t bins) {
+  std::vector<double> y(bins);
+  for (std::size_t j = 0; j < bins; ++j)
+    y[j] = (static_cast<double>(j) + 0.5) * length / static_cast<double>(bins);
   return y;
 }
+
+std::vector<double> KernelDensity::centres() const { return bin_centres(length_, bins_); }
 
 void kernel_sums(std::span<const double> y, std::span<const std::size_t> kind, double length,
                  bool periodic, double eps, std::size_t bins, std::span<double> density,

@@ -19,12 +19,7 @@ KernelWindow::KernelWindow(std::size_t kinds, double length, bool periodic, doub
   one_.assign(kinds_ * bins_, 0.0);
 }
 
-std::vector<double> KernelWindow::centres() const {
-  std::vector<double> y(bins_);
-  for (std::size_t j = 0; j < bins_; ++j)
-    y[j] = (static_cast<double>(j) + 0.5) * length_ / static_cast<double>(bins_);
-  return y;
-}
+std::vector<double> KernelWindow::centres() const { return bin_centres(length_, bins_); }
 
 void KernelWindow::add(std::span<const double> y, std::span<const double> vx,
                        std::span<const std::size_t> kind) {

@@ -16,6 +16,9 @@ namespace narrows::analysis {
 // The Epanechnikov kernel 3/(4 eps^3) (eps^2 - u^2) for |u| < eps, else 0 (eq 5.2).
 double epanechnikov(double u, double eps);
 
+// The centres (j + 1/2) length / bins of `bins` equal bins of [0, length).
+std::vector<double> bin_centres(double length, std::size_t bins);
+
 // One sample's kernel sums at the centres of `bins` equal bins of [0, length): for every
 // colloid i, density[kind_i][j] += K(y_j - y_i) and, when `vx` is given,
 // velocity[kind_i][j] += K(y_j - y_i) vx_i (minimum images along a periodic axis).
