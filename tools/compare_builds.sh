@@ -43,7 +43,7 @@ colloid_diffusion_fig4_9_3d       run.steps=200 output.every=25 output.checkpoin
 colloid_kinds_channel             run.steps=200 output.every=20 output.checkpoint_every=100 colloids.statistics_from=40
 colloids_conservation             run.steps=400 output.every=25 output.checkpoint_every=200
 continuum_burgers_riemann         continuum.time=200.0 continuum.samples=10 output.checkpoint_every=400
-continuum_jamming_pulses          continuum.time=40.0 continuum.samples=20 output.checkpoint_every=2000
+continuum_jamming_pulses          continuum.time=40.0 continuum.samples=20 continuum.cells=1024 output.checkpoint_every=2000
 continuum_segregation_2d          continuum.time=20000.0 continuum.samples=10 output.checkpoint_every=10000
 kmc_family1_periodic              kmc.time=200.0 kmc.warmup=20.0 kmc.replicas=6 output.checkpoint_every=2
 kmc_family1_product               kmc.time=200.0 kmc.warmup=20.0 kmc.replicas=6 output.checkpoint_every=2
