@@ -108,6 +108,30 @@ print(inside, "inside,", beyond, "beyond the band edge")
 assert inside >= 5 and beyond >= 5, (inside, beyond)
 PY'
 grep -q "^warning" "$tmp/plot.out" && check "no front warning in the linear regime" false
+# The band search starts at k -> 0: just below the critical drive (1.25882 at phi = 0.75) the
+# band is narrower than the scan's first sample (k = 0.005); a scan from there finds no band.
+check "a band narrower than the first sample of the scan: the edge from k -> 0" \
+  '/usr/bin/python3 - "$src/tools" "$tmp" <<PY
+import sys
+import numpy as np
+sys.path[:0] = sys.argv[1:3]
+import jamming_plot, reference
+def rate(k, sigma):
+    xi = lambda p: sigma / reference.vss(p)
+    p0, v0, h = reference.phi0, reference.vss(reference.phi0), 1e-7
+    dxi = (xi(p0 + h) - xi(p0 - h)) / (2 * h)
+    J = np.array([[-1j * k * v0 - k * k, -1j * k * p0], [-dxi * v0, -1j * k * v0 - xi(p0)]])
+    return np.linalg.eigvals(J).real.max()
+sigma = 1.25881
+a, b = 1e-4, 0.005
+assert rate(a, sigma) > 0 > rate(b, sigma)
+for _ in range(50):
+    m = 0.5 * (a + b)
+    a, b = (m, b) if rate(m, sigma) > 0 else (a, m)
+tool = jamming_plot.Model("1", drive=sigma).band_edge(0.75)
+print(f"drive {sigma}: band edge reference {a:.6g}, tool {tool:.6g}")
+assert abs(tool - a) < 1e-3 * a, (tool, a)
+PY'
 
 pulse=(--set continuum.length=25.0 --set continuum.time=40.0 --set continuum.samples=20
   --set 'continuum.initial={ kind = "eigenmode", mean = 0.75, amplitude = 1e-2, modes = [2] }')
