@@ -24,8 +24,8 @@ Panels:
      The run's fronts are checked (front_residual): once pulses have formed, the residual of
      the velocity equation of the travelling waves (eq 6.14, (v - c) v_z = sigma - xi(phi) v,
      c fitted) above 5 % of its terms over the last samples prints one warning line on stderr
-     naming continuum.cells to raise (run/continuum_jamming_pulses.toml: 18 % at 1024 points,
-     9.5 % at 2048, 2.5 % at 4096 on length 100); the line "front:" gives the grid points
+     naming continuum.cells to raise (run/continuum_jamming_pulses.toml: 17 % at 1024 points,
+     9 % at 2048, 2.4 % at 4096 on length 100); the line "front:" gives the grid points
      across the steepest front as well;
   b) Re lambda at k = 1 against phi for the four columns of Table 6.2 (fig 6.11);
   c) the fixed-point classes of eq 6.13-6.14 in the (c, phi0) plane (eq 6.20) with the Hopf
