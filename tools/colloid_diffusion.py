@@ -1,26 +1,31 @@
 #!/usr/bin/python3
-"""Diffusion coefficient of one no-slip colloid (Kanehl (thesis) §4.4.2, fig 4.9, Table 5.1).
+"""Diffusion coefficient of one no-slip colloid (Kanehl (thesis) §4.4.2, fig 4.9, Table 5.1)
+against Stokes-Einstein with the measured viscosity and against the thesis' Table 5.1 / d.
 
 Usage: colloid_diffusion.py --dim 2 --radius 2 [--box-over-a 20] [--density 50] [--dt 0.01]
-                            [--time 1000] [--every 10] [--tmax 20] [--blocks 10]
-                            [--ranks 1] [--seed 1] [--out out/diff_2d_a2] [--analyse-only]
+                            [--time 1000] [--every 10] [--tmax 20] [--ranks 1] [--seed 1]
+                            [--nu NU | --measure-nu] [--out out/diff_2d_a2] [--json FILE]
+                            [--narrows build/narrows] [--analyse-only]
 
-Runs narrows (build/narrows, or --narrows PATH) on a periodic box of side l = box_over_a * a
-with one density-matched colloid of radius a, MPC-AT+a, coupling = "no-slip", writing the
-colloid's velocity every --every steps to trajectory.h5 (the fluid subsampled away), then:
-  C(t) = <U(0).U(t)> (eq 4.50) up to --tmax, D(t) = (1/d) int_0^t C (eq 4.51),
-  D = the plateau, the mean of D(t) over the last quarter of [0, tmax] (Kanehl's thesis reads
-      D(t' = 15 t0)),
-  and independently the MSD slope, <|r(t) - r(0)|^2> / (2 d t) at t = tmax.
-Errors: the trajectory is cut into --blocks blocks; each gives its own D (VACF and MSD from
-the block alone); the error is the standard error of the block values.
-Table 5.1 (l = 20a, dt 0.01): 2D n = 50: D = 0.00137 (a = 2), 0.000973 (a = 4); 3D n = 10:
-0.00214 (a = 2), 0.000852 (a = 4).
-Finite size: in 3D a periodic box lowers D by xi kT / (6 pi eta l), xi = 2.837297 (Hasimoto;
-Yeh & Hummer 2004), eta = n nu; the tool prints D corrected to l = 20a with the nu of
---nu (default: Table 5.1's 3.15 in 3D, narrows' measured 3.98 in 2D; see PHYSICS.md). In 2D
-D grows like kT/(4 pi eta) ln(l/a) without limit, so l = 20a is part of the table's
-definition; a smaller box is corrected by kT/(4 pi eta) ln(20a/l) (leading order).
+Runs narrows on a periodic box of side l = box_over_a * a with one density-matched colloid of
+radius a, MPC-AT+a, coupling = "no-slip"; the engine's colloid statistics (sampled every
+--every steps, lags up to --tmax) give
+  D(t) = (1/d) int_0^t C (eq 4.50-4.51), D = its mean over the last quarter of [0, tmax]
+      (Kanehl's thesis reads D(t' = 15 t0)), error: the engine's spread of the 10 block
+      integrals over sqrt(10) (docs/scenes.md), at the last lags;
+  and independently the MSD slope <|r(t) - r(0)|^2> / (2 d t) at t = tmax.
+nu: --measure-nu runs a Poiseuille slit of the same fluid (walls at y = 0 and l, side l) and
+fits nu to the profile (the `viscosity` observable) over 256 samples of half the momentum
+relaxation time l^2 / (pi^2 nu) after ten of them, error from 64 blocks of four (a few s); else --nu, else
+narrows' measured 3.98 (2D, n 50, dt 0.01) or Table 5.1's 3.15 (3D).
+Stokes-Einstein for the periodic box (eta = n nu, kT = 1; Hasimoto (1959)):
+  2D: D_SE = kT (ln(l/a) - 1.3105) / (4 pi eta), 3D: D_SE = kT (1 - 2.837297 a/l) / (6 pi eta a).
+Table 5.1 (l = 20a, n 50 (2D) or 10 (3D), dt 0.01): 2D D = 0.00137 (a = 2), 0.000973 (a = 4);
+3D 0.00214 (a = 2), 0.000852 (a = 4): d times the thesis' own eq 4.51. Compared in
+Stokes-Einstein's dimensionless form, the mobility D eta / kT (depends on l/a alone), with the
+thesis' fluid at narrows' measured nu (2D 3.98, 3D 3.15: its eta = 199 and 31.5) and this run's
+taken to l = 20a by Stokes-Einstein's l-dependence: "D/(table/d)" should be 1, "D/table" 1/d.
+--json FILE writes the numbers (tools/test_colloid_diffusion.py, ctest tools.colloid_diffusion).
 """
 
 import argparse
@@ -30,6 +35,8 @@ import subprocess
 import sys
 
 import numpy as np
+
+import json
 
 import narrows_h5
 
@@ -42,6 +49,7 @@ def scene_text(a):
     steps = int(round(a.time / a.dt))
     size = ", ".join([f"{L:g}"] * a.dim)
     pos = ", ".join([f"{L / 2:g}"] * a.dim)
+    lag = a.every * int(round(a.tmax / (a.dt * a.every)))
     return f"""[run]
 engine = "mpcd"
 dimensions = {a.dim}
@@ -62,14 +70,60 @@ coupling = "no-slip"
 radius = {a.radius:g}
 placement = "list"
 positions = [[{pos}]]
+max_lag = {lag}
+correlation_every = {a.every}
 
 [output]
 dir = "{a.out}"
 every = {steps}
-observables = ["temperature"]
-trajectory_every = {a.every}
-trajectory_subsample = 1000000000
+observables = ["temperature", "colloid_vacf", "colloid_diffusion", "colloid_msd"]
 """
+
+
+def poiseuille_text(a, out):
+    """The same fluid in a slit of width l (walls at y = 0, l; 10 long in x, periodic), driven
+    to u0 ~ 0.2-0.4; 266 samples of half the momentum relaxation time l^2 / (pi^2 nu) each."""
+    L = a.box_over_a * a.radius
+    n, dt = a.density, a.dt
+    f = n - 1 + math.exp(-n)
+    nu0 = dt * (n / f - 0.5) + f / (12 * n * dt)  # MPC-AT, Noguchi & Gompper (2008): sets g only
+    g = 1.6 * nu0 / L**2
+    relax = L**2 / (math.pi**2 * nu0)
+    every = max(1, int(round(0.5 * relax / dt)))
+    size = ", ".join(["10"] + [f"{L:g}"] * (a.dim - 1))
+    force = ", ".join([repr(g)] + ["0.0"] * (a.dim - 1))
+    return f"""[run]
+engine = "mpcd"
+dimensions = {a.dim}
+seed = {a.seed + 1000}
+steps = {266 * every}
+
+[domain]
+size = [{size}]
+
+[fluid]
+collision = "at+a"
+density = {n:g}
+dt = {dt:g}
+kT = 1.0
+
+[body_force]
+value = [{force}]
+
+[walls]
+
+[output]
+dir = "{out}"
+every = {every}
+observables = ["viscosity"]
+"""
+
+
+def narrows_cmd(a, path, out):
+    cmd = [a.narrows, "run", path, "--out", out, "--overwrite", "--set", "output.progress=false"]
+    if a.ranks > 1:
+        cmd = ["mpirun", "--oversubscribe", "-n", str(a.ranks)] + cmd
+    return cmd
 
 
 def run(a):
@@ -77,73 +131,89 @@ def run(a):
     path = os.path.join(a.out, "scene.toml")
     with open(path, "w") as f:
         f.write(scene_text(a))
-    cmd = [a.narrows, "run", path, "--out", a.out, "--overwrite"]
-    if a.ranks > 1:
-        cmd = ["mpirun", "--oversubscribe", "-n", str(a.ranks)] + cmd
+    cmd = narrows_cmd(a, path, a.out)
     print(" ".join(cmd), flush=True)
-    subprocess.run(cmd, check=True)
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
 
 
-def vacf(v, nlag):
-    """<v(0).v(t)> for t = 0..nlag-1 over all time origins (FFT, unbiased)."""
-    n = len(v)
-    c = np.zeros(nlag)
-    for k in range(v.shape[1]):
-        f = np.fft.rfft(v[:, k], 2 * n)
-        c += np.fft.irfft(f * np.conj(f))[:nlag]
-    return c / (n - np.arange(nlag))
+def measure_nu(a):
+    """nu and its error from the Poiseuille slit (poiseuille_text): the last 256 samples (after
+    five relaxation times, when the start from rest is e^-5 gone), 64 blocks of four."""
+    out = os.path.join(a.out, "poiseuille")
+    if not a.analyse_only:
+        os.makedirs(out, exist_ok=True)
+        path = os.path.join(out, "scene.toml")
+        with open(path, "w") as f:
+            f.write(poiseuille_text(a, out))
+        cmd = narrows_cmd(a, path, out)
+        print(" ".join(cmd), flush=True)
+        subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+    nu = narrows_h5.open_run(out).series("viscosity")["value"][-256:]
+    blocks = nu.reshape(64, 4).mean(axis=1)
+    return float(nu.mean()), float(blocks.std(ddof=1) / math.sqrt(len(blocks)))
+
+
+def stokes_einstein(d, radius, L, eta):
+    """D of a stick disc (2D, per unit length) or sphere (3D) in a periodic box of side L
+    (Hasimoto (1959), leading order), kT = 1."""
+    if d == 2:
+        return (math.log(L / radius) - 1.3105) / (4 * math.pi * eta)
+    return (1 - 2.837297 * radius / L) / (6 * math.pi * eta * radius)
 
 
 def analyse(a):
-    with narrows_h5.open_trajectory(a.out) as f:
-        v = f.dataset("particles/colloids/velocity/value")[:, 0, :]
-        x = f.dataset("particles/colloids/position/value")[:, 0, :]
+    run_ = narrows_h5.open_run(a.out)
+    diff = run_.series("colloid_diffusion")
+    msd = run_.series("colloid_msd")
+    c0 = float(run_.series("colloid_vacf")["value"][0])
     d = a.dim
     L = a.box_over_a * a.radius
-    h = a.every * a.dt  # time between frames
-    dx = np.diff(x, axis=0)
-    dx -= L * np.round(dx / L)
-    r = np.concatenate([np.zeros((1, d)), np.cumsum(dx, axis=0)])
-    nlag = int(round(a.tmax / h)) + 1
-    t = np.arange(nlag) * h
-    tail = t >= 0.75 * a.tmax
-
-    def estimate(vb, rb):
-        c = vacf(vb, nlag)
-        D_t = np.concatenate([[0.0], np.cumsum(0.5 * (c[1:] + c[:-1]) * h)]) / d
-        lag = nlag - 1
-        msd = np.mean(np.sum((rb[lag:] - rb[:-lag]) ** 2, axis=1))
-        return c, D_t, D_t[tail].mean(), msd / (2 * d * t[-1])
-
-    c, D_t, D_vacf, D_msd = estimate(v, r)
-    nb = len(v) // a.blocks
-    blocks = [estimate(v[i * nb:(i + 1) * nb], r[i * nb:(i + 1) * nb]) for i in range(a.blocks)]
-    bv = np.array([b[2] for b in blocks])
-    bm = np.array([b[3] for b in blocks])
-    se = lambda z: z.std(ddof=1) / math.sqrt(len(z))
-    T = (len(v) - 1) * h
+    t, D_t, D_err = diff["lags"], diff["value"], diff["error"]
+    tail = t >= 0.75 * t[-1]
+    D, D_se = float(D_t[tail].mean()), float(D_err[tail].mean())
+    D_msd = float(msd["value"][-1] / (2 * d * t[-1]))
+    D_msd_se = float(msd["error"][-1] / (2 * d * t[-1]))
+    mass = a.density * (math.pi * a.radius**2 if d == 2 else 4 / 3 * math.pi * a.radius**3)
     print(f"d = {d}, a = {a.radius:g}, l = {L:g} = {a.box_over_a:g} a, n = {a.density:g}, "
-          f"dt = {a.dt:g}: T = {T:g} t0 in {len(v)} frames, <U^2> = {c[0]:.5g} "
-          f"(d kT/M = {d / (a.density * (math.pi * a.radius**2 if d == 2 else 4 / 3 * math.pi * a.radius**3)):.5g})")
-    print(f"D (VACF plateau, t = {0.75 * a.tmax:g}-{a.tmax:g}) = {D_vacf:.5g} +- {se(bv):.2g}  "
-          f"(blocks: {a.blocks})")
-    print(f"D (MSD at t = {a.tmax:g})              = {D_msd:.5g} +- {se(bm):.2g}")
-    for tt in (1, 2, 5, 10, 15, 20):
-        if tt <= a.tmax:
-            print(f"  D(t = {tt:>2}) = {D_t[int(round(tt / h))]:.5g}")
-    nu = a.nu if a.nu else NU[d]
-    eta = a.density * nu
-    l20 = 20 * a.radius
-    if d == 3:
-        corr = 2.837297 / (6 * math.pi * eta) * (1 / L - 1 / l20)
-        label = "Hasimoto xi kT/(6 pi eta) (1/l - 1/20a)"
+          f"dt = {a.dt:g}, T = {a.time:g} t0: M <U^2> / (d kT) = {c0 * mass / d:.4g}")
+    print(f"D (VACF plateau, t = {t[tail][0]:g}-{t[-1]:g}) = {D:.5g} +- {D_se:.2g}")
+    print(f"D (MSD at t = {t[-1]:g})              = {D_msd:.5g} +- {D_msd_se:.2g}")
+    for tt in (1, 2, 5, 10, 15, 20, 40):
+        if tt <= t[-1]:
+            print(f"  D(t = {tt:>2}) = {D_t[np.argmin(np.abs(t - tt))]:.5g}")
+    if a.measure_nu:
+        nu, nu_se = measure_nu(a)
+        src = "measured in a Poiseuille slit of the same fluid"
     else:
-        corr = 1 / (4 * math.pi * eta) * math.log(l20 / L)
-        label = "kT/(4 pi eta) ln(20a/l)"
+        nu, nu_se = (a.nu if a.nu else NU[d]), 0.0
+        src = "given" if a.nu else "default"
+    eta = a.density * nu
+    se = stokes_einstein(d, a.radius, L, eta)
+    ratio = D / se
+    ratio_se = ratio * math.hypot(D_se / D, nu_se / nu)
+    print(f"nu = {nu:.4g} +- {nu_se:.2g} ({src}), eta = n nu = {eta:.4g}")
+    print(f"Stokes-Einstein (periodic box, Hasimoto): D_SE = {se:.5g}; D/D_SE = {ratio:.3f} +- "
+          f"{ratio_se:.3f}")
+    res = dict(dim=d, radius=a.radius, box=L, density=a.density, dt=a.dt, time=a.time, D=D,
+               D_error=D_se, D_msd=D_msd, D_msd_error=D_msd_se, nu=nu, nu_error=nu_se, D_SE=se,
+               ratio_SE=ratio, ratio_SE_error=ratio_se, kinetic=c0 * mass / d)
     ref = TABLE.get((d, a.radius))
-    print(f"to l = 20a: + {corr:.3g} ({label}, eta = n nu = {eta:g}) -> D = {D_vacf + corr:.5g}"
-          + (f"; Table 5.1: {ref} (ratio {(D_vacf + corr) / ref:.3f} +- {se(bv) / ref:.3f})"
-             if ref else ""))
+    if ref:
+        # the mobility D eta / kT at l = 20 a: this run's moved by Stokes-Einstein's l-dependence
+        eta_thesis = (50.0 if d == 2 else 10.0) * NU[d]
+        l20 = 20 * a.radius
+        mob = (D + stokes_einstein(d, a.radius, l20, eta) - se) * eta
+        mob_table = ref * eta_thesis
+        r_d = mob / (mob_table / d)
+        r_d_se = r_d * math.hypot(D_se / D, nu_se / nu)
+        print(f"mobility D eta / kT at l = 20a: {mob:.4g}; Table 5.1 ({ref}, eta = {eta_thesis:g}): "
+              f"{mob_table:.4g}, / d: {mob_table / d:.4g}; D/(table/d) = {r_d:.3f} +- {r_d_se:.3f}, "
+              f"D/table = {r_d / d:.3f} +- {r_d_se / d:.3f}")
+        res.update(table=ref, ratio_table_over_d=r_d, ratio_table_over_d_error=r_d_se,
+                   ratio_table=r_d / d, ratio_table_error=r_d_se / d)
+    if a.json:
+        with open(a.json, "w") as f:
+            json.dump(res, f, indent=1)
 
 
 def main():
@@ -154,12 +224,14 @@ def main():
     p.add_argument("--density", type=float)
     p.add_argument("--dt", type=float, default=0.01)
     p.add_argument("--time", type=float, default=1000.0, help="run length in t0")
-    p.add_argument("--every", type=int, default=10, help="steps between velocity samples")
+    p.add_argument("--every", type=int, default=10, help="steps between samples of the colloid statistics")
     p.add_argument("--tmax", type=float, default=20.0, help="longest lag of C(t), in t0")
-    p.add_argument("--blocks", type=int, default=10)
     p.add_argument("--ranks", type=int, default=1)
     p.add_argument("--seed", type=int, default=1)
-    p.add_argument("--nu", type=float, help="kinematic viscosity for the size correction")
+    p.add_argument("--nu", type=float, help="kinematic viscosity (default: see above)")
+    p.add_argument("--measure-nu", action="store_true",
+                   help="measure nu in a Poiseuille slit of the same fluid (OUT/poiseuille)")
+    p.add_argument("--json", help="write the numbers to this JSON file")
     p.add_argument("--out", default=None)
     p.add_argument("--narrows", default=os.path.join(os.path.dirname(__file__), "..", "build",
                                                      "narrows"))
