@@ -12,8 +12,10 @@ blocks) at 3 sigma, with caps on those errors so that an inflated error cannot p
     at l = 20a, |D / (table / d) - 1| <= 3 sigma (measured 1.036 +- 0.041), while the table
     as printed is excluded, |D / table - 1| > 3 sigma (measured 0.518 +- 0.021);
   - M <U^2> / (d kT) within 0.1 of 1 (measured 1.006).
-Broken on purpose (see the commit): the SE formula without the periodic-box term -1.3105
-gives D / D_SE = 0.47; the colloid's radius 20 % small in the scene gives 1.30.
+Broken on purpose: the SE formula without the periodic-box term -1.3105 gives D / D_SE =
+0.469 +- 0.019 (fails); the colloid's radius 20 % small in the scene 1.314 +- 0.042, table / d
+1.166 +- 0.037, M <U^2> / (d kT) 1.607 (three fail); its mass 20 % large M <U^2> / (d kT) =
+0.824 (fails; D does not depend on the mass); D's error tripled fails the cap.
 Usage: test_colloid_diffusion.py NARROWS [--reuse DIR]  (--reuse: analyse an earlier run)."""
 
 import json
