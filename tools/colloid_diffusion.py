@@ -3,15 +3,18 @@
 
 Usage: colloid_diffusion.py --dim 2 --radius 2 [--box-over-a 20] [--density 50] [--dt 0.01]
                             [--time 1000] [--every 10] [--tmax 20] [--blocks 10]
-                            [--ranks 1] [--seed 1] [--out out/diff_2d_a2] [--analyse-only]
+                            [--ranks 1] [--seed 1] [--collision at+a] [--out out/diff_2d_a2]
+                            [--analyse-only]
 
 Runs narrows (build/narrows, or --narrows PATH) on a periodic box of side l = box_over_a * a
-with one density-matched colloid of radius a, MPC-AT+a, coupling = "no-slip", writing the
+with one density-matched colloid of radius a, MPC-AT+a (or --collision), coupling = "no-slip", writing the
 colloid's velocity every --every steps to trajectory.h5 (the fluid subsampled away), then:
   C(t) = <U(0).U(t)> (eq 4.50) up to --tmax, D(t) = (1/d) int_0^t C (eq 4.51),
   D = the plateau, the mean of D(t) over the last quarter of [0, tmax] (Kanehl's thesis reads
       D(t' = 15 t0)),
-  and independently the MSD slope, <|r(t) - r(0)|^2> / (2 d t) at t = tmax.
+  and independently the MSD slope, <|r(t) - r(0)|^2> / (2 d t) at t = tmax,
+  and equipartition M<U^2>/(d kT) and I<Omega^2>/(d_rot kT) (measure() returns them all;
+  tools/accuracy_map.py imports it).
 Errors: the trajectory is cut into --blocks blocks; each gives its own D (VACF and MSD from
 the block alone); the error is the standard error of the block values.
 Table 5.1 (l = 20a, dt 0.01): 2D n = 50: D = 0.00137 (a = 2), 0.000973 (a = 4); 3D n = 10:
@@ -52,7 +55,7 @@ steps = {steps}
 size = [{size}]
 
 [fluid]
-collision = "at+a"
+collision = "{getattr(a, 'collision', 'at+a')}"
 density = {a.density:g}
 dt = {a.dt:g}
 kT = 1.0
@@ -94,10 +97,30 @@ def vacf(v, nlag):
     return c / (n - np.arange(nlag))
 
 
-def analyse(a):
+def colloid_mass(a):
+    """Density-matched: n times the colloid's area (2D) or volume (3D)."""
+    vol = math.pi * a.radius**2 if a.dim == 2 else 4 / 3 * math.pi * a.radius**3
+    return a.density * vol
+
+
+def stokes_einstein(d, radius, box, eta, kT=1.0):
+    """D of a no-slip sphere in a periodic cubic box of side `box` (3D): Stokes-Einstein
+    kT / (6 pi eta a) lowered by Hasimoto's xi kT / (6 pi eta l), xi = 2.837297 (Hasimoto
+    (1959); Yeh & Hummer (2004) eq 7). In 2D there is no Stokes-Einstein limit (D grows like
+    ln l): None."""
+    if d != 3:
+        return None
+    return kT / (6 * math.pi * eta * radius) - 2.837297 * kT / (6 * math.pi * eta * box)
+
+
+def measure(a):
+    """The numbers of one run: D from the VACF plateau and from the MSD with their block
+    errors, <U^2>, M<U^2>/(d kT) and the spin equipartition I<Omega^2>/(d_rot kT) (I = M a^2/2
+    in 2D, 2 M a^2/5 in 3D; d_rot = 1 in 2D, 3 in 3D) with their block errors."""
     with narrows_h5.open_trajectory(a.out) as f:
         v = f.dataset("particles/colloids/velocity/value")[:, 0, :]
         x = f.dataset("particles/colloids/position/value")[:, 0, :]
+        w = f.dataset("particles/colloids/angular_velocity/value")[:, 0, :]
     d = a.dim
     L = a.box_over_a * a.radius
     h = a.every * a.dt  # time between frames
@@ -107,6 +130,10 @@ def analyse(a):
     nlag = int(round(a.tmax / h)) + 1
     t = np.arange(nlag) * h
     tail = t >= 0.75 * a.tmax
+    M = colloid_mass(a)
+    inertia = M * a.radius**2 * (0.5 if d == 2 else 0.4)
+    spin = inertia * (w[:, 2] ** 2 if d == 2 else np.sum(w**2, axis=1) / 3)
+    trans = M * np.sum(v**2, axis=1) / d
 
     def estimate(vb, rb):
         c = vacf(vb, nlag)
@@ -118,16 +145,27 @@ def analyse(a):
     c, D_t, D_vacf, D_msd = estimate(v, r)
     nb = len(v) // a.blocks
     blocks = [estimate(v[i * nb:(i + 1) * nb], r[i * nb:(i + 1) * nb]) for i in range(a.blocks)]
-    bv = np.array([b[2] for b in blocks])
-    bm = np.array([b[3] for b in blocks])
-    se = lambda z: z.std(ddof=1) / math.sqrt(len(z))
-    T = (len(v) - 1) * h
+    se = lambda z: np.std(z, ddof=1) / math.sqrt(len(z))
+    block_mean = lambda z: np.array([z[i * nb:(i + 1) * nb].mean() for i in range(a.blocks)])
+    return dict(d=d, L=L, h=h, t=t, c=c, D_t=D_t, frames=len(v), T=(len(v) - 1) * h,
+                D_vacf=D_vacf, D_vacf_err=se(np.array([b[2] for b in blocks])),
+                D_msd=D_msd, D_msd_err=se(np.array([b[3] for b in blocks])),
+                trans=trans.mean(), trans_err=se(block_mean(trans)),
+                spin=spin.mean(), spin_err=se(block_mean(spin)))
+
+
+def analyse(a):
+    m = measure(a)
+    d, L, c, D_t, D_vacf = m["d"], m["L"], m["c"], m["D_t"], m["D_vacf"]
+    h = m["h"]
     print(f"d = {d}, a = {a.radius:g}, l = {L:g} = {a.box_over_a:g} a, n = {a.density:g}, "
-          f"dt = {a.dt:g}: T = {T:g} t0 in {len(v)} frames, <U^2> = {c[0]:.5g} "
-          f"(d kT/M = {d / (a.density * (math.pi * a.radius**2 if d == 2 else 4 / 3 * math.pi * a.radius**3)):.5g})")
-    print(f"D (VACF plateau, t = {0.75 * a.tmax:g}-{a.tmax:g}) = {D_vacf:.5g} +- {se(bv):.2g}  "
-          f"(blocks: {a.blocks})")
-    print(f"D (MSD at t = {a.tmax:g})              = {D_msd:.5g} +- {se(bm):.2g}")
+          f"dt = {a.dt:g}: T = {m['T']:g} t0 in {m['frames']} frames, <U^2> = {c[0]:.5g} "
+          f"(d kT/M = {d / colloid_mass(a):.5g})")
+    print(f"D (VACF plateau, t = {0.75 * a.tmax:g}-{a.tmax:g}) = {D_vacf:.5g} +- "
+          f"{m['D_vacf_err']:.2g}  (blocks: {a.blocks})")
+    print(f"D (MSD at t = {a.tmax:g})              = {m['D_msd']:.5g} +- {m['D_msd_err']:.2g}")
+    print(f"equipartition: M<U^2>/(d kT) = {m['trans']:.4f} +- {m['trans_err']:.4f}, "
+          f"I<Omega^2>/(d_rot kT) = {m['spin']:.4f} +- {m['spin_err']:.4f}")
     for tt in (1, 2, 5, 10, 15, 20):
         if tt <= a.tmax:
             print(f"  D(t = {tt:>2}) = {D_t[int(round(tt / h))]:.5g}")
@@ -142,8 +180,8 @@ def analyse(a):
         label = "kT/(4 pi eta) ln(20a/l)"
     ref = TABLE.get((d, a.radius))
     print(f"to l = 20a: + {corr:.3g} ({label}, eta = n nu = {eta:g}) -> D = {D_vacf + corr:.5g}"
-          + (f"; Table 5.1: {ref} (ratio {(D_vacf + corr) / ref:.3f} +- {se(bv) / ref:.3f})"
-             if ref else ""))
+          + (f"; Table 5.1: {ref} (ratio {(D_vacf + corr) / ref:.3f} +- "
+             f"{m['D_vacf_err'] / ref:.3f})" if ref else ""))
 
 
 def main():
@@ -159,6 +197,7 @@ def main():
     p.add_argument("--blocks", type=int, default=10)
     p.add_argument("--ranks", type=int, default=1)
     p.add_argument("--seed", type=int, default=1)
+    p.add_argument("--collision", default="at+a", choices=("srd", "at", "at+a"))
     p.add_argument("--nu", type=float, help="kinematic viscosity for the size correction")
     p.add_argument("--out", default=None)
     p.add_argument("--narrows", default=os.path.join(os.path.dirname(__file__), "..", "build",
