@@ -69,7 +69,8 @@ import colloid_diffusion  # noqa: E402
 
 class Row(dict):
     """engine, knob (text), error (relative, signed), stat (its statistical error, or nan),
-    cpu (s), cost (cpu per unit of work), unit (of the cost), note."""
+    cpu (s), cost (cpu per unit of work), unit (of the cost), note; a cost-only group (hard
+    spheres) has error nan and events (per step)."""
 
 
 def cpu_of_children():
@@ -111,12 +112,13 @@ def poiseuille(args, rule, dt, n, relax_times, seeds=1, u0=0.2):
     flow): a body force g for a centre velocity u0 (Ma ~ 0.15), run 6 momentum relaxation times
     L^2/(pi^2 nu) to the steady state and then relax_times more, sampling the velocity profile
     every tenth of a relaxation time; each sample is fitted with the bin-averaged parabola
-    y (L - y) - 1/12 and g / (2 curvature) is nu. The statistical error is that of 10 block
-    averages of the curvature (blocks of relax_times / 10 relaxation times, each seed its own
+    y (L - y) - 1/12 and g / (2 curvature) is nu. The statistical error is that of the block
+    averages of the curvature (20 blocks from 100 relaxation times on, each seed its own
     blocks): the parabola is the slowest mode, so samples within a relaxation time are
     correlated and only the blocks are independent. A sample's noise is about
-    sqrt(2 kT / M_fluid) / (1.03 u0), 0.19 at n = 5 and u0 = 0.2, so an error of 2 % needs about
-    ((0.19 / 0.02)^2 / 2 + ...) relaxation times; SRD heats under shear, so its runs have the
+    sqrt(2 kT / M_fluid) / (1.03 u0), 0.09 at n = 5 and u0 = 0.2 (0.37 at the earlier 0.05,
+    which left 5-9 % errors); the full grid's 200 (n = 5) and 120 (n = 10) relaxation times
+    give errors of 0.5-1.7 % for 190 CPU s. SRD heats under shear, so its runs have the
     layers thermostat (Tabatabaei (2008) eq 3.53-3.54). Returns a dict with nu, stat
     (relative), nu_t (kinetic theory at the measured kT, from `narrows info`), cpu, steps."""
     key = (rule, dt, n, relax_times, seeds, u0)
@@ -138,6 +140,7 @@ def poiseuille(args, rule, dt, n, relax_times, seeds=1, u0=0.2):
     measure = max(10, int(relax_times * relax / dt / every / 10 + 1) * 10) * every
     steps = warm + measure
     blocks, temps, cpu = [], [], 0.0
+    nblocks = 20 if relax_times >= 100 else 10  # blocks of at least 5 relaxation times
     for seed in range(1, seeds + 1):
         d = os.path.join(args.out, f"mpcd_{rule}_dt{dt:g}_n{n:g}_s{seed}")
         sets = base + [f"body_force.value=[{g!r}, 0.0, 0.0]", f"run.steps={steps}",
@@ -152,8 +155,8 @@ def poiseuille(args, rule, dt, n, relax_times, seeds=1, u0=0.2):
         temps.append(run.series("temperature")["value"][run.series("temperature")["step"] > warm])
         q = y * (L - y) - 1.0 / 12.0  # the parabola averaged over a bin of width 1
         fits = np.linalg.lstsq(np.vstack([q, np.ones_like(q)]).T, prof.T, rcond=None)[0][0]
-        nb = len(fits) // 10
-        blocks += [fits[i * nb:(i + 1) * nb].mean() for i in range(10)]
+        nb = len(fits) // nblocks
+        blocks += [fits[i * nb:(i + 1) * nb].mean() for i in range(nblocks)]
     blocks = np.array(blocks)
     a = blocks.mean()
     nu = g / (2.0 * a)
@@ -173,7 +176,7 @@ def mpcd_rows(args, scale):
     grid = {"tiny": (["srd"], [0.5], [3], lambda rule, dt, n: 10),
             "medium": (["srd", "at", "at+a"], [0.1, 1.0], [5], lambda rule, dt, n: 40),
             "full": (["srd", "at", "at+a"], [0.1, 0.5, 1.0], [5, 10],
-                     lambda rule, dt, n: 80 if n < 10 else 50)}[scale]
+                     lambda rule, dt, n: 200 if n < 10 else 120)}[scale]
     rules, dts, ns, relax_times = grid
     rows = []
     for rule in rules:
@@ -443,17 +446,20 @@ def noslip_rows(args, scale):
     VACF plateau (eq 4.50-4.51) against Stokes-Einstein kT / (6 pi eta a) with the nu measured
     by a Poiseuille run of the same fluid (poiseuille() above; eta = n nu), lowered to the box
     by hasimoto_factor(); and the equipartition of the spin I<Omega^2>/(3 kT) and of the
-    translation M<U^2>/(3 kT) (both 1 in equilibrium). Knob: fluid.dt. Ghost particles cannot be
+    translation M<U^2>/(3 kT) (both 1 in equilibrium). Knob: fluid.dt (dt <= 0.125 a, the
+    coupling's limit, docs/scenes.md), each run the same number of steps. Ghost particles cannot be
     switched off: the no-slip coupling always fills the cut cells (docs/scenes.md has no key for
     it; walls.virtual_particles is the walls' own), so the map has no ghosts-off rows.
     And the slip length of a disc held in a 2D Poiseuille channel (slip_rows)."""
-    dts, T, seeds = {"tiny": ([0.05], 100.0, 1), "medium": ([0.02, 0.05, 0.1], 600.0, 1),
-                     "full": ([0.02, 0.05, 0.1], 1500.0, 1)}[scale]
-    relax = {"tiny": 10, "medium": 20, "full": 30}[scale]  # of the Poiseuille run for nu
+    # the same number of steps at every dt (the same CPU time): a larger dt buys a longer run
+    dts, steps, seeds = {"tiny": ([0.05], 2000, 1), "medium": ([0.05, 0.1, 0.2], 10000, 1),
+                         "full": ([0.025, 0.05, 0.1, 0.2], 30000, 1)}[scale]
+    relax = {"tiny": 10, "medium": 30, "full": 60}[scale]  # of the Poiseuille run for nu
     blocks = 4 if scale == "tiny" else 10  # a block must be longer than tmax = 10
     radius, box_over_a, n, rule = 2.0, 6.0, 5.0, "at+a"
     rows = []
     for dt in dts:
+        T = steps * dt
         every = max(1, int(round(0.1 / dt)))  # a frame every 0.1 t0
         cpu, meas = 0.0, []
         for seed in range(1, seeds + 1):
