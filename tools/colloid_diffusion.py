@@ -65,14 +65,17 @@ coupling = "no-slip"
 radius = {a.radius:g}
 placement = "list"
 positions = [[{pos}]]
-
+""" + (f"""max_lag = {int(round(a.tmax / a.dt / a.every)) * a.every}
+correlation_every = {a.every}
+""" if getattr(a, "statistics", False) else "") + f"""
 [output]
 dir = "{a.out}"
 every = {steps}
-observables = ["temperature"]
+""" + (f"""observables = ["temperature", "colloid_vacf", "colloid_diffusion", "colloid_angular_vacf"]
+""" if getattr(a, "statistics", False) else f"""observables = ["temperature"]
 trajectory_every = {a.every}
 trajectory_subsample = 1000000000
-"""
+""")
 
 
 def run(a):
@@ -152,6 +155,31 @@ def measure(a):
                 D_msd=D_msd, D_msd_err=se(np.array([b[3] for b in blocks])),
                 trans=trans.mean(), trans_err=se(block_mean(trans)),
                 spin=spin.mean(), spin_err=se(block_mean(spin)))
+
+
+def measure_statistics(a):
+    """The numbers of measure() from narrows' own colloid statistics of a run made with
+    a.statistics = True (scene_text then lists colloid_vacf, colloid_diffusion and
+    colloid_angular_vacf, with max_lag = tmax and correlation_every = every, instead of a
+    trajectory, whose writing costs more than the run when the frames are many): the same
+    plateau of D(t) (eq 4.51, over the last quarter of [0, tmax]) and the equipartition ratios
+    at lag 0, each with narrows' error (10 blocks of time, docs/scenes.md)."""
+    run = narrows_h5.open_run(a.out)
+    diff = run.series("colloid_diffusion")
+    vacf = run.series("colloid_vacf")
+    spin = run.series("colloid_angular_vacf")
+    t = diff["lags"]
+    tail = t >= 0.75 * t[-1]
+    d = a.dim
+    M = colloid_mass(a)
+    inertia = M * a.radius**2 * (0.5 if d == 2 else 0.4)
+    d_rot = 1 if d == 2 else 3
+    return dict(d=d, L=a.box_over_a * a.radius, t=t, D_t=diff["value"],
+                D_vacf=float(diff["value"][tail].mean()),
+                D_vacf_err=float(diff["error"][tail].mean()),
+                trans=float(M * vacf["value"][0] / d), trans_err=float(M * vacf["error"][0] / d),
+                spin=float(inertia * spin["value"][0] / d_rot),
+                spin_err=float(inertia * spin["error"][0] / d_rot))
 
 
 def analyse(a):
