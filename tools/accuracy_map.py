@@ -80,7 +80,7 @@ def cpu_of_children():
 
 def narrows_run(narrows, scene, out, sets):
     """Runs one single-rank job; returns its CPU seconds (child user + system)."""
-    cmd = [narrows, "run", scene, "--out", out, "--set", "output.progress=false"]
+    cmd = [narrows, "run", scene, "--out", out, "--overwrite", "--set", "output.progress=false"]
     for s in sets:
         cmd += ["--set", s]
     before = cpu_of_children()
