@@ -46,7 +46,7 @@ against cost, the Pareto front joined; md gives two, md_energy and md_settling, 
 noslip_D, noslip_spin and noslip_slip) and prints a Markdown table; with --readme, replaces the
 table between <!-- accuracy-map --> and <!-- /accuracy-map --> there.
 --tiny runs one or two points per engine in about a minute (tests/cli/accuracy_map_tiny.sh
-checks every row group, so the tool cannot rot); the default full map takes about 15 CPU
+checks every row group, so the tool cannot rot); the default full map takes about 4 CPU
 minutes on one core.
 """
 
@@ -118,7 +118,7 @@ def poiseuille(args, rule, dt, n, relax_times, seeds=1, u0=0.2):
     correlated and only the blocks are independent. A sample's noise is about
     sqrt(2 kT / M_fluid) / (1.03 u0), 0.09 at n = 5 and u0 = 0.2 (0.37 at the earlier 0.05,
     which left 5-9 % errors); the full grid's 200 (n = 5) and 120 (n = 10) relaxation times
-    give errors of 0.5-1.7 % for 190 CPU s. SRD heats under shear, so its runs have the
+    gave errors of 0.57-1.29 % for 110 CPU s. SRD heats under shear, so its runs have the
     layers thermostat (Tabatabaei (2008) eq 3.53-3.54). Returns a dict with nu, stat
     (relative), nu_t (kinetic theory at the measured kT, from `narrows info`), cpu, steps."""
     key = (rule, dt, n, relax_times, seeds, u0)
