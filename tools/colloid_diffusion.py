@@ -60,7 +60,7 @@ steps = {steps}
 size = [{size}]
 
 [fluid]
-collision = "at+a"
+collision = "{getattr(a, 'collision', 'at+a')}"
 density = {a.density:g}
 dt = {a.dt:g}
 kT = 1.0
@@ -76,7 +76,8 @@ correlation_every = {a.every}
 [output]
 dir = "{a.out}"
 every = {steps}
-observables = ["temperature", "colloid_vacf", "colloid_diffusion", "colloid_msd"]
+observables = ["temperature", "colloid_vacf", "colloid_diffusion", "colloid_msd",
+               "colloid_angular_vacf"]
 """
 
 
@@ -161,6 +162,35 @@ def stokes_einstein(d, radius, L, eta):
     return (1 - 2.837297 * radius / L) / (6 * math.pi * eta * radius)
 
 
+def colloid_mass(a):
+    """Density-matched: n times the colloid's area (2D) or volume (3D)."""
+    vol = math.pi * a.radius**2 if a.dim == 2 else 4 / 3 * math.pi * a.radius**3
+    return a.density * vol
+
+
+def measure_statistics(a):
+    """The numbers of one run from narrows' own colloid statistics (tools/accuracy_map.py): the
+    plateau of D(t) (eq 4.51, over the last quarter of [0, tmax]) and the equipartition ratios
+    M<U^2>/(d kT) and I<Omega^2>/(d_rot kT) at lag 0 (I = M a^2/2 in 2D, 2 M a^2/5 in 3D;
+    d_rot = 1 in 2D, 3 in 3D), each with narrows' error (10 blocks of time, docs/scenes.md)."""
+    run_ = narrows_h5.open_run(a.out)
+    diff = run_.series("colloid_diffusion")
+    vacf = run_.series("colloid_vacf")
+    spin = run_.series("colloid_angular_vacf")
+    t = diff["lags"]
+    tail = t >= 0.75 * t[-1]
+    d = a.dim
+    M = colloid_mass(a)
+    inertia = M * a.radius**2 * (0.5 if d == 2 else 0.4)
+    d_rot = 1 if d == 2 else 3
+    return dict(d=d, L=a.box_over_a * a.radius, t=t, D_t=diff["value"],
+                D_vacf=float(diff["value"][tail].mean()),
+                D_vacf_err=float(diff["error"][tail].mean()),
+                trans=float(M * vacf["value"][0] / d), trans_err=float(M * vacf["error"][0] / d),
+                spin=float(inertia * spin["value"][0] / d_rot),
+                spin_err=float(inertia * spin["error"][0] / d_rot))
+
+
 def analyse(a):
     run_ = narrows_h5.open_run(a.out)
     diff = run_.series("colloid_diffusion")
@@ -228,6 +258,7 @@ def main():
     p.add_argument("--tmax", type=float, default=20.0, help="longest lag of C(t), in t0")
     p.add_argument("--ranks", type=int, default=1)
     p.add_argument("--seed", type=int, default=1)
+    p.add_argument("--collision", default="at+a", choices=("srd", "at", "at+a"))
     p.add_argument("--nu", type=float, help="kinematic viscosity (default: see above)")
     p.add_argument("--measure-nu", action="store_true",
                    help="measure nu in a Poiseuille slit of the same fluid (OUT/poiseuille)")
