@@ -103,7 +103,7 @@ steps = {266 * every}
 size = [{size}]
 
 [fluid]
-collision = "at+a"
+collision = "{getattr(a, 'collision', 'at+a')}"
 density = {n:g}
 dt = {dt:g}
 kT = 1.0
