@@ -314,15 +314,72 @@ void NoSlipCoupling::add_ghost_particles(mpcd::CellGrid &grid, const Colloids &c
 
 void NoSlipCoupling::take_back_ghost_particles(mpcd::CellGrid &grid,
                                                const mpcd::CollisionScratch &collision,
-                                               Colloids &c) {
+                                               mpcd::Fluid &fluid, Colloids &c) {
   const ScopedSeconds timed(seconds_);
   const std::size_t groups = grid.groups.size();
   if (collision.group_change.size() != groups)
     throw invariant_error("the collision left the ghost particles' groups without their change");
+  // Implicit exchange: the fluid of each cut cell (count, summed offsets from the corner, and
+  // the virtual particles of a wall cell), one pass over the fluid.
+  if (params_.implicit) {
+    cell_slot_.resize(grid.size(), -1);
+    slot_cells_.clear();
+    slot_fluid_.clear();
+    for (std::size_t q = 0; q < groups; ++q) {
+      const std::uint32_t cell = grid.groups[q].cell;
+      if (cell_slot_[cell] < 0) {
+        cell_slot_[cell] = static_cast<std::int32_t>(slot_cells_.size());
+        slot_cells_.push_back(cell);
+        slot_fluid_.push_back({0.0, 0.0, 0.0, 0.0});
+      }
+    }
+    const std::size_t n = fluid.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::int32_t slot = cell_slot_[fluid.cell[i]];
+      if (slot < 0)
+        continue;
+      auto &f = slot_fluid_[static_cast<std::size_t>(slot)];
+      f[0] += 1.0;
+      for (int k = 0; k < dim_; ++k)
+        f[1 + k] += mpcd::in_cell_offset(fluid.x[k][i], grid.shift[k]);
+    }
+  }
+  std::vector<double> &total = slot_total_; // per slot: all particles the mean was of
+  if (params_.implicit) {
+    total.assign(slot_cells_.size(), 0.0);
+    for (std::size_t k = 0; k < slot_cells_.size(); ++k)
+      total[k] = grid.sums[slot_cells_[k]].n; // ghosts still in
+    for (const mpcd::VirtualCell &v : grid.virtual_cells)
+      if (cell_slot_[v.cell] >= 0)
+        total[static_cast<std::size_t>(cell_slot_[v.cell])] += v.count;
+  }
+  double J[3][6];
   for (std::size_t q = 0; q < groups; ++q) {
     const mpcd::ParticleGroup &g = grid.groups[q];
     const mpcd::GroupChange &d = collision.group_change[q];
     const double *r = group_corner_[q].data();
+    if (params_.implicit) {
+      // Ghost velocities shifted by dU + dOmega x r' shift the cell's mean by
+      // (n_g dU + dOmega x sum r') / N, and each fluid particle's new velocity by `response`
+      // times that: J = (n_f / N) response (n_g, -[mean r']x).
+      const auto slot = static_cast<std::size_t>(cell_slot_[g.cell]);
+      const auto &f = slot_fluid_[slot];
+      if (f[0] > 0.0 && g.n > 0) {
+        double mean_r[3] = {0.0, 0.0, 0.0}, lever[3] = {0.0, 0.0, 0.0}, S[3][6];
+        for (int k = 0; k < dim_; ++k) {
+          mean_r[k] = r[k] + g.r[k] / g.n;
+          lever[k] = r[k] + f[1 + k] / f[0];
+        }
+        surface_map(mean_r, g.n * f[0] / total[slot], S);
+        for (int b = 0; b < 3; ++b)
+          for (int j = 0; j < 6; ++j) {
+            J[b][j] = 0.0;
+            for (int e = 0; e < dim_; ++e)
+              J[b][j] += d.response[3 * b + e] * S[e][j];
+          }
+        add_response(group_row_[q], J, lever);
+      }
+    }
     mpcd::CellSums &sum = grid.sums[g.cell];
     sum.n -= g.n; // out of the cell sums again, exactly as they went in
     for (int k = 0; k < dim_; ++k)
@@ -338,8 +395,39 @@ void NoSlipCoupling::take_back_ghost_particles(mpcd::CellGrid &grid,
     }
     add_impulse(group_row_[q], r, d.v.data(), l);
   }
-  grid.groups.clear();
   apply_impulses(c, false);
+  if (params_.implicit) { // the fluid's share: each cut cell's particles shifted, G dX/2
+    slot_shift_.assign(slot_cells_.size(), {0.0, 0.0, 0.0});
+    for (std::size_t q = 0; q < groups; ++q) {
+      const mpcd::ParticleGroup &g = grid.groups[q];
+      const auto slot = static_cast<std::size_t>(cell_slot_[g.cell]);
+      if (g.n == 0 || slot_fluid_[slot][0] == 0.0)
+        continue;
+      const double *r = group_corner_[q].data(), *h = &half_[group_row_[q] * dof_];
+      double mean_r[3] = {0.0, 0.0, 0.0}, S[3][6], du[3] = {0.0, 0.0, 0.0};
+      for (int k = 0; k < dim_; ++k)
+        mean_r[k] = r[k] + g.r[k] / g.n;
+      surface_map(mean_r, g.n / total[slot], S);
+      for (int e = 0; e < dim_; ++e)
+        for (int j = 0; j < dof_; ++j)
+          du[e] += S[e][j] * h[j];
+      const auto &resp = collision.group_change[q].response;
+      for (int b = 0; b < dim_; ++b)
+        for (int e = 0; e < dim_; ++e)
+          slot_shift_[slot][b] += resp[3 * b + e] * du[e];
+    }
+    const std::size_t n = fluid.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::int32_t slot = cell_slot_[fluid.cell[i]];
+      if (slot < 0)
+        continue;
+      for (int k = 0; k < dim_; ++k)
+        fluid.v[k][i] += slot_shift_[static_cast<std::size_t>(slot)][k];
+    }
+    for (const std::uint32_t cell : slot_cells_)
+      cell_slot_[cell] = -1;
+  }
+  grid.groups.clear();
 }
 
 } // namespace narrows::coupling

@@ -128,6 +128,9 @@ void group_change(const ParticleGroup &q, const double *delta, const double *rc,
   }
   const double w[3] = {D == 3 ? omega[0] : 0.0, D == 3 ? omega[1] : 0.0,
                        D == 3 ? omega[2] : omega[0]};
+  out.response = {};
+  for (int b = 0; b < D; ++b)
+    out.response[4 * b] = 1.0; // v' = xi + u - <xi> (+ the rotation, left out)
   for (int b = 0; b < D; ++b) {
     const int b1 = (b + 1) % 3, b2 = (b + 2) % 3; // (w x q)_b = w_b1 q_b2 - w_b2 q_b1
     out.v[b] = q.xi[b] + q.n * delta[b] + w[b1] * c[b2] - w[b2] * c[b1] - q.v[b];
@@ -170,11 +173,7 @@ void at_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, std:
   }
 }
 
-// Offset of a particle from the corner of its shifted cell, in [0, 1).
-inline double in_cell(double x, double shift) {
-  const double t = x - shift; // the same expression cell_grid.cpp bins with
-  return t - std::floor(t);
-}
+inline double in_cell(double x, double shift) { return in_cell_offset(x, shift); }
 
 // Fixed-point sums per cell for AT+a, laid out as
 //   2D: xi(2) r(2) |r|^2 (1) r x (v - xi) (1)                              -> 6
