@@ -96,13 +96,12 @@ Stages NoSlipCoupling::after_bin(const StageContext &at) {
 }
 
 Stages NoSlipCoupling::after_collide(const StageContext &at) {
-  return {
-      {"ghost particles' momentum and angular momentum change to the colloids",
-       [this, &grid = at.grid, &fluid = at.fluid, &colloids = at.colloids,
-        &collision = at.collision](std::uint64_t) {
-         take_back_ghost_particles(grid, collision, fluid, colloids);
-         hand_over(colloids); // ghost colloids go; colloids that left the slab change owner
-       }}};
+  return {{"ghost particles' momentum and angular momentum change to the colloids",
+           [this, &grid = at.grid, &fluid = at.fluid, &colloids = at.colloids,
+            &collision = at.collision](std::uint64_t) {
+             take_back_ghost_particles(grid, collision, fluid, colloids);
+             hand_over(colloids); // ghost colloids go; colloids that left the slab change owner
+           }}};
 }
 
 void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c, double fluid_v2_max) {
@@ -243,6 +242,10 @@ void NoSlipCoupling::add_response(std::size_t a, const double (&J)[3][6], const 
       G[4][j] = lever[2] * J[0][j] - lever[0] * J[2][j];
       G[5][j] = lever[0] * J[1][j] - lever[1] * J[0][j];
     }
+  add_G(a, G);
+}
+
+void NoSlipCoupling::add_G(std::size_t a, const double (&G)[6][6]) {
   std::int64_t *s = &impulse_[a * static_cast<std::size_t>(stride_) + dof_];
   for (int i = 0; i < dof_; ++i)
     for (int j = 0; j < dof_; ++j)
@@ -299,8 +302,8 @@ void NoSlipCoupling::apply_impulses(Colloids &c, bool refresh) {
     half_.resize(rows * dof_);
     for (std::size_t a = 0; a < rows; ++a)
       for (int k = 0; k < dof_; ++k)
-        half_[a * dof_ + k] =
-            0.5 * ((k < dim_ ? c.v[k][a] : c.omega[dim_ == 2 ? 2 : k - 3][a]) - before_[a * dof_ + k]);
+        half_[a * dof_ + k] = 0.5 * ((k < dim_ ? c.v[k][a] : c.omega[dim_ == 2 ? 2 : k - 3][a]) -
+                                     before_[a * dof_ + k]);
   }
 }
 

@@ -265,7 +265,10 @@ BounceStats NoSlipCoupling::bounce_back(mpcd::Fluid &fluid, Colloids &c,
   }
   ghosts_.check_region(batch_);
   // Implicit exchange: the response of each bounced particle's velocity to the colloid's, at
-  // the particle's final position (the lever of its correction).
+  // the particle's final position (the lever of its correction). A bounce gives the colloid
+  // f (v - U - Omega x s), d/dX = -f J(s): with the midpoint rule one bounce alone is then
+  // exactly the elastic collision of the particle with the colloid (the explicit change gains
+  // 2 (v - U)^2 / M of energy in each).
   double J[3][6];
   for (const Kick &k : kicks_) {
     double lever[3] = {0.0, 0.0, 0.0};

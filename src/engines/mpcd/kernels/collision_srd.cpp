@@ -128,6 +128,8 @@ void srd_groups(const CellGrid &g, std::vector<double> &par, std::vector<GroupCh
     }
     GroupChange &out = change[j];
     out.response = {};
+    out.rc = {0.0, 0.0, 0.0};
+    out.spin = {};
     for (int b = 0; b < 3; ++b)
       for (int c = 0; c < 3; ++c)
         out.response[3 * b + c] = -A[b][c];

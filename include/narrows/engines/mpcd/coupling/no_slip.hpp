@@ -143,6 +143,14 @@ private:
   // change is J dX (J: dim x dof, row-major 3 x 6) summed over `count` particles whose mean
   // position is `lever` from the centre.
   void add_response(std::size_t a, const double (&J)[3][6], const double *lever);
+  // Implicit exchange, ghost particles: each group's G (added to its row) and the fluid's
+  // response per unit dX (ghost_particles.cpp); after the solve, the cut cells' fluid shifted.
+  void ghost_responses(const mpcd::CellGrid &grid, const mpcd::CollisionScratch &collision,
+                       const mpcd::Fluid &fluid);
+  void shift_cut_cells(const mpcd::CellGrid &grid, const mpcd::CollisionScratch &collision,
+                       mpcd::Fluid &fluid);
+  // Adds G (dof x dof) to row a's.
+  void add_G(std::size_t a, const double (&G)[6][6]);
   // The velocity change J dX of a fluid particle at offset s from the centre, per unit of the
   // surface velocity's change dU + dOmega x s, times f.
   void surface_map(const double *s, double f, double (&J)[3][6]) const;
@@ -162,8 +170,8 @@ private:
   std::vector<std::int64_t> impulse_; // per row: momentum (dim) and angular momentum (1 or 3),
                                       // implicit: then G (dof x dof, row-major)
   int dof_ = 3, stride_ = 3;
-  std::vector<double> half_;          // implicit: per row, dX/2 of the last apply_impulses
-  std::vector<double> before_;        // scratch: U and Omega of each row before it
+  std::vector<double> half_;   // implicit: per row, dX/2 of the last apply_impulses
+  std::vector<double> before_; // scratch: U and Omega of each row before it
   // Implicit: the bounced particles' corrections (batch row, colloid row, surface point s, f:
   // 2, or 1 for a particle that takes the surface's velocity).
   struct Kick {
@@ -178,6 +186,14 @@ private:
   std::vector<std::array<double, 4>> slot_fluid_;
   std::vector<std::array<double, 3>> slot_shift_;
   std::vector<double> slot_total_; // particles in the cell's mean (ghosts, virtual ones too)
+  std::vector<std::array<double, 3>> slot_spin_, slot_rc_, slot_residual_;
+  // Implicit: per group, its G and, per degree of freedom of dX, the cell's mean velocity
+  // change (times the rule's response) and rigid rotation it causes.
+  struct GroupResponse {
+    double G[6][6];
+    double du[6][3], dw[6][3];
+  };
+  std::vector<GroupResponse> group_response_;
   std::vector<std::uint32_t> slot_cells_;
   // Bounce-back scratch: the particles being bounced, their fluid rows and colloid rows.
   mpcd::Fluid batch_;

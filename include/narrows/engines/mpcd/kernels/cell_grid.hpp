@@ -46,12 +46,16 @@ struct ParticleGroup {
 // What a collision did to a group: the sums of v' - v and of r_a (v'_b - v_b); and
 // `response`, how the new velocity v' of each other particle of the cell changes with the
 // cell's mean velocity u before the collision, [3 b + c] = d v'_b / d u_c (SRD: 1 - R; the
-// MPC-AT rules: 1, their rigid rotation's share (AT+a) left out), for the implicit exchange of
+// MPC-AT rules: 1); and for MPC-AT+a the cell's centre rc (from the corner) and inverse moment
+// of inertia `spin` (3 x 3; 2D: [8] = 1/I): the rigid rotation dw = spin dL that a change dL of
+// the cell's angular momentum about rc adds, v' += dw x (r - rc). For the implicit exchange of
 // no-slip colloids (coupling/no_slip.hpp).
 struct GroupChange {
   std::array<double, 3> v{0.0, 0.0, 0.0};
   std::array<double, 9> rv{};
   std::array<double, 9> response{};
+  std::array<double, 3> rc{0.0, 0.0, 0.0};
+  std::array<double, 9> spin{};
 };
 
 // The cells one rank owns: its slab of x columns [first_column, first_column + cells[0]) of
