@@ -402,16 +402,23 @@ void NoSlipCoupling::ghost_responses(const mpcd::CellGrid &grid,
       slot_fluid_.push_back({0.0, 0.0, 0.0, 0.0});
     }
   }
-  // The fluid of each cut cell: count and summed offsets from the corner.
+  // The fluid of each cut cell: count and summed offsets from the corner (in fixed point: the
+  // same bits whatever the order of the particles, on any number of ranks).
+  slot_fixed_.assign(slot_cells_.size(), {0, 0, 0, 0});
   const std::size_t n = fluid.size();
   for (std::size_t i = 0; i < n; ++i) {
     const std::int32_t slot = cell_slot_[fluid.cell[i]];
     if (slot < 0)
       continue;
-    auto &f = slot_fluid_[static_cast<std::size_t>(slot)];
-    f[0] += 1.0;
+    auto &f = slot_fixed_[static_cast<std::size_t>(slot)];
+    f[0] += 1;
     for (int k = 0; k < dim_; ++k)
-      f[1 + k] += mpcd::in_cell_offset(fluid.x[k][i], grid.shift[k]);
+      f[1 + k] += fixed::from_double(mpcd::in_cell_offset(fluid.x[k][i], grid.shift[k]));
+  }
+  for (std::size_t k = 0; k < slot_cells_.size(); ++k) {
+    slot_fluid_[k][0] = static_cast<double>(slot_fixed_[k][0]);
+    for (int a = 0; a < 3; ++a)
+      slot_fluid_[k][1 + a] = fixed::to_double(slot_fixed_[k][1 + a]);
   }
   slot_total_.assign(slot_cells_.size(), 0.0);
   for (std::size_t k = 0; k < slot_cells_.size(); ++k)
@@ -425,7 +432,12 @@ void NoSlipCoupling::ghost_responses(const mpcd::CellGrid &grid,
     const mpcd::GroupChange &d = collision.group_change[q];
     const double *corner = group_corner_[q].data();
     GroupResponse &out = group_response_[q];
-    const double N = slot_total_[static_cast<std::size_t>(cell_slot_[g.cell])];
+    const auto slot = static_cast<std::size_t>(cell_slot_[g.cell]);
+    const double N = slot_total_[slot];
+    if (slot_fluid_[slot][0] == 0.0 || g.n == 0) { // no fluid to respond: nothing changes
+      out = GroupResponse{};
+      continue;
+    }
     // Moments about the centre: m1 = n c + sum r, m2 = n c c^T + c (sum r)^T + (sum r) c^T +
     // sum r r^T.
     const double m0 = g.n;
@@ -515,27 +527,37 @@ void NoSlipCoupling::ghost_responses(const mpcd::CellGrid &grid,
 void NoSlipCoupling::shift_cut_cells(const mpcd::CellGrid &grid,
                                      const mpcd::CollisionScratch &collision, mpcd::Fluid &fluid) {
   const std::size_t slots = slot_cells_.size();
-  slot_shift_.assign(slots, {0.0, 0.0, 0.0});
-  slot_spin_.assign(slots, {0.0, 0.0, 0.0});
   slot_rc_.assign(slots, {0.0, 0.0, 0.0});
-  slot_residual_.assign(slots, {0.0, 0.0, 0.0});
+  // Summed over the groups of a cell in fixed point (their order depends on the colloid rows').
+  slot_sums_.assign(slots, {});
   for (std::size_t q = 0; q < grid.groups.size(); ++q) {
     const auto slot = static_cast<std::size_t>(cell_slot_[grid.groups[q].cell]);
     const GroupResponse &g = group_response_[q];
     const double *h = &half_[group_row_[q] * dof_];
-    for (int i = 0; i < dof_; ++i)
-      for (int a = 0; a < 3; ++a) {
-        slot_shift_[slot][a] += g.du[i][a] * h[i];
-        slot_spin_[slot][a] += g.dw[i][a] * h[i];
+    auto &sum = slot_sums_[slot];
+    for (int a = 0; a < 3; ++a) {
+      double du = 0.0, dw = 0.0, p = 0.0;
+      for (int i = 0; i < dof_; ++i) {
+        du += g.du[i][a] * h[i];
+        dw += g.dw[i][a] * h[i];
+        if (a < dim_)
+          p += g.G[a][i] * h[i];
       }
-    for (int k = 0; k < dim_; ++k) {
-      double p = 0.0;
-      for (int i = 0; i < dof_; ++i)
-        p += g.G[k][i] * h[i];
-      slot_residual_[slot][k] += p;
+      sum[a] += fixed::from_double(du);
+      sum[3 + a] += fixed::from_double(dw);
+      sum[6 + a] += fixed::from_double(p);
     }
     slot_rc_[slot] = collision.group_change[q].rc; // the cell's, from its corner
   }
+  slot_shift_.resize(slots);
+  slot_spin_.resize(slots);
+  slot_residual_.resize(slots);
+  for (std::size_t k = 0; k < slots; ++k)
+    for (int a = 0; a < 3; ++a) {
+      slot_shift_[k][a] = fixed::to_double(slot_sums_[k][a]);
+      slot_spin_[k][a] = fixed::to_double(slot_sums_[k][3 + a]);
+      slot_residual_[k][a] = fixed::to_double(slot_sums_[k][6 + a]);
+    }
   for (std::size_t k = 0; k < slots; ++k) {
     const auto &f = slot_fluid_[k];
     if (f[0] == 0.0)

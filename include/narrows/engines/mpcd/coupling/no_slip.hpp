@@ -184,6 +184,8 @@ private:
   // count and summed in-cell offsets, and the velocity shift they get.
   std::vector<std::int32_t> cell_slot_;
   std::vector<std::array<double, 4>> slot_fluid_;
+  std::vector<std::array<std::int64_t, 4>> slot_fixed_; // their fixed-point sums
+  std::vector<std::array<std::int64_t, 9>> slot_sums_;  // per slot: du, dw, G dX/2's momentum
   std::vector<std::array<double, 3>> slot_shift_;
   std::vector<double> slot_total_; // particles in the cell's mean (ghosts, virtual ones too)
   std::vector<std::array<double, 3>> slot_spin_, slot_rc_, slot_residual_;
