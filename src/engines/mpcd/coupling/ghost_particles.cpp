@@ -434,10 +434,11 @@ void NoSlipCoupling::ghost_responses(const mpcd::CellGrid &grid,
     GroupResponse &out = group_response_[q];
     const auto slot = static_cast<std::size_t>(cell_slot_[g.cell]);
     const double N = slot_total_[slot];
-    if (slot_fluid_[slot][0] == 0.0 || g.n == 0) { // no fluid to respond: nothing changes
+    if (g.n == 0) {
       out = GroupResponse{};
       continue;
     }
+    const bool dry = slot_fluid_[slot][0] == 0.0; // only ghosts (and virtual particles) here
     // Moments about the centre: m1 = n c + sum r, m2 = n c c^T + c (sum r)^T + (sum r) c^T +
     // sum r r^T.
     const double m0 = g.n;
@@ -514,6 +515,18 @@ void NoSlipCoupling::ghost_responses(const mpcd::CellGrid &grid,
         out.du[i][a] = Qdu[a];
         out.dw[i][a] = dw[a];
       }
+    }
+    // A cell without fluid: the ghosts still mix among themselves (the colloid's spin relative
+    // to its ghosts' mean is damped, and thermal noise enters: the angular rows stay), but
+    // momentum has no fluid to go to: of one colloid's ghosts alone it is conserved anyway; of
+    // two colloids' or with a wall's virtual particles the response is left out.
+    if (dry) {
+      for (int k = 0; k < dim_; ++k)
+        for (int i = 0; i < dof_; ++i)
+          out.G[k][i] = 0.0;
+      for (int i = 0; i < dof_; ++i)
+        for (int a = 0; a < 3; ++a)
+          out.du[i][a] = out.dw[i][a] = 0.0;
     }
     add_G(group_row_[q], out.G);
   }
