@@ -257,6 +257,14 @@ std::optional<Colloids> parse_colloids(const Checker &c, const value *sec, const
                  " resolves contacts of no-slip colloids; allowed with coupling = \"md\": "
                  "\"none\" (the 48-24 potential keeps MD colloids apart)");
   }
+  if (const value *v = find(sec, "exchange")) {
+    out.exchange_implicit = c.choice(*v, "colloids.exchange", "a known impulse exchange",
+                                     {"implicit", "explicit"}) == 0;
+    if (!no_slip)
+      c.fail("colloids.exchange", "colloids.exchange = " + repr(*v) +
+                                      " sets how no-slip colloids take the fluid's impulses; "
+                                      "allowed only with coupling = \"no-slip\"");
+  }
   if (const value *v = find(sec, "spring")) {
     if (out.contacts != ColloidContacts::spring)
       c.fail("colloids.spring", "[colloids.spring] sets the spring contacts; allowed only with "

@@ -100,6 +100,13 @@ const EngineSchema &mpcd_schema() {
           "(Kanehl (thesis) §4.2.2: earliest collision first, normal and tangential contact "
           "velocity reversed; walls are rough and at rest), or linear springs with Coulomb "
           "friction and contact history (Kanehl (thesis) §4.2.3, `[colloids.spring]` below)"},
+         {"exchange", "string", R"(`"implicit"`)",
+          R"(`"implicit"`, `"explicit"` (only with `"no-slip"`))", "",
+          "how a no-slip colloid takes the impulses of bounce-back and ghost particles: "
+          "implicit (midpoint rule, (M + G/2) ΔX = ΔP with G the fluid's linear response, and "
+          "the fluid that gave the impulse shifted by G ΔX/2: kT per degree of freedom, "
+          "momentum and angular momentum exact) or explicit (ΔX = ΔP/M, Kanehl (thesis) eq "
+          "4.16-4.17 as written; the colloid runs hot by up to 1/(1 - G/2M))"},
          {"kind",
           "array of tables `[[colloids.kind]]`",
           "none (one kind from `radius`, `count`, `mass`)",

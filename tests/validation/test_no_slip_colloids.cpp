@@ -74,7 +74,7 @@ std::array<double, 2> fit_quadratic(const std::vector<double> &s, const std::vec
 } // namespace
 
 // (a) Poiseuille channel 48 x 24 (walls at y = 0, 24), AT+a, n = 10, dt = 0.1, g = 0.006; a disc
-// of radius 4 at the centre. It is held by its mass, 1e12 fluid masses: the drag it takes
+// of radius 4 at the centre. It is held by its mass, 1e13 fluid masses: the drag it takes
 // (~10 per unit time) moves it by ~2e-5 over the run, and every stage of the coupling is the one
 // a free colloid goes through (bounce-back at U + Omega x r, ghosts, impulses to the colloid);
 // resetting its velocity each step through colloids() would hold it too, but would hide the
@@ -85,7 +85,9 @@ std::array<double, 2> fit_quadratic(const std::vector<double> &s, const std::vec
 // the two walls half a box away. Each is fitted with a quadratic on 0 < s < 2 and extrapolated
 // to s = 0. u0 is the centre-line velocity half a box away from the disc. Blocks of 1000 steps
 // (100 time units, >> the momentum relaxation time of a gap, 8^2/(pi^2 nu) ~ 10) give the
-// standard errors. Cost: ~25 s.
+// standard errors; 30 of them (10 gave b_s = 0.18 +- 0.024, too wide an error for the 0.25 bound
+// below at this b_s: the implicit exchange changed the realisation, not the physics, of a disc this
+// heavy). Cost: ~14 s.
 TEST(NoSlipColloid, FixedDiscInPoiseuilleFlowHasZeroFluidVelocityAtItsSurface) {
   const double Lx = 48.0, Ly = 24.0, R = 4.0, g = 0.006;
   scene::Scene s =
@@ -96,14 +98,14 @@ TEST(NoSlipColloid, FixedDiscInPoiseuilleFlowHasZeroFluidVelocityAtItsSurface) {
   c.coupling = scene::ColloidCoupling::no_slip;
   c.contacts = scene::ColloidContacts::hard;
   c.radius = R;
-  c.mass = 1e12;
+  c.mass = 1e13;
   c.placement = scene::ColloidPlacement::list;
   c.positions = {{Lx / 2, Ly / 2, 0.0}};
   c.count = 1;
   s.colloids = c;
   mpcd::MpcdSimulation sim(s, MPI_COMM_SELF);
   const double xc = Lx / 2, yc = Ly / 2;
-  const int warmup = 2000, blocks = 10, block_steps = 1000, every = 2;
+  const int warmup = 2000, blocks = 30, block_steps = 1000, every = 2;
   const double bin = 0.25, reach = 2.0, wedge = std::tan(20.0 * std::numbers::pi / 180.0);
   const int nbins = static_cast<int>(reach / bin);
   for (int i = 0; i < warmup; ++i)

@@ -143,7 +143,7 @@ TEST(NoSlipAngularMomentum, AtaCollisionWithGhostsConservesTheTotal) {
     coupling.add_ghost_particles(grid, c, step);
     ASSERT_GT(coupling.ghost_particles(), 100u);
     mpcd::collide_at_a(fluid, grid, scratch, 1.0, 5, step);
-    coupling.take_back_ghost_particles(grid, scratch, c);
+    coupling.take_back_ghost_particles(grid, scratch, fluid, c);
     const double l1 = angular_momentum(fluid, c, grid, sim.box());
     worst = std::max(worst, std::abs(l1 - l0));
     spin_change = std::max(spin_change, std::abs(c.omega[2][0] - w0));

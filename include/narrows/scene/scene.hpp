@@ -103,6 +103,7 @@ struct Colloids {
   ColloidPlacement placement = ColloidPlacement::lattice; // lattice: a row along x, centred
   ColloidCoupling coupling = ColloidCoupling::md;
   ColloidContacts contacts = ColloidContacts::none;
+  bool exchange_implicit = true; // no-slip impulses: the midpoint rule (false: explicit)
   ColloidSprings spring;                        // contacts = "spring"
   std::vector<std::array<double, 3>> positions; // placement "list"
   double packing_fraction = 0.0;                // placement "packing": the target fraction

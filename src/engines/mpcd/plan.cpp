@@ -196,6 +196,7 @@ MpcdPlan make_plan(const scene::Scene &s, const mpcd::Box &box, int ranks) {
         q.sine_amplitude = s.body_force->amplitude;
       q.hard_contacts = c.contacts == scene::ColloidContacts::hard;
       q.spring_contacts = c.contacts == scene::ColloidContacts::spring;
+      q.implicit = c.exchange_implicit;
       q.spring = {c.spring.kn, c.spring.kt, c.spring.mu_cc, c.spring.mu_cw, c.spring.substeps};
     }
   }

@@ -314,11 +314,13 @@ void NoSlipCoupling::add_ghost_particles(mpcd::CellGrid &grid, const Colloids &c
 
 void NoSlipCoupling::take_back_ghost_particles(mpcd::CellGrid &grid,
                                                const mpcd::CollisionScratch &collision,
-                                               Colloids &c) {
+                                               mpcd::Fluid &fluid, Colloids &c) {
   const ScopedSeconds timed(seconds_);
   const std::size_t groups = grid.groups.size();
   if (collision.group_change.size() != groups)
     throw invariant_error("the collision left the ghost particles' groups without their change");
+  if (params_.implicit)
+    ghost_responses(grid, collision, fluid);
   for (std::size_t q = 0; q < groups; ++q) {
     const mpcd::ParticleGroup &g = grid.groups[q];
     const mpcd::GroupChange &d = collision.group_change[q];
@@ -338,8 +340,264 @@ void NoSlipCoupling::take_back_ghost_particles(mpcd::CellGrid &grid,
     }
     add_impulse(group_row_[q], r, d.v.data(), l);
   }
-  grid.groups.clear();
   apply_impulses(c, false);
+  if (params_.implicit)
+    shift_cut_cells(grid, collision, fluid);
+  grid.groups.clear();
+}
+
+namespace {
+
+void cross(const double *a, const double *b, double *out) {
+  out[0] = a[1] * b[2] - a[2] * b[1];
+  out[1] = a[2] * b[0] - a[0] * b[2];
+  out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+// sum_j r_j x (M r_j) from the second moment m2 = sum_j r_j r_j^T.
+void cross_moment(const double (&M)[3][3], const double (&m2)[3][3], double *out) {
+  double T[3][3] = {}; // T[c][b] = sum_j (M r_j)_c r_jb = (M m2)_cb
+  for (int c = 0; c < 3; ++c)
+    for (int b = 0; b < 3; ++b)
+      for (int d = 0; d < 3; ++d)
+        T[c][b] += M[c][d] * m2[d][b];
+  out[0] = T[2][1] - T[1][2];
+  out[1] = T[0][2] - T[2][0];
+  out[2] = T[1][0] - T[0][1];
+}
+
+// [w]x: the matrix of w x r.
+void cross_matrix(const double *w, double (&M)[3][3]) {
+  M[0][0] = M[1][1] = M[2][2] = 0.0;
+  M[0][1] = -w[2];
+  M[0][2] = w[1];
+  M[1][0] = w[2];
+  M[1][2] = -w[0];
+  M[2][0] = -w[1];
+  M[2][1] = w[0];
+}
+
+} // namespace
+
+// The implicit exchange's response of each colloid to its ghosts in a cut cell (no_slip.hpp).
+// Ghost j at r_j from the centre moves with dU + dW x r_j more when the colloid changes by
+// dX = (dU, dW): the cell's mean velocity by du = (n dU + dW x m1) / N, its angular momentum
+// about rc (AT+a) by dL = sum_j (r_j - rc) x (dU + dW x r_j), so its rigid rotation by
+// dw = spin dL; each ghost's new velocity by Q (du - dU - dW x r_j) + dw x (r_j - rc) (Q: the
+// rule's response). Summed over the ghosts (moments n, m1, m2), the colloid's impulse and angular
+// impulse change by -G dX; the fluid of the cell gets Q du + dw x (r - rc) each. Computed for
+// each unit dX.
+void NoSlipCoupling::ghost_responses(const mpcd::CellGrid &grid,
+                                     const mpcd::CollisionScratch &collision,
+                                     const mpcd::Fluid &fluid) {
+  const std::size_t groups = grid.groups.size();
+  cell_slot_.resize(grid.size(), -1);
+  slot_cells_.clear();
+  slot_fluid_.clear();
+  for (std::size_t q = 0; q < groups; ++q) {
+    const std::uint32_t cell = grid.groups[q].cell;
+    if (cell_slot_[cell] < 0) {
+      cell_slot_[cell] = static_cast<std::int32_t>(slot_cells_.size());
+      slot_cells_.push_back(cell);
+      slot_fluid_.push_back({0.0, 0.0, 0.0, 0.0});
+    }
+  }
+  // The fluid of each cut cell: count and summed offsets from the corner (in fixed point: the
+  // same bits whatever the order of the particles, on any number of ranks).
+  slot_fixed_.assign(slot_cells_.size(), {0, 0, 0, 0});
+  const std::size_t n = fluid.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::int32_t slot = cell_slot_[fluid.cell[i]];
+    if (slot < 0)
+      continue;
+    auto &f = slot_fixed_[static_cast<std::size_t>(slot)];
+    f[0] += 1;
+    for (int k = 0; k < dim_; ++k)
+      f[1 + k] += fixed::from_double(mpcd::in_cell_offset(fluid.x[k][i], grid.shift[k]));
+  }
+  for (std::size_t k = 0; k < slot_cells_.size(); ++k) {
+    slot_fluid_[k][0] = static_cast<double>(slot_fixed_[k][0]);
+    for (int a = 0; a < 3; ++a)
+      slot_fluid_[k][1 + a] = fixed::to_double(slot_fixed_[k][1 + a]);
+  }
+  slot_total_.assign(slot_cells_.size(), 0.0);
+  for (std::size_t k = 0; k < slot_cells_.size(); ++k)
+    slot_total_[k] = grid.sums[slot_cells_[k]].n; // ghosts still in
+  for (const mpcd::VirtualCell &v : grid.virtual_cells)
+    if (cell_slot_[v.cell] >= 0)
+      slot_total_[static_cast<std::size_t>(cell_slot_[v.cell])] += v.count;
+  group_response_.resize(groups);
+  for (std::size_t q = 0; q < groups; ++q) {
+    const mpcd::ParticleGroup &g = grid.groups[q];
+    const mpcd::GroupChange &d = collision.group_change[q];
+    const double *corner = group_corner_[q].data();
+    GroupResponse &out = group_response_[q];
+    const auto slot = static_cast<std::size_t>(cell_slot_[g.cell]);
+    const double N = slot_total_[slot];
+    if (g.n == 0) {
+      out = GroupResponse{};
+      continue;
+    }
+    const bool dry = slot_fluid_[slot][0] == 0.0; // only ghosts (and virtual particles) here
+    // Moments about the centre: m1 = n c + sum r, m2 = n c c^T + c (sum r)^T + (sum r) c^T +
+    // sum r r^T.
+    const double m0 = g.n;
+    double m1[3], m2[3][3], rc[3];
+    for (int a = 0; a < 3; ++a) {
+      m1[a] = m0 * corner[a] + g.r[a];
+      rc[a] = corner[a] + d.rc[a];
+      for (int b = 0; b < 3; ++b)
+        m2[a][b] =
+            m0 * corner[a] * corner[b] + corner[a] * g.r[b] + g.r[a] * corner[b] + g.rr[3 * a + b];
+    }
+    if (dim_ == 2)
+      rc[2] = 0.0;
+    double Q[3][3];
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b)
+        Q[a][b] = d.response[3 * a + b];
+    for (int i = 0; i < dof_; ++i) {
+      double dU[3] = {0.0, 0.0, 0.0}, dW[3] = {0.0, 0.0, 0.0};
+      if (i < dim_)
+        dU[i] = 1.0;
+      else
+        dW[dim_ == 2 ? 2 : i - 3] = 1.0;
+      double S[3], du[3], Qdu[3], QdU[3], t[3];
+      cross(dW, m1, t);
+      for (int a = 0; a < 3; ++a) {
+        S[a] = m0 * dU[a] + t[a];
+        du[a] = N > 0.0 ? S[a] / N : 0.0;
+      }
+      for (int a = 0; a < 3; ++a) {
+        Qdu[a] = Q[a][0] * du[0] + Q[a][1] * du[1] + Q[a][2] * du[2];
+        QdU[a] = Q[a][0] * dU[0] + Q[a][1] * dU[1] + Q[a][2] * dU[2];
+      }
+      // dL = (m1 - n rc) x dU + sum r x (dW x r) - rc x (dW x m1).
+      double W[3][3], dL[3], u1[3], u2[3], u3[3], off[3];
+      cross_matrix(dW, W);
+      for (int a = 0; a < 3; ++a)
+        off[a] = m1[a] - m0 * rc[a];
+      cross(off, dU, u1);
+      cross_moment(W, m2, u2);
+      cross(rc, t, u3);
+      double dw[3];
+      for (int a = 0; a < 3; ++a)
+        dL[a] = u1[a] + u2[a] - u3[a];
+      for (int a = 0; a < 3; ++a)
+        dw[a] = d.spin[3 * a] * dL[0] + d.spin[3 * a + 1] * dL[1] + d.spin[3 * a + 2] * dL[2];
+      // The colloid's change: P = Q (n du - S) + dw x (m1 - n rc);
+      // L = m1 x Q du - m1 x Q dU - sum r x Q (dW x r) + sum r x (dw x r) - m1 x (dw x rc).
+      double P[3], L[3], a1[3], a2[3], a3[3], a4[3], a5[3], QW[3][3], Dw[3][3], wr[3];
+      cross(dw, off, a1);
+      for (int a = 0; a < 3; ++a)
+        P[a] = Qdu[a] * m0 - (Q[a][0] * S[0] + Q[a][1] * S[1] + Q[a][2] * S[2]) + a1[a];
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b)
+          QW[a][b] = Q[a][0] * W[0][b] + Q[a][1] * W[1][b] + Q[a][2] * W[2][b];
+      cross_matrix(dw, Dw);
+      cross(m1, Qdu, a2);
+      cross(m1, QdU, a3);
+      cross_moment(QW, m2, a4);
+      cross_moment(Dw, m2, a5);
+      cross(dw, rc, wr);
+      double a6[3];
+      cross(m1, wr, a6);
+      for (int a = 0; a < 3; ++a)
+        L[a] = a2[a] - a3[a] - a4[a] + a5[a] - a6[a];
+      for (int k = 0; k < dim_; ++k)
+        out.G[k][i] = -P[k];
+      if (dim_ == 2)
+        out.G[2][i] = -L[2];
+      else
+        for (int k = 0; k < 3; ++k)
+          out.G[3 + k][i] = -L[k];
+      for (int a = 0; a < 3; ++a) {
+        out.du[i][a] = Qdu[a];
+        out.dw[i][a] = dw[a];
+      }
+    }
+    // A cell without fluid: the ghosts still mix among themselves (the colloid's spin relative
+    // to its ghosts' mean is damped, and thermal noise enters: the angular rows stay), but
+    // momentum has no fluid to go to: of one colloid's ghosts alone it is conserved anyway; of
+    // two colloids' or with a wall's virtual particles the response is left out.
+    if (dry) {
+      for (int k = 0; k < dim_; ++k)
+        for (int i = 0; i < dof_; ++i)
+          out.G[k][i] = 0.0;
+      for (int i = 0; i < dof_; ++i)
+        for (int a = 0; a < 3; ++a)
+          out.du[i][a] = out.dw[i][a] = 0.0;
+    }
+    add_G(group_row_[q], out.G);
+  }
+}
+
+// The fluid's share of the implicit exchange: each cut cell's particles get, for each group
+// there, Q du + dw x (r - rc) at the colloid's dX/2; and, spread evenly, whatever momentum the
+// colloids' G dX/2 has beyond that (other colloids' ghosts and a wall's virtual particles in
+// the cell take a share of the response that is not followed), so that momentum is conserved
+// exactly.
+void NoSlipCoupling::shift_cut_cells(const mpcd::CellGrid &grid,
+                                     const mpcd::CollisionScratch &collision, mpcd::Fluid &fluid) {
+  const std::size_t slots = slot_cells_.size();
+  slot_rc_.assign(slots, {0.0, 0.0, 0.0});
+  // Summed over the groups of a cell in fixed point (their order depends on the colloid rows').
+  slot_sums_.assign(slots, {});
+  for (std::size_t q = 0; q < grid.groups.size(); ++q) {
+    const auto slot = static_cast<std::size_t>(cell_slot_[grid.groups[q].cell]);
+    const GroupResponse &g = group_response_[q];
+    const double *h = &half_[group_row_[q] * dof_];
+    auto &sum = slot_sums_[slot];
+    for (int a = 0; a < 3; ++a) {
+      double du = 0.0, dw = 0.0, p = 0.0;
+      for (int i = 0; i < dof_; ++i) {
+        du += g.du[i][a] * h[i];
+        dw += g.dw[i][a] * h[i];
+        if (a < dim_)
+          p += g.G[a][i] * h[i];
+      }
+      sum[a] += fixed::from_double(du);
+      sum[3 + a] += fixed::from_double(dw);
+      sum[6 + a] += fixed::from_double(p);
+    }
+    slot_rc_[slot] = collision.group_change[q].rc; // the cell's, from its corner
+  }
+  slot_shift_.resize(slots);
+  slot_spin_.resize(slots);
+  slot_residual_.resize(slots);
+  for (std::size_t k = 0; k < slots; ++k)
+    for (int a = 0; a < 3; ++a) {
+      slot_shift_[k][a] = fixed::to_double(slot_sums_[k][a]);
+      slot_spin_[k][a] = fixed::to_double(slot_sums_[k][3 + a]);
+      slot_residual_[k][a] = fixed::to_double(slot_sums_[k][6 + a]);
+    }
+  for (std::size_t k = 0; k < slots; ++k) {
+    const auto &f = slot_fluid_[k];
+    if (f[0] == 0.0)
+      continue;
+    // The fluid's momentum from the response: n c + w x (sum r - n rc).
+    double off[3] = {0.0, 0.0, 0.0}, wr[3];
+    for (int a = 0; a < dim_; ++a)
+      off[a] = f[1 + a] - f[0] * slot_rc_[k][a];
+    cross(slot_spin_[k].data(), off, wr);
+    for (int a = 0; a < dim_; ++a)
+      slot_residual_[k][a] = (slot_residual_[k][a] - (f[0] * slot_shift_[k][a] + wr[a])) / f[0];
+  }
+  const std::size_t n = fluid.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::int32_t slot = cell_slot_[fluid.cell[i]];
+    if (slot < 0)
+      continue;
+    const auto k = static_cast<std::size_t>(slot);
+    double r[3] = {0.0, 0.0, 0.0}, wr[3];
+    for (int a = 0; a < dim_; ++a)
+      r[a] = mpcd::in_cell_offset(fluid.x[a][i], grid.shift[a]) - slot_rc_[k][a];
+    cross(slot_spin_[k].data(), r, wr);
+    for (int a = 0; a < dim_; ++a)
+      fluid.v[a][i] += slot_shift_[k][a] + wr[a] + slot_residual_[k][a];
+  }
+  for (const std::uint32_t cell : slot_cells_)
+    cell_slot_[cell] = -1;
 }
 
 } // namespace narrows::coupling

@@ -11,6 +11,8 @@
 #include "narrows/engines/mpcd/coupling/near_fluid.hpp"
 #include "narrows/engines/mpcd/kernels/streaming.hpp"
 
+#include <Eigen/Dense>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -49,7 +51,9 @@ void rotate(Colloids &c, std::size_t a, double dt) {
 NoSlipCoupling::NoSlipCoupling(const NoSlipParams &params, const mpcd::Box &box,
                                const parallel::Slabs &slabs)
     : params_(params), box_(box), dim_(box.dim), slabs_(slabs), ghosts_(slabs, box),
-      migration_(slabs.comm()), stride_(box.dim == 2 ? 3 : 6), contact_migration_(slabs.comm()) {
+      migration_(slabs.comm()), contact_migration_(slabs.comm()) {
+  dof_ = dim_ == 2 ? 3 : 6;
+  stride_ = params_.implicit ? dof_ + dof_ * dof_ : dof_;
   history_.dim = dim_;
   if (params_.spring_contacts) {
     springs_.emplace(params_.spring, box_);
@@ -92,12 +96,12 @@ Stages NoSlipCoupling::after_bin(const StageContext &at) {
 }
 
 Stages NoSlipCoupling::after_collide(const StageContext &at) {
-  return {
-      {"ghost particles' momentum and angular momentum change to the colloids",
-       [this, &grid = at.grid, &colloids = at.colloids, &collision = at.collision](std::uint64_t) {
-         take_back_ghost_particles(grid, collision, colloids);
-         hand_over(colloids); // ghost colloids go; colloids that left the slab change owner
-       }}};
+  return {{"ghost particles' momentum and angular momentum change to the colloids",
+           [this, &grid = at.grid, &fluid = at.fluid, &colloids = at.colloids,
+            &collision = at.collision](std::uint64_t) {
+             take_back_ghost_particles(grid, collision, fluid, colloids);
+             hand_over(colloids); // ghost colloids go; colloids that left the slab change owner
+           }}};
 }
 
 void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c, double fluid_v2_max) {
@@ -205,27 +209,101 @@ void NoSlipCoupling::add_impulse(std::size_t a, const double *r, const double *d
   }
 }
 
+void NoSlipCoupling::surface_map(const double *r, double f, double (&J)[3][6]) const {
+  // dU + dOmega x r: 2D dof (Ux, Uy, Omega_z); 3D (Ux, Uy, Uz, Omega_x, Omega_y, Omega_z).
+  for (auto &row : J)
+    std::fill(std::begin(row), std::end(row), 0.0);
+  for (int k = 0; k < dim_; ++k)
+    J[k][k] = f;
+  if (dim_ == 2) {
+    J[0][2] = -f * r[1];
+    J[1][2] = f * r[0];
+  } else { // (W x r)_0 = W_1 r_2 - W_2 r_1, ...
+    J[0][4] = f * r[2];
+    J[0][5] = -f * r[1];
+    J[1][3] = -f * r[2];
+    J[1][5] = f * r[0];
+    J[2][3] = f * r[1];
+    J[2][4] = -f * r[0];
+  }
+}
+
+void NoSlipCoupling::add_response(std::size_t a, const double (&J)[3][6], const double *lever) {
+  // Rows: momentum J dX, then angular momentum lever x (J dX) about the centre.
+  double G[6][6] = {};
+  for (int k = 0; k < dim_; ++k)
+    for (int j = 0; j < dof_; ++j)
+      G[k][j] = J[k][j];
+  for (int j = 0; j < dof_; ++j)
+    if (dim_ == 2) {
+      G[2][j] = lever[0] * J[1][j] - lever[1] * J[0][j];
+    } else {
+      G[3][j] = lever[1] * J[2][j] - lever[2] * J[1][j];
+      G[4][j] = lever[2] * J[0][j] - lever[0] * J[2][j];
+      G[5][j] = lever[0] * J[1][j] - lever[1] * J[0][j];
+    }
+  add_G(a, G);
+}
+
+void NoSlipCoupling::add_G(std::size_t a, const double (&G)[6][6]) {
+  std::int64_t *s = &impulse_[a * static_cast<std::size_t>(stride_) + dof_];
+  for (int i = 0; i < dof_; ++i)
+    for (int j = 0; j < dof_; ++j)
+      s[i * dof_ + j] += fixed::from_double(G[i][j]);
+}
+
 void NoSlipCoupling::apply_impulses(Colloids &c, bool refresh) {
   {
     const ScopedSeconds talk(message_seconds_);
     ghosts_.reverse(impulse_, stride_);
   }
+  const std::size_t rows = c.size();
+  if (params_.implicit) { // every row's U and Omega before, for dX/2 of the ghost rows
+    before_.resize(rows * dof_);
+    for (std::size_t a = 0; a < rows; ++a)
+      for (int k = 0; k < dof_; ++k)
+        before_[a * dof_ + k] = k < dim_ ? c.v[k][a] : c.omega[dim_ == 2 ? 2 : k - 3][a];
+  }
   for (std::size_t a = 0; a < ghosts_.owned(); ++a) {
     const std::int64_t *s = &impulse_[a * static_cast<std::size_t>(stride_)];
     const double m = c.mass[a];
     const double inertia = moment_of_inertia(c, a);
+    double dX[6];
+    if (params_.implicit) { // (M + G/2) dX = dP
+      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6> A(dof_, dof_);
+      Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> b(dof_);
+      for (int i = 0; i < dof_; ++i) {
+        b[i] = fixed::to_double(s[i]);
+        for (int j = 0; j < dof_; ++j)
+          A(i, j) = 0.5 * fixed::to_double(s[dof_ + i * dof_ + j]) +
+                    (i == j ? (i < dim_ ? m : inertia) : 0.0);
+      }
+      const auto x = A.partialPivLu().solve(b).eval();
+      for (int i = 0; i < dof_; ++i)
+        dX[i] = x[i];
+    } else {
+      for (int i = 0; i < dof_; ++i)
+        dX[i] = fixed::to_double(s[i]) / (i < dim_ ? m : inertia);
+    }
     for (int k = 0; k < dim_; ++k)
-      c.v[k][a] += fixed::to_double(s[k]) / m;
+      c.v[k][a] += dX[k];
     if (dim_ == 2)
-      c.omega[2][a] += fixed::to_double(s[2]) / inertia;
+      c.omega[2][a] += dX[2];
     else
       for (int k = 0; k < 3; ++k)
-        c.omega[k][a] += fixed::to_double(s[3 + k]) / inertia;
+        c.omega[k][a] += dX[3 + k];
   }
   std::fill(impulse_.begin(), impulse_.end(), 0);
-  if (refresh) {
+  if (refresh || params_.implicit) {
     const ScopedSeconds talk(message_seconds_);
     ghosts_.refresh_motion(c);
+  }
+  if (params_.implicit) {
+    half_.resize(rows * dof_);
+    for (std::size_t a = 0; a < rows; ++a)
+      for (int k = 0; k < dof_; ++k)
+        half_[a * dof_ + k] = 0.5 * ((k < dim_ ? c.v[k][a] : c.omega[dim_ == 2 ? 2 : k - 3][a]) -
+                                     before_[a * dof_ + k]);
   }
 }
 

@@ -128,6 +128,11 @@ void group_change(const ParticleGroup &q, const double *delta, const double *rc,
   }
   const double w[3] = {D == 3 ? omega[0] : 0.0, D == 3 ? omega[1] : 0.0,
                        D == 3 ? omega[2] : omega[0]};
+  out.response = {};
+  out.rc = {0.0, 0.0, 0.0};
+  out.spin = {};
+  for (int b = 0; b < D; ++b)
+    out.response[4 * b] = 1.0; // v' = xi + u - <xi> (AT+a: + the rotation, spin below)
   for (int b = 0; b < D; ++b) {
     const int b1 = (b + 1) % 3, b2 = (b + 2) % 3; // (w x q)_b = w_b1 q_b2 - w_b2 q_b1
     out.v[b] = q.xi[b] + q.n * delta[b] + w[b1] * c[b2] - w[b2] * c[b1] - q.v[b];
@@ -170,11 +175,7 @@ void at_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, std:
   }
 }
 
-// Offset of a particle from the corner of its shifted cell, in [0, 1).
-inline double in_cell(double x, double shift) {
-  const double t = x - shift; // the same expression cell_grid.cpp bins with
-  return t - std::floor(t);
-}
+inline double in_cell(double x, double shift) { return in_cell_offset(x, shift); }
 
 // Fixed-point sums per cell for AT+a, laid out as
 //   2D: xi(2) r(2) |r|^2 (1) r x (v - xi) (1)                              -> 6
@@ -317,8 +318,42 @@ void at_a_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, st
   virtual_delta<D>(g, s, SS, PS);
   s.group_change.resize(g.groups.size());
   for (std::size_t j = 0; j < g.groups.size(); ++j) {
-    const double *par = &s.cell[g.groups[j].cell * PS];
-    group_change<D>(g.groups[j], par, par + D, par + 2 * D, s.group_change[j]);
+    const std::size_t cell = g.groups[j].cell;
+    const double *par = &s.cell[cell * PS];
+    GroupChange &out = s.group_change[j];
+    group_change<D>(g.groups[j], par, par + D, par + 2 * D, out);
+    // The cell's rc and inverse moment of inertia, for the implicit exchange (a few hundred
+    // cut cells a step: the eigen-decomposition's cost does not matter here).
+    const std::int64_t *sum = &s.cell_fixed[cell * SS];
+    const double cnt = g.sums[cell].n;
+    out.spin = {};
+    out.rc = {0.0, 0.0, 0.0};
+    for (int k = 0; k < D; ++k)
+      out.rc[k] = par[D + k];
+    const double *rc = par + D;
+    if constexpr (D == 2) {
+      const double I = to_double(sum[4]) - cnt * (rc[0] * rc[0] + rc[1] * rc[1]);
+      out.spin[8] = I > 1e-12 ? 1.0 / I : 0.0;
+    } else {
+      const std::int64_t *m = sum + 6;
+      const int idx[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
+      Eigen::Matrix3d S, I;
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b)
+          S(a, b) = to_double(m[idx[a][b]]) - cnt * rc[a] * rc[b];
+      I = S.trace() * Eigen::Matrix3d::Identity() - S;
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(I);
+      const Eigen::Vector3d lam = eig.eigenvalues();
+      const double cut = std::max(1e-10 * lam.cwiseAbs().maxCoeff(), 1e-11);
+      Eigen::Vector3d inv;
+      for (int k = 0; k < 3; ++k)
+        inv[k] = std::abs(lam[k]) > cut ? 1.0 / lam[k] : 0.0;
+      const Eigen::Matrix3d P =
+          eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose();
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b)
+          out.spin[3 * a + b] = P(a, b);
+    }
   }
 
   double v2_max = 0.0;

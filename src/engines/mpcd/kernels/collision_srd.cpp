@@ -127,6 +127,12 @@ void srd_groups(const CellGrid &g, std::vector<double> &par, std::vector<GroupCh
         RW[a][c] = q.rv[3 * a + c] - q.r[a] * p[c];
     }
     GroupChange &out = change[j];
+    out.response = {};
+    out.rc = {0.0, 0.0, 0.0};
+    out.spin = {};
+    for (int b = 0; b < 3; ++b)
+      for (int c = 0; c < 3; ++c)
+        out.response[3 * b + c] = -A[b][c];
     for (int b = 0; b < D; ++b) {
       out.v[b] = 0.0;
       for (int c = 0; c < D; ++c)

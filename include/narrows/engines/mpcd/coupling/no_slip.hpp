@@ -31,6 +31,17 @@
 // after_collide:
 //   take_back_ghost_particles  their momentum and angular momentum change to the colloids;
 //                          they leave the cell sums
+// The impulses of bounce-back and of the ghost particles change U and Omega implicitly
+// (exchange = "implicit", the default): each was computed with the colloid's velocity before
+// it, and depends on it linearly, dP = dP_0 - G dX for a change dX = (dU, dOmega) (G: what
+// the fluid's velocities would gain, as momentum and angular momentum about the centre, had
+// the colloid moved faster by dX). The colloid takes the midpoint rule's change,
+// (M + G/2) dX = dP, and the fluid that exchanged the impulse gets G dX/2 (the bounced
+// particles 2 (dU + dOmega x s)/2 each, the particles of a cut cell the collision's response
+// to a mean velocity shifted by the ghosts' dX/2): momentum and angular momentum stay
+// conserved exactly, and a colloid in equilibrium keeps kT per degree of freedom, where the
+// explicit change dX = M^-1 dP (exchange = "explicit") heats it by a factor ~1/(1 - G/2M) (an
+// explicit Euler step of the friction).
 //   hand_over              ghost colloids go; colloids that left the slab change owner (with
 //                          the contact history they own)
 // All calls are collective over the slabs' communicator.
@@ -67,6 +78,7 @@ struct NoSlipParams {
   bool hard_contacts = false;
   bool spring_contacts = false; // springs with friction (then `spring` holds their constants)
   colloids::SpringParams spring;
+  bool implicit = true; // the exchange of impulses (see above); false: explicit
 };
 
 // Turns colloid a's orientation by its angular velocity over time dt.
@@ -92,7 +104,7 @@ public:
   BounceStats bounce_back(mpcd::Fluid &fluid, colloids::Colloids &c, const FluidStream &stream);
   void add_ghost_particles(mpcd::CellGrid &grid, const colloids::Colloids &c, std::uint64_t step);
   void take_back_ghost_particles(mpcd::CellGrid &grid, const mpcd::CollisionScratch &collision,
-                                 colloids::Colloids &c);
+                                 mpcd::Fluid &fluid, colloids::Colloids &c);
   void hand_over(colloids::Colloids &c);
 
   // Bytes this rank sent for colloids (ghosts, reverse sums, migration) since the start.
@@ -123,8 +135,25 @@ private:
   // the angular impulse `more` (1 or 3 components) if given.
   void add_impulse(std::size_t a, const double *r, const double *dp, const double *more = nullptr);
   // Sends the ghost rows' sums to their owners, which change U and Omega; zeroes the sums;
-  // with `refresh` the ghosts get the new U and Omega.
+  // with `refresh` the ghosts get the new U and Omega. Implicit: the change solves
+  // (M + G/2) dX = dP, every row (ghosts too, refreshed whatever `refresh` says) and half_
+  // holds dX/2 for each row, the velocity change the fluid's share is computed for.
   void apply_impulses(colloids::Colloids &c, bool refresh);
+  // Implicit exchange: adds to row a's G the response of a fluid correction whose velocity
+  // change is J dX (J: dim x dof, row-major 3 x 6) summed over `count` particles whose mean
+  // position is `lever` from the centre.
+  void add_response(std::size_t a, const double (&J)[3][6], const double *lever);
+  // Implicit exchange, ghost particles: each group's G (added to its row) and the fluid's
+  // response per unit dX (ghost_particles.cpp); after the solve, the cut cells' fluid shifted.
+  void ghost_responses(const mpcd::CellGrid &grid, const mpcd::CollisionScratch &collision,
+                       const mpcd::Fluid &fluid);
+  void shift_cut_cells(const mpcd::CellGrid &grid, const mpcd::CollisionScratch &collision,
+                       mpcd::Fluid &fluid);
+  // Adds G (dof x dof) to row a's.
+  void add_G(std::size_t a, const double (&G)[6][6]);
+  // The velocity change J dX of a fluid particle at offset s from the centre, per unit of the
+  // surface velocity's change dU + dOmega x s, times f.
+  void surface_map(const double *s, double f, double (&J)[3][6]) const;
 
   NoSlipParams params_;
   mpcd::Box box_;
@@ -138,8 +167,36 @@ private:
   std::vector<std::uint8_t> trusted_;        // per row, for the hard contacts
   std::vector<std::size_t> active_, still_;  // bounce-back: batch rows still inside, per level
   mpcd::Fluid level_;                        // their copy while they fly
-  std::vector<std::int64_t> impulse_; // per row: momentum (dim) and angular momentum (1 or 3)
-  int stride_ = 3;
+  std::vector<std::int64_t> impulse_; // per row: momentum (dim) and angular momentum (1 or 3),
+                                      // implicit: then G (dof x dof, row-major)
+  int dof_ = 3, stride_ = 3;
+  std::vector<double> half_;   // implicit: per row, dX/2 of the last apply_impulses
+  std::vector<double> before_; // scratch: U and Omega of each row before it
+  // Implicit: the bounced particles' corrections (batch row, colloid row, surface point s, f:
+  // 2, or 1 for a particle that takes the surface's velocity).
+  struct Kick {
+    std::size_t j, row;
+    std::array<double, 3> s;
+    double f;
+  };
+  std::vector<Kick> kicks_;
+  // Implicit: per local cell the slot of a cut cell (-1: none); per slot the fluid particles'
+  // count and summed in-cell offsets, and the velocity shift they get.
+  std::vector<std::int32_t> cell_slot_;
+  std::vector<std::array<double, 4>> slot_fluid_;
+  std::vector<std::array<std::int64_t, 4>> slot_fixed_; // their fixed-point sums
+  std::vector<std::array<std::int64_t, 9>> slot_sums_;  // per slot: du, dw, G dX/2's momentum
+  std::vector<std::array<double, 3>> slot_shift_;
+  std::vector<double> slot_total_; // particles in the cell's mean (ghosts, virtual ones too)
+  std::vector<std::array<double, 3>> slot_spin_, slot_rc_, slot_residual_;
+  // Implicit: per group, its G and, per degree of freedom of dX, the cell's mean velocity
+  // change (times the rule's response) and rigid rotation it causes.
+  struct GroupResponse {
+    double G[6][6];
+    double du[6][3], dw[6][3];
+  };
+  std::vector<GroupResponse> group_response_;
+  std::vector<std::uint32_t> slot_cells_;
   // Bounce-back scratch: the particles being bounced, their fluid rows and colloid rows.
   mpcd::Fluid batch_;
   std::vector<std::size_t> batch_index_, candidates_;

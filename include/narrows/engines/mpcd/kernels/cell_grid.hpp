@@ -43,10 +43,19 @@ struct ParticleGroup {
   std::array<double, 9> rxi{};
 };
 
-// What a collision did to a group: the sums of v' - v and of r_a (v'_b - v_b).
+// What a collision did to a group: the sums of v' - v and of r_a (v'_b - v_b); and
+// `response`, how the new velocity v' of each other particle of the cell changes with the
+// cell's mean velocity u before the collision, [3 b + c] = d v'_b / d u_c (SRD: 1 - R; the
+// MPC-AT rules: 1); and for MPC-AT+a the cell's centre rc (from the corner) and inverse moment
+// of inertia `spin` (3 x 3; 2D: [8] = 1/I): the rigid rotation dw = spin dL that a change dL of
+// the cell's angular momentum about rc adds, v' += dw x (r - rc). For the implicit exchange of
+// no-slip colloids (coupling/no_slip.hpp).
 struct GroupChange {
   std::array<double, 3> v{0.0, 0.0, 0.0};
   std::array<double, 9> rv{};
+  std::array<double, 9> response{};
+  std::array<double, 3> rc{0.0, 0.0, 0.0};
+  std::array<double, 9> spin{};
 };
 
 // The cells one rank owns: its slab of x columns [first_column, first_column + cells[0]) of
@@ -84,14 +93,21 @@ struct CellGrid {
   }
 };
 
+// Offset of a particle at x from the corner of its shifted cell (shift s), in [0, 1): the same
+// floor(x - s) as cell_coordinate, so cell and offset always agree.
+inline double in_cell_offset(double x, double s) {
+  const double t = x - s;
+  return t - std::floor(t);
+}
+
 // Shift of the collision grid at a step, uniform in [-1/2, 1/2) per axis; the same on every
 // rank without a message because it depends only on (seed, step).
 std::array<double, 3> grid_shift(std::uint64_t seed, std::uint64_t step, int dim);
 
 // Cell coordinate of position x along an axis of n cells with grid shift s: floor(x - s),
 // wrapped. x lies in [0, L) and s in [-1/2, 1/2), so x - s lies in (-1/2, L + 1/2) and one
-// wrap each way suffices. (collision_at.cpp's in_cell uses the same floor(x - s), so cell and
-// offset always agree.)
+// wrap each way suffices. (in_cell_offset uses the same floor(x - s), so cell and offset always
+// agree.)
 // A coordinate no cell can hold (not finite, or beyond the box it should have been wrapped
 // into): a broken invariant naming the particle (species may be null), never an index.
 [[noreturn]] void no_cell(double x, int axis, double length, const char *species, std::uint64_t id);
