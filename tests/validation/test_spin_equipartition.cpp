@@ -26,6 +26,7 @@
 #include "narrows/engines/mpcd/simulation.hpp"
 
 #include "fluid_scene.hpp"
+#include "poiseuille.hpp" // mean_of, standard_error
 
 #include <gtest/gtest.h>
 
@@ -58,20 +59,8 @@ struct Result {
   double trans, trans_err, rot, rot_err, fluid_kT, expected_trans;
 };
 
-double mean(const std::vector<double> &a) {
-  double m = 0.0;
-  for (double x : a)
-    m += x / static_cast<double>(a.size());
-  return m;
-}
-
-double standard_error(const std::vector<double> &a) {
-  const double m = mean(a);
-  double var = 0.0;
-  for (double x : a)
-    var += (x - m) * (x - m) / static_cast<double>(a.size() - 1);
-  return std::sqrt(var / static_cast<double>(a.size()));
-}
+using validation::mean_of;
+using validation::standard_error;
 
 Result run(const Case &k) {
   const double L = k.length;
@@ -126,7 +115,7 @@ Result run(const Case &k) {
   }
   const double fluid_mass = static_cast<double>(sim.fluid().size());
   const double total = fluid_mass + k.count * c.mass;
-  return {mean(bt),           standard_error(bt),       mean(br),
+  return {mean_of(bt),        standard_error(bt),       mean_of(br),
           standard_error(br), fluid_kT / fluid_samples, 1.0 - c.mass / total};
 }
 

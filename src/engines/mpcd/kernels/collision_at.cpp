@@ -194,6 +194,21 @@ template <int D> inline void cross(const double *a, const double *b, double *out
   }
 }
 
+// Pseudo-inverse of a cell's moment of inertia: with two particles (or collinear ones) I has a
+// zero eigenvalue along their line, and dL has no component there, so dropping it is exact.
+// compute(), not computeDirect(): the closed form loses ~8 digits on the double eigenvalue of
+// two-particle cells. The absolute floor keeps round-off (~1e-12) in a null direction from being
+// inverted into a spurious rotation.
+Eigen::Matrix3d pseudo_inverse(const Eigen::Matrix3d &I) {
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(I);
+  const Eigen::Vector3d lam = eig.eigenvalues();
+  const double cut = std::max(1e-10 * lam.cwiseAbs().maxCoeff(), 1e-11);
+  Eigen::Vector3d inv;
+  for (int k = 0; k < 3; ++k)
+    inv[k] = std::abs(lam[k]) > cut ? 1.0 / lam[k] : 0.0;
+  return eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose();
+}
+
 template <int D>
 void at_a_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, std::uint64_t seed,
                  std::uint64_t step) {
@@ -296,19 +311,7 @@ void at_a_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, st
       } else {
         Eigen::Matrix3d I;
         I << I00, I01, I02, I01, I11, I12, I02, I12, I22;
-        // Pseudo-inverse: with two particles (or collinear ones) I has a zero eigenvalue along
-        // their line, and dL has no component there, so dropping it is exact.
-        // compute(), not computeDirect(): the closed form loses ~8 digits on the double
-        // eigenvalue of two-particle cells. The absolute floor keeps round-off (~1e-12) in a
-        // null direction from being inverted into a spurious rotation.
-        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(I);
-        const Eigen::Vector3d lam = eig.eigenvalues();
-        const double cut = std::max(1e-10 * lam.cwiseAbs().maxCoeff(), 1e-11);
-        Eigen::Vector3d inv;
-        for (int k = 0; k < 3; ++k)
-          inv[k] = std::abs(lam[k]) > cut ? 1.0 / lam[k] : 0.0;
-        w = eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose() *
-            Eigen::Vector3d(dL[0], dL[1], dL[2]);
+        w = pseudo_inverse(I) * Eigen::Vector3d(dL[0], dL[1], dL[2]);
       }
       par[6] = w[0];
       par[7] = w[1];
@@ -342,14 +345,7 @@ void at_a_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, st
         for (int b = 0; b < 3; ++b)
           S(a, b) = to_double(m[idx[a][b]]) - cnt * rc[a] * rc[b];
       I = S.trace() * Eigen::Matrix3d::Identity() - S;
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(I);
-      const Eigen::Vector3d lam = eig.eigenvalues();
-      const double cut = std::max(1e-10 * lam.cwiseAbs().maxCoeff(), 1e-11);
-      Eigen::Vector3d inv;
-      for (int k = 0; k < 3; ++k)
-        inv[k] = std::abs(lam[k]) > cut ? 1.0 / lam[k] : 0.0;
-      const Eigen::Matrix3d P =
-          eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose();
+      const Eigen::Matrix3d P = pseudo_inverse(I);
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b)
           out.spin[3 * a + b] = P(a, b);
