@@ -104,7 +104,7 @@ struct Colloids {
   ColloidCoupling coupling = ColloidCoupling::md;
   ColloidContacts contacts = ColloidContacts::none;
   bool exchange_implicit = true; // no-slip impulses: the midpoint rule (false: explicit)
-  ColloidSprings spring;                        // contacts = "spring"
+  ColloidSprings spring;         // contacts = "spring"
   std::vector<std::array<double, 3>> positions; // placement "list"
   double packing_fraction = 0.0;                // placement "packing": the target fraction
   // Where each position was given, for messages: "colloids.positions[3]" or
