@@ -334,6 +334,22 @@ def burgers_sine_exact(x, t, length, mean, amp):
     return rho
 
 
+def step_order(errs, cells_list):
+    """The note's order between the last two grids of errs (empty for the first)."""
+    if len(errs) < 2:
+        return ""
+    k = len(errs) - 1
+    return (f", order {math.log(errs[k - 1] / errs[k]) / math.log(cells_list[k] / cells_list[k - 1]):.2f}"
+            f" from {cells_list[k - 1]}")
+
+
+def fitted_order(rows, errs, cells_list, label):
+    """The order fitted over all grids, appended to the last row's note and printed."""
+    fit = -np.polyfit(np.log(cells_list), np.log(errs), 1)[0]
+    rows[-1]["note"] += f"; fitted order {fit:.2f} ({cells_list[0]}-{cells_list[-1]} cells)"
+    print(f"accuracy_map: continuum {label}: L1 order {fit:.3f} over {cells_list}", file=sys.stderr)
+
+
 def smooth_rows(args, cells_list):
     """The same L1 error for smooth data, where the scheme is second order: Burgers, periodic,
     rho = 0.5 + 0.2 sin(2 pi x / 400) at t = 150 (it breaks at t = 318), against the cell
@@ -370,15 +386,11 @@ samples = 1
         moved = np.sum(np.abs(exact - start)) * dx
         l1 = np.sum(np.abs(rho["value"][-1] - exact)) * dx
         errs.append(l1)
-        order = (f", order {math.log(errs[-2] / l1) / math.log(cells / cells_list[len(errs) - 2]):.2f}"
-                 f" from {cells_list[len(errs) - 2]}" if len(errs) > 1 else "")
+        order = step_order(errs, cells_list)
         rows.append(Row(engine="continuum", knob=f"burgers sine (smooth), {cells} cells",
                         error=l1 / moved, stat=float("nan"), cpu=cpu, cost=cpu,
                         unit="CPU s per solution", note=f"L1 {l1:.4g} of {moved:.4g}{order}"))
-    fit = -np.polyfit(np.log(cells_list), np.log(errs), 1)[0]
-    rows[-1]["note"] += f"; fitted order {fit:.2f} ({cells_list[0]}-{cells_list[-1]} cells)"
-    print(f"accuracy_map: continuum burgers sine: L1 order {fit:.3f} over {cells_list}",
-          file=sys.stderr)
+    fitted_order(rows, errs, cells_list, "burgers sine")
     return rows
 
 
@@ -417,15 +429,11 @@ def continuum_rows(args, scale):
                                   - np.where(xs < x0, left, right))) * dx / sub
             l1 = np.sum(np.abs(rho["value"][-1] - exact)) * dx
             errs.append(l1)
-            order = (f", order {math.log(errs[-2] / l1) / math.log(cells / cells_list[len(errs) - 2]):.2f}"
-                     f" from {cells_list[len(errs) - 2]}" if len(errs) > 1 else "")
+            order = step_order(errs, cells_list)
             rows.append(Row(engine="continuum", knob=f"{case}, {cells} cells", error=l1 / moved,
                             stat=float("nan"), cpu=cpu, cost=cpu, unit="CPU s per solution",
                             note=f"L1 {l1:.4g} of {moved:.4g}{order}"))
-        fit = -np.polyfit(np.log(cells_list), np.log(errs), 1)[0]
-        rows[-1]["note"] += f"; fitted order {fit:.2f} ({cells_list[0]}-{cells_list[-1]} cells)"
-        print(f"accuracy_map: continuum {case}: L1 order {fit:.3f} over {cells_list}",
-              file=sys.stderr)
+        fitted_order(rows, errs, cells_list, case)
     return rows
 
 
