@@ -421,6 +421,13 @@ public:
                       "(colloid motion, bounce-back, ghost particles made and taken back)",
                       most, 100.0 * most / seconds);
         log.line(text);
+        std::string stages = "no-slip coupling stages (s, busiest rank of each):";
+        for (int k = 0; k < coupling::NoSlipCoupling::stage_count; ++k) {
+          std::snprintf(text, sizeof text, "%s %s %.3g", k ? "," : "",
+                        coupling::NoSlipCoupling::stage_name(k), busiest(ns->stage_seconds(k)));
+          stages += text;
+        }
+        log.line(stages);
         if (sim.slabs().ranks() > 1) { // how much of it is messages and waiting
           const double talk = busiest(ns->message_seconds());
           std::snprintf(text, sizeof text,

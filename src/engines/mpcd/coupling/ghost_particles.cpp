@@ -6,6 +6,7 @@
 #include "narrows/core/rng.hpp"
 #include "narrows/core/rng_batch.hpp"
 #include "narrows/core/timer.hpp"
+#include "narrows/engines/mpcd/coupling/ghost_response.hpp"
 #include "narrows/engines/mpcd/coupling/no_slip.hpp"
 #include "narrows/engines/mpcd/kernels/streaming.hpp"
 
@@ -92,6 +93,7 @@ void noise_sums(const mpcd::ParticleGroup &g, double sigma, const double *normal
 void NoSlipCoupling::add_ghost_particles(mpcd::CellGrid &grid, const Colloids &c,
                                          std::uint64_t step) {
   const ScopedSeconds timed(seconds_);
+  const ScopedSeconds stage(stage_seconds_[ghost_sums]);
   grid.groups.clear();
   group_row_.clear();
   group_corner_.clear();
@@ -153,105 +155,106 @@ void NoSlipCoupling::add_ghost_particles(mpcd::CellGrid &grid, const Colloids &c
       }
     }
   }
-  // 2. Their position draws, all in full batches: per cell the blocks of its tries (one block
-  // places two tries in 2D, words 0-1 and 2-3, one in 3D; keyed by the first try of the block)
-  // and, last, that of the fractional try (255); bitwise rng::draw's.
-  const int blocks = (whole + 1 + per_block - 1) / per_block, per_cell = blocks + 1;
-  const std::size_t draws = cut_.size() * static_cast<std::size_t>(per_cell);
-  for (int k = 0; k < 4; ++k)
-    position_words_[k].resize(draws);
-  {
-    std::uint64_t ids[rng::batch];
-    std::uint32_t w[4][rng::batch];
-    std::size_t cell = 0, b = 0; // the pair and block of the next key (no division)
-    for (std::size_t b0 = 0; b0 < draws; b0 += rng::batch) {
-      const std::size_t m = std::min(rng::batch, draws - b0);
-      for (std::size_t j = 0; j < rng::batch; ++j) {
-        if (j >= m) {
-          ids[j] = 0;
-          continue;
-        }
-        ids[j] =
-            cut_[cell].key + (b + 1 == static_cast<std::size_t>(per_cell) ? 255 : b * per_block);
-        if (++b == static_cast<std::size_t>(per_cell)) {
-          b = 0;
-          ++cell;
-        }
-      }
-      rng::draw_batch(params_.seed, rng::Purpose::ghost_position, step, ids, w);
-      for (int k = 0; k < 4; ++k)
-        std::copy(w[k], w[k] + m, position_words_[k].begin() + static_cast<std::ptrdiff_t>(b0));
-    }
-  }
-  // 3. The kept tries' moments per cell: count, sum r, sum r r^T (r from the cell's corner), a
-  // try kept if inside the colloid (and the channel); summed without branches (half the tries
-  // are dropped, at random).
+  // 2. The kept tries' moments per cut cell: count, sum r, sum r r^T (r from the cell's
+  // corner), a try kept if inside the colloid (and the channel). A batch of cells at a time, one
+  // cell per lane (each cell's sums add up in the order of its tries, bitwise those of one cell
+  // after another, and the loop over the lanes vectorises): first the block of the fractional
+  // try (255), which decides whether a cell makes whole or whole + 1 tries; then the blocks of
+  // the tries, keyed by the block's first try (2D: two tries a block, words 0-1 and 2-3; 3D:
+  // one, words 0-2); summed without branches (half the tries are dropped, at random).
+  const int blocks = (whole + 1 + per_block - 1) / per_block;
   const double Ly = walls ? box_.length[1] : 0.0;
-  for (const CutCell &cut : cut_) {
-    const std::size_t first = static_cast<std::size_t>(&cut - cut_.data()) * per_cell;
-    const std::size_t a = cut.row;
-    const double R = c.radius[a], R2 = R * R, Y = c.x[1][a];
-    const double *corner = cut.corner.data();
-    int tries = whole;
-    if (fraction > 0.0 && rng::open01(position_words_[0][first + blocks]) < fraction)
-      ++tries;
-    double kept = 0.0, s1[3] = {0.0, 0.0, 0.0}, s2[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-    if (dim_ == 2) { // block b: tries 2b (words 0, 1) and 2b + 1 (words 2, 3)
-      const std::uint32_t *w[4] = {&position_words_[0][first], &position_words_[1][first],
-                                   &position_words_[2][first], &position_words_[3][first]};
-      const auto take = [&](bool valid, double qx, double qy) {
-        const double rx = corner[0] + qx, ry = corner[1] + qy, y = Y + ry;
-        // bitwise &, not &&: no branch on the random outcome
-        const bool in = valid & (rx * rx + ry * ry < R2) & ((!walls) | ((y >= 0.0) & (y <= Ly)));
-        const double m = static_cast<double>(in);
-        kept += m;
-        s1[0] += m * qx;
-        s1[1] += m * qy;
-        s2[0] += m * qx * qx;
-        s2[1] += m * qx * qy;
-        s2[3] += m * qy * qy;
-      };
-      for (int b = 0; 2 * b < tries; ++b) {
-        take(true, rng::open01(w[0][b]), rng::open01(w[1][b]));
-        take(2 * b + 1 < tries, rng::open01(w[2][b]), rng::open01(w[3][b]));
-      }
-    } else {
-      for (int t = 0; t < tries; ++t) {
-        const std::size_t d = first + static_cast<std::size_t>(t);
-        const double q[3] = {rng::open01(position_words_[0][d]), rng::open01(position_words_[1][d]),
-                             rng::open01(position_words_[2][d])};
-        const double r[3] = {corner[0] + q[0], corner[1] + q[1], corner[2] + q[2]};
-        const double y = Y + r[1];
-        const bool in =
-            r[0] * r[0] + r[1] * r[1] + r[2] * r[2] < R2 && (!walls || (y >= 0.0 && y <= Ly));
-        const double m = in ? 1.0 : 0.0;
-        kept += m;
-        for (int k = 0; k < 3; ++k)
-          s1[k] += m * q[k];
-        s2[0] += m * q[0] * q[0];
-        s2[1] += m * q[0] * q[1];
-        s2[2] += m * q[0] * q[2];
-        s2[3] += m * q[1] * q[1];
-        s2[4] += m * q[1] * q[2];
-        s2[5] += m * q[2] * q[2];
+  for (std::size_t c0 = 0; c0 < cut_.size(); c0 += rng::batch) {
+    constexpr std::size_t B = rng::batch;
+    const std::size_t m = std::min(B, cut_.size() - c0);
+    std::uint64_t key[B], ids[B];
+    std::uint32_t w[4][B];
+    alignas(64) double R2[B], Y[B], cx[B], cy[B], cz[B], last[B];
+    alignas(64) double kept[B] = {}, s1[3][B] = {}, s2[6][B] = {};
+    for (std::size_t j = 0; j < B; ++j) {
+      const CutCell &cut = cut_[c0 + std::min(j, m - 1)]; // padded lanes: tries = 0 below
+      const double R = c.radius[cut.row];
+      key[j] = cut.key;
+      R2[j] = R * R;
+      Y[j] = c.x[1][cut.row];
+      cx[j] = cut.corner[0];
+      cy[j] = cut.corner[1];
+      cz[j] = cut.corner[2];
+      last[j] = j < m ? whole : 0; // a cell's tries: t < last
+    }
+    if (fraction > 0.0) {
+      for (std::size_t j = 0; j < B; ++j)
+        ids[j] = key[j] + 255;
+      rng::draw_batch(params_.seed, rng::Purpose::ghost_position, step, ids, w);
+      for (std::size_t j = 0; j < m; ++j)
+        if (rng::open01(w[0][j]) < fraction)
+          last[j] += 1.0;
+    }
+    for (int b = 0; b < blocks; ++b) {
+      for (std::size_t j = 0; j < B; ++j)
+        ids[j] = key[j] + static_cast<std::uint64_t>(b * per_block);
+      rng::draw_batch(params_.seed, rng::Purpose::ghost_position, step, ids, w);
+      if (dim_ == 2) {
+        const double even = 2.0 * b, odd = 2.0 * b + 1.0;
+        for (std::size_t j = 0; j < B; ++j) {
+          const double q[4] = {rng::open01(w[0][j]), rng::open01(w[1][j]), rng::open01(w[2][j]),
+                               rng::open01(w[3][j])};
+          for (int h = 0; h < 2; ++h) { // the block's tries 2b and 2b + 1
+            const double qx = q[2 * h], qy = q[2 * h + 1];
+            const double rx = cx[j] + qx, ry = cy[j] + qy, y = Y[j] + ry;
+            // bitwise &, not &&: no branch on the random outcome
+            const bool in = ((h ? odd : even) < last[j]) & (rx * rx + ry * ry < R2[j]) &
+                            ((!walls) | ((y >= 0.0) & (y <= Ly)));
+            const double k = in ? 1.0 : 0.0;
+            kept[j] += k;
+            s1[0][j] += k * qx;
+            s1[1][j] += k * qy;
+            s2[0][j] += k * qx * qx;
+            s2[1][j] += k * qx * qy;
+            s2[3][j] += k * qy * qy;
+          }
+        }
+      } else {
+        const double t = b;
+        for (std::size_t j = 0; j < B; ++j) {
+          const double qx = rng::open01(w[0][j]), qy = rng::open01(w[1][j]),
+                       qz = rng::open01(w[2][j]);
+          const double rx = cx[j] + qx, ry = cy[j] + qy, rz = cz[j] + qz, y = Y[j] + ry;
+          const bool in = (t < last[j]) & (rx * rx + ry * ry + rz * rz < R2[j]) &
+                          ((!walls) | ((y >= 0.0) & (y <= Ly)));
+          const double k = in ? 1.0 : 0.0;
+          kept[j] += k;
+          s1[0][j] += k * qx;
+          s1[1][j] += k * qy;
+          s1[2][j] += k * qz;
+          s2[0][j] += k * qx * qx;
+          s2[1][j] += k * qx * qy;
+          s2[2][j] += k * qx * qz;
+          s2[3][j] += k * qy * qy;
+          s2[4][j] += k * qy * qz;
+          s2[5][j] += k * qz * qz;
+        }
       }
     }
-    if (kept == 0.0)
-      continue;
-    mpcd::ParticleGroup g;
-    g.cell = cut.cell;
-    g.n = static_cast<std::uint32_t>(kept);
-    const int upper[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
-    for (int k = 0; k < dim_; ++k) {
-      g.r[k] = s1[k];
-      for (int m = 0; m < dim_; ++m)
-        g.rr[3 * k + m] = s2[upper[k][m]];
+    for (std::size_t j = 0; j < m; ++j) {
+      if (kept[j] == 0.0)
+        continue;
+      const CutCell &cut = cut_[c0 + j];
+      mpcd::ParticleGroup g;
+      g.cell = cut.cell;
+      g.n = static_cast<std::uint32_t>(kept[j]);
+      const int upper[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
+      for (int k = 0; k < dim_; ++k) {
+        g.r[k] = s1[k][j];
+        for (int l = 0; l < dim_; ++l)
+          g.rr[3 * k + l] = s2[upper[k][l]][j];
+      }
+      grid.groups.push_back(g);
+      group_row_.push_back(cut.row);
+      group_corner_.push_back(cut.corner);
+      group_key_.push_back(cut.key);
+      ghost_count_ += g.n;
     }
-    grid.groups.push_back(g);
-    group_row_.push_back(cut.row);
-    group_corner_.push_back(cut.corner);
-    group_key_.push_back(cut.key);
-    ghost_count_ += g.n;
   }
   // The groups' Gaussians: (1 + D) D for the thermal velocities eta and as many for the MPC-AT
   // draws xi, four a Philox block, keyed by (colloid id, global cell, block): tries 0-2 for
@@ -319,8 +322,11 @@ void NoSlipCoupling::take_back_ghost_particles(mpcd::CellGrid &grid,
   const std::size_t groups = grid.groups.size();
   if (collision.group_change.size() != groups)
     throw invariant_error("the collision left the ghost particles' groups without their change");
-  if (params_.implicit)
+  if (params_.implicit) {
+    const ScopedSeconds stage(stage_seconds_[responses]);
     ghost_responses(grid, collision, fluid);
+  }
+  Stopwatch solve_watch;
   for (std::size_t q = 0; q < groups; ++q) {
     const mpcd::ParticleGroup &g = grid.groups[q];
     const mpcd::GroupChange &d = collision.group_change[q];
@@ -341,8 +347,11 @@ void NoSlipCoupling::take_back_ghost_particles(mpcd::CellGrid &grid,
     add_impulse(group_row_[q], r, d.v.data(), l);
   }
   apply_impulses(c, false);
-  if (params_.implicit)
+  stage_seconds_[solve] += solve_watch.seconds();
+  if (params_.implicit) {
+    const ScopedSeconds stage(stage_seconds_[fluid_shift]);
     shift_cut_cells(grid, collision, fluid);
+  }
   grid.groups.clear();
 }
 
@@ -354,39 +363,11 @@ void cross(const double *a, const double *b, double *out) {
   out[2] = a[0] * b[1] - a[1] * b[0];
 }
 
-// sum_j r_j x (M r_j) from the second moment m2 = sum_j r_j r_j^T.
-void cross_moment(const double (&M)[3][3], const double (&m2)[3][3], double *out) {
-  double T[3][3] = {}; // T[c][b] = sum_j (M r_j)_c r_jb = (M m2)_cb
-  for (int c = 0; c < 3; ++c)
-    for (int b = 0; b < 3; ++b)
-      for (int d = 0; d < 3; ++d)
-        T[c][b] += M[c][d] * m2[d][b];
-  out[0] = T[2][1] - T[1][2];
-  out[1] = T[0][2] - T[2][0];
-  out[2] = T[1][0] - T[0][1];
-}
-
-// [w]x: the matrix of w x r.
-void cross_matrix(const double *w, double (&M)[3][3]) {
-  M[0][0] = M[1][1] = M[2][2] = 0.0;
-  M[0][1] = -w[2];
-  M[0][2] = w[1];
-  M[1][0] = w[2];
-  M[1][2] = -w[0];
-  M[2][0] = -w[1];
-  M[2][1] = w[0];
-}
-
 } // namespace
 
-// The implicit exchange's response of each colloid to its ghosts in a cut cell (no_slip.hpp).
-// Ghost j at r_j from the centre moves with dU + dW x r_j more when the colloid changes by
-// dX = (dU, dW): the cell's mean velocity by du = (n dU + dW x m1) / N, its angular momentum
-// about rc (AT+a) by dL = sum_j (r_j - rc) x (dU + dW x r_j), so its rigid rotation by
-// dw = spin dL; each ghost's new velocity by Q (du - dU - dW x r_j) + dw x (r_j - rc) (Q: the
-// rule's response). Summed over the ghosts (moments n, m1, m2), the colloid's impulse and angular
-// impulse change by -G dX; the fluid of the cell gets Q du + dw x (r - rc) each. Computed for
-// each unit dX.
+// The implicit exchange's response of each colloid to its ghosts in a cut cell
+// (ghost_response.hpp), added to the colloid's G; the fluid's per unit dX kept for
+// shift_cut_cells.
 void NoSlipCoupling::ghost_responses(const mpcd::CellGrid &grid,
                                      const mpcd::CollisionScratch &collision,
                                      const mpcd::Fluid &fluid) {
@@ -431,90 +412,34 @@ void NoSlipCoupling::ghost_responses(const mpcd::CellGrid &grid,
     const mpcd::ParticleGroup &g = grid.groups[q];
     const mpcd::GroupChange &d = collision.group_change[q];
     const double *corner = group_corner_[q].data();
-    GroupResponse &out = group_response_[q];
+    GhostResponse &out = group_response_[q];
     const auto slot = static_cast<std::size_t>(cell_slot_[g.cell]);
     const double N = slot_total_[slot];
     if (g.n == 0) {
-      out = GroupResponse{};
+      out = GhostResponse{};
       continue;
     }
     const bool dry = slot_fluid_[slot][0] == 0.0; // only ghosts (and virtual particles) here
     // Moments about the centre: m1 = n c + sum r, m2 = n c c^T + c (sum r)^T + (sum r) c^T +
     // sum r r^T.
-    const double m0 = g.n;
-    double m1[3], m2[3][3], rc[3];
+    GhostMoments m;
+    m.m0 = g.n;
+    m.N = N;
     for (int a = 0; a < 3; ++a) {
-      m1[a] = m0 * corner[a] + g.r[a];
-      rc[a] = corner[a] + d.rc[a];
-      for (int b = 0; b < 3; ++b)
-        m2[a][b] =
-            m0 * corner[a] * corner[b] + corner[a] * g.r[b] + g.r[a] * corner[b] + g.rr[3 * a + b];
+      m.m1[a] = m.m0 * corner[a] + g.r[a];
+      m.rc[a] = corner[a] + d.rc[a];
+      for (int b = 0; b < 3; ++b) {
+        m.m2[a][b] = m.m0 * corner[a] * corner[b] + corner[a] * g.r[b] + g.r[a] * corner[b] +
+                     g.rr[3 * a + b];
+        m.Q[a][b] = d.response[3 * a + b];
+        m.spin[a][b] = d.spin[3 * a + b];
+      }
     }
-    if (dim_ == 2)
-      rc[2] = 0.0;
-    double Q[3][3];
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b)
-        Q[a][b] = d.response[3 * a + b];
-    for (int i = 0; i < dof_; ++i) {
-      double dU[3] = {0.0, 0.0, 0.0}, dW[3] = {0.0, 0.0, 0.0};
-      if (i < dim_)
-        dU[i] = 1.0;
-      else
-        dW[dim_ == 2 ? 2 : i - 3] = 1.0;
-      double S[3], du[3], Qdu[3], QdU[3], t[3];
-      cross(dW, m1, t);
-      for (int a = 0; a < 3; ++a) {
-        S[a] = m0 * dU[a] + t[a];
-        du[a] = N > 0.0 ? S[a] / N : 0.0;
-      }
-      for (int a = 0; a < 3; ++a) {
-        Qdu[a] = Q[a][0] * du[0] + Q[a][1] * du[1] + Q[a][2] * du[2];
-        QdU[a] = Q[a][0] * dU[0] + Q[a][1] * dU[1] + Q[a][2] * dU[2];
-      }
-      // dL = (m1 - n rc) x dU + sum r x (dW x r) - rc x (dW x m1).
-      double W[3][3], dL[3], u1[3], u2[3], u3[3], off[3];
-      cross_matrix(dW, W);
-      for (int a = 0; a < 3; ++a)
-        off[a] = m1[a] - m0 * rc[a];
-      cross(off, dU, u1);
-      cross_moment(W, m2, u2);
-      cross(rc, t, u3);
-      double dw[3];
-      for (int a = 0; a < 3; ++a)
-        dL[a] = u1[a] + u2[a] - u3[a];
-      for (int a = 0; a < 3; ++a)
-        dw[a] = d.spin[3 * a] * dL[0] + d.spin[3 * a + 1] * dL[1] + d.spin[3 * a + 2] * dL[2];
-      // The colloid's change: P = Q (n du - S) + dw x (m1 - n rc);
-      // L = m1 x Q du - m1 x Q dU - sum r x Q (dW x r) + sum r x (dw x r) - m1 x (dw x rc).
-      double P[3], L[3], a1[3], a2[3], a3[3], a4[3], a5[3], QW[3][3], Dw[3][3], wr[3];
-      cross(dw, off, a1);
-      for (int a = 0; a < 3; ++a)
-        P[a] = Qdu[a] * m0 - (Q[a][0] * S[0] + Q[a][1] * S[1] + Q[a][2] * S[2]) + a1[a];
-      for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b)
-          QW[a][b] = Q[a][0] * W[0][b] + Q[a][1] * W[1][b] + Q[a][2] * W[2][b];
-      cross_matrix(dw, Dw);
-      cross(m1, Qdu, a2);
-      cross(m1, QdU, a3);
-      cross_moment(QW, m2, a4);
-      cross_moment(Dw, m2, a5);
-      cross(dw, rc, wr);
-      double a6[3];
-      cross(m1, wr, a6);
-      for (int a = 0; a < 3; ++a)
-        L[a] = a2[a] - a3[a] - a4[a] + a5[a] - a6[a];
-      for (int k = 0; k < dim_; ++k)
-        out.G[k][i] = -P[k];
-      if (dim_ == 2)
-        out.G[2][i] = -L[2];
-      else
-        for (int k = 0; k < 3; ++k)
-          out.G[3 + k][i] = -L[k];
-      for (int a = 0; a < 3; ++a) {
-        out.du[i][a] = Qdu[a];
-        out.dw[i][a] = dw[a];
-      }
+    if (dim_ == 2) {
+      m.rc[2] = 0.0;
+      ghost_response_2d(m, out);
+    } else {
+      ghost_response_general(m, dim_, out);
     }
     // A cell without fluid: the ghosts still mix among themselves (the colloid's spin relative
     // to its ghosts' mean is damped, and thermal noise enters: the angular rows stay), but
@@ -545,7 +470,7 @@ void NoSlipCoupling::shift_cut_cells(const mpcd::CellGrid &grid,
   slot_sums_.assign(slots, {});
   for (std::size_t q = 0; q < grid.groups.size(); ++q) {
     const auto slot = static_cast<std::size_t>(cell_slot_[grid.groups[q].cell]);
-    const GroupResponse &g = group_response_[q];
+    const GhostResponse &g = group_response_[q];
     const double *h = &half_[group_row_[q] * dof_];
     auto &sum = slot_sums_[slot];
     for (int a = 0; a < 3; ++a) {

@@ -104,8 +104,16 @@ Stages NoSlipCoupling::after_collide(const StageContext &at) {
            }}};
 }
 
+const char *NoSlipCoupling::stage_name(int s) {
+  static const char *const names[stage_count] = {"motion",      "contacts",    "lookup",
+                                                 "bounce-back", "ghost sums",  "responses",
+                                                 "solve",       "fluid shift", "hand-over"};
+  return names[s];
+}
+
 void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c, double fluid_v2_max) {
   const ScopedSeconds timed(seconds_);
+  Stopwatch whole;
   const double dt = params_.dt;
   const std::size_t owned = c.size();
   for (std::size_t a = 0; a < owned; ++a) { // gravity: a kick of the whole step
@@ -158,6 +166,7 @@ void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c, double
   }
   for (int k = 0; k < dim_; ++k)
     start_[k].assign(c.x[k].begin(), c.x[k].begin() + static_cast<std::ptrdiff_t>(owned));
+  Stopwatch contact_watch;
   if (params_.hard_contacts) {
     ghosts_.trusted_rows(c, contact, trusted_);
     const HardSphereStats e = advance_hard_spheres(c, box_, dt, &trusted_);
@@ -187,10 +196,16 @@ void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c, double
   } else {
     move_ballistic(c, c.size(), box_, dt); // owned and ghost rows alike: the same bits
   }
+  const double contact_time = contact_watch.seconds();
+  stage_seconds_[contact_forces] += contact_time;
   check_paths(c, owned, start_, margin_, box_, 0.0,
               "its speed and those of the others allowed (allowed: a smaller fluid.dt)");
+  Stopwatch lookup_watch;
   lookup_.build(c, box_, slabs_.first_column(), slabs_.local_columns(), ghosts_.extent());
   impulse_.assign(c.size() * static_cast<std::size_t>(stride_), 0);
+  const double looked = lookup_watch.seconds();
+  stage_seconds_[lookup] += looked;
+  stage_seconds_[motion] += whole.seconds() - looked - contact_time;
 }
 
 void NoSlipCoupling::add_impulse(std::size_t a, const double *r, const double *dp,
@@ -309,6 +324,7 @@ void NoSlipCoupling::apply_impulses(Colloids &c, bool refresh) {
 
 void NoSlipCoupling::hand_over(Colloids &c) {
   const ScopedSeconds timed(seconds_);
+  const ScopedSeconds stage(stage_seconds_[hand_over_stage]);
   ghosts_.remove(c, &margin_);
   if (ghosts_.active()) {
     const ScopedSeconds talk(message_seconds_);

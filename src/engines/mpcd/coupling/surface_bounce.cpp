@@ -96,6 +96,7 @@ int NoSlipCoupling::leave_overlaps(const Colloids &c, std::size_t a, double *s) 
 BounceStats NoSlipCoupling::bounce_back(mpcd::Fluid &fluid, Colloids &c,
                                         const FluidStream &stream) {
   const ScopedSeconds timed(seconds_);
+  const ScopedSeconds stage(stage_seconds_[bounce]);
   BounceStats stats;
   const std::size_t n = fluid.size();
   batch_.dim = dim_;

@@ -55,6 +55,7 @@
 #include "narrows/core/rng.hpp"
 #include "narrows/engines/mpcd/coupling/colloid_lookup.hpp"
 #include "narrows/engines/mpcd/coupling/coupling.hpp"
+#include "narrows/engines/mpcd/coupling/ghost_response.hpp"
 #include "narrows/engines/mpcd/coupling/md_integrator.hpp"
 #include "narrows/engines/mpcd/kernels/cell_grid.hpp"
 #include "narrows/engines/mpcd/kernels/collision.hpp"
@@ -116,6 +117,22 @@ public:
   // reductions), waiting for the other ranks included: there the imbalance of the fluid's work
   // since the last message shows.
   double message_seconds() const { return message_seconds_; }
+  // The same seconds by stage (messages and waiting included in each), for the profile line of
+  // the log: names() and seconds in the same order.
+  enum Stage {
+    motion,
+    contact_forces,
+    lookup,
+    bounce,
+    ghost_sums,
+    responses,
+    solve,
+    fluid_shift,
+    hand_over_stage,
+    stage_count
+  };
+  static const char *stage_name(int s);
+  double stage_seconds(int s) const { return stage_seconds_[static_cast<std::size_t>(s)]; }
   // Hard-sphere collisions this rank resolved since the start (ghost rows included).
   const colloids::HardSphereStats &contacts() const { return contacts_; }
   // The spring contacts (nullptr unless contacts = "spring") and the contact history this rank
@@ -191,11 +208,7 @@ private:
   std::vector<std::array<double, 3>> slot_spin_, slot_rc_, slot_residual_;
   // Implicit: per group, its G and, per degree of freedom of dX, the cell's mean velocity
   // change (times the rule's response) and rigid rotation it causes.
-  struct GroupResponse {
-    double G[6][6];
-    double du[6][3], dw[6][3];
-  };
-  std::vector<GroupResponse> group_response_;
+  std::vector<GhostResponse> group_response_;
   std::vector<std::uint32_t> slot_cells_;
   // Bounce-back scratch: the particles being bounced, their fluid rows and colloid rows.
   mpcd::Fluid batch_;
@@ -212,9 +225,8 @@ private:
     std::uint64_t key;            // the pair's key of draws (try 0)
     std::array<double, 3> corner; // the cell's corner from the colloid's centre
   };
-  std::vector<CutCell> cut_;                                 // this step's cut cells
-  std::array<std::vector<std::uint32_t>, 4> position_words_; // their ghost position draws
-  std::vector<double> group_normals_;                        // the groups' Gaussian draws
+  std::vector<CutCell> cut_;          // this step's cut cells
+  std::vector<double> group_normals_; // the groups' Gaussian draws
   colloids::HardSphereStats contacts_;
   std::optional<colloids::SpringContacts> springs_;
   colloids::ContactHistory history_;
@@ -223,6 +235,7 @@ private:
   std::vector<double> weight_; // M g of each owned colloid, a force in the spring sub-steps
   double seconds_ = 0.0;
   double message_seconds_ = 0.0;
+  std::array<double, stage_count> stage_seconds_{};
 };
 
 } // namespace narrows::coupling

@@ -1,0 +1,158 @@
+// The implicit exchange's response of a colloid to its ghosts in a cut cell (ghost_response.hpp).
+#include "narrows/engines/mpcd/coupling/ghost_response.hpp"
+
+namespace narrows::coupling {
+
+namespace {
+
+void cross(const double *a, const double *b, double *out) {
+  out[0] = a[1] * b[2] - a[2] * b[1];
+  out[1] = a[2] * b[0] - a[0] * b[2];
+  out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+// sum_j r_j x (M r_j) from the second moment m2 = sum_j r_j r_j^T.
+void cross_moment(const double (&M)[3][3], const double (&m2)[3][3], double *out) {
+  double T[3][3] = {}; // T[c][b] = sum_j (M r_j)_c r_jb = (M m2)_cb
+  for (int c = 0; c < 3; ++c)
+    for (int b = 0; b < 3; ++b)
+      for (int d = 0; d < 3; ++d)
+        T[c][b] += M[c][d] * m2[d][b];
+  out[0] = T[2][1] - T[1][2];
+  out[1] = T[0][2] - T[2][0];
+  out[2] = T[1][0] - T[0][1];
+}
+
+// [w]x: the matrix of w x r.
+void cross_matrix(const double *w, double (&M)[3][3]) {
+  M[0][0] = M[1][1] = M[2][2] = 0.0;
+  M[0][1] = -w[2];
+  M[0][2] = w[1];
+  M[1][0] = w[2];
+  M[1][2] = -w[0];
+  M[2][0] = -w[1];
+  M[2][1] = w[0];
+}
+
+} // namespace
+
+// Ghost j at r_j from the centre moves with dU + dW x r_j more when the colloid changes by
+// dX = (dU, dW): the cell's mean velocity by du = (n dU + dW x m1) / N, its angular momentum
+// about rc (AT+a) by dL = sum_j (r_j - rc) x (dU + dW x r_j), so its rigid rotation by
+// dw = spin dL; each ghost's new velocity by Q (du - dU - dW x r_j) + dw x (r_j - rc). Summed over
+// the ghosts, the colloid's impulse and angular impulse change by -G dX; the fluid of the cell
+// gets Q du + dw x (r - rc) each. Computed for each unit dX.
+void ghost_response_general(const GhostMoments &g, int dim, GhostResponse &out) {
+  const int dof = dim == 2 ? 3 : 6;
+  const double m0 = g.m0, N = g.N;
+  const double *m1 = g.m1, *rc = g.rc;
+  const auto &m2 = g.m2;
+  const auto &Q = g.Q;
+  for (int i = 0; i < dof; ++i) {
+    double dU[3] = {0.0, 0.0, 0.0}, dW[3] = {0.0, 0.0, 0.0};
+    if (i < dim)
+      dU[i] = 1.0;
+    else
+      dW[dim == 2 ? 2 : i - 3] = 1.0;
+    double S[3], du[3], Qdu[3], QdU[3], t[3];
+    cross(dW, m1, t);
+    for (int a = 0; a < 3; ++a) {
+      S[a] = m0 * dU[a] + t[a];
+      du[a] = N > 0.0 ? S[a] / N : 0.0;
+    }
+    for (int a = 0; a < 3; ++a) {
+      Qdu[a] = Q[a][0] * du[0] + Q[a][1] * du[1] + Q[a][2] * du[2];
+      QdU[a] = Q[a][0] * dU[0] + Q[a][1] * dU[1] + Q[a][2] * dU[2];
+    }
+    // dL = (m1 - n rc) x dU + sum r x (dW x r) - rc x (dW x m1).
+    double W[3][3], dL[3], u1[3], u2[3], u3[3], off[3];
+    cross_matrix(dW, W);
+    for (int a = 0; a < 3; ++a)
+      off[a] = m1[a] - m0 * rc[a];
+    cross(off, dU, u1);
+    cross_moment(W, m2, u2);
+    cross(rc, t, u3);
+    double dw[3];
+    for (int a = 0; a < 3; ++a)
+      dL[a] = u1[a] + u2[a] - u3[a];
+    for (int a = 0; a < 3; ++a)
+      dw[a] = g.spin[a][0] * dL[0] + g.spin[a][1] * dL[1] + g.spin[a][2] * dL[2];
+    // The colloid's change: P = Q (n du - S) + dw x (m1 - n rc);
+    // L = m1 x Q du - m1 x Q dU - sum r x Q (dW x r) + sum r x (dw x r) - m1 x (dw x rc).
+    double P[3], L[3], a1[3], a2[3], a3[3], a4[3], a5[3], QW[3][3], Dw[3][3], wr[3];
+    cross(dw, off, a1);
+    for (int a = 0; a < 3; ++a)
+      P[a] = Qdu[a] * m0 - (Q[a][0] * S[0] + Q[a][1] * S[1] + Q[a][2] * S[2]) + a1[a];
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b)
+        QW[a][b] = Q[a][0] * W[0][b] + Q[a][1] * W[1][b] + Q[a][2] * W[2][b];
+    cross_matrix(dw, Dw);
+    cross(m1, Qdu, a2);
+    cross(m1, QdU, a3);
+    cross_moment(QW, m2, a4);
+    cross_moment(Dw, m2, a5);
+    cross(dw, rc, wr);
+    double a6[3];
+    cross(m1, wr, a6);
+    for (int a = 0; a < 3; ++a)
+      L[a] = a2[a] - a3[a] - a4[a] + a5[a] - a6[a];
+    for (int k = 0; k < dim; ++k)
+      out.G[k][i] = -P[k];
+    if (dim == 2)
+      out.G[2][i] = -L[2];
+    else
+      for (int k = 0; k < 3; ++k)
+        out.G[3 + k][i] = -L[k];
+    for (int a = 0; a < 3; ++a) {
+      out.du[i][a] = Qdu[a];
+      out.dw[i][a] = dw[a];
+    }
+  }
+}
+
+// The same in the plane. With e the unit dX: S = n e (translation) or z x m1 (rotation);
+// du = S / N; dL_z = (m1 - n rc) x e or tr m2 - rc . m1; dw = spin_zz dL_z;
+// P = (n / N - 1) Q S + dw z x (m1 - n rc);
+// L_z = m1 x Q du - m1 x Q e (translation) - [z . sum r x Q (z x r)] (rotation)
+//       + dw (tr m2 - m1 . rc),
+// where z . sum r x Q (z x r) = Q_yy m2_xx - (Q_xy + Q_yx) m2_xy + Q_xx m2_yy.
+void ghost_response_2d(const GhostMoments &g, GhostResponse &out) {
+  const double m0 = g.m0, N = g.N, s = g.spin[2][2];
+  const double m1x = g.m1[0], m1y = g.m1[1], rcx = g.rc[0], rcy = g.rc[1];
+  const double Qxx = g.Q[0][0], Qxy = g.Q[0][1], Qyx = g.Q[1][0], Qyy = g.Q[1][1];
+  const double offx = m1x - m0 * rcx, offy = m1y - m0 * rcy;
+  const double trace = g.m2[0][0] + g.m2[1][1], m1rc = m1x * rcx + m1y * rcy;
+  const double spun = Qyy * g.m2[0][0] - (Qxy + Qyx) * g.m2[0][1] + Qxx * g.m2[1][1];
+  for (int i = 0; i < 3; ++i) {
+    double Sx, Sy, dL;
+    if (i < 2) {
+      Sx = i == 0 ? m0 : 0.0;
+      Sy = i == 1 ? m0 : 0.0;
+      dL = i == 0 ? -offy : offx;
+    } else {
+      Sx = -m1y;
+      Sy = m1x;
+      dL = trace - m1rc;
+    }
+    const double dux = N > 0.0 ? Sx / N : 0.0, duy = N > 0.0 ? Sy / N : 0.0;
+    const double Qdux = Qxx * dux + Qxy * duy, Qduy = Qyx * dux + Qyy * duy;
+    const double QSx = Qxx * Sx + Qxy * Sy, QSy = Qyx * Sx + Qyy * Sy;
+    const double dw = s * dL;
+    const double Px = m0 * Qdux - QSx - dw * offy, Py = m0 * Qduy - QSy + dw * offx;
+    double L = m1x * Qduy - m1y * Qdux + dw * (trace - m1rc);
+    if (i < 2) // - m1 x Q e
+      L -= i == 0 ? m1x * Qyx - m1y * Qxx : m1x * Qyy - m1y * Qxy;
+    else
+      L -= spun;
+    out.G[0][i] = -Px;
+    out.G[1][i] = -Py;
+    out.G[2][i] = -L;
+    out.du[i][0] = Qdux;
+    out.du[i][1] = Qduy;
+    out.du[i][2] = 0.0;
+    out.dw[i][0] = out.dw[i][1] = 0.0;
+    out.dw[i][2] = dw;
+  }
+}
+
+} // namespace narrows::coupling

@@ -1,0 +1,71 @@
+// The implicit exchange's ghost response: the 2D closed form against the general 3 x 3 algebra.
+#include "narrows/engines/mpcd/coupling/ghost_response.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+using namespace narrows::coupling;
+
+namespace {
+
+// A random group in the plane: n ghosts at offsets r from the centre (their moments), the cell's
+// rc and N; Q from an SRD rotation by +-alpha (1 - R) or MPC-AT's identity; spin 1/I or 0.
+GhostMoments random_group(std::mt19937_64 &gen, int rule) {
+  std::uniform_real_distribution<double> u(-3.0, 3.0);
+  GhostMoments m;
+  const int n = 1 + static_cast<int>(gen() % 20);
+  for (int j = 0; j < n; ++j) {
+    const double r[2] = {u(gen), u(gen)};
+    m.m0 += 1.0;
+    for (int a = 0; a < 2; ++a) {
+      m.m1[a] += r[a];
+      for (int b = 0; b < 2; ++b)
+        m.m2[a][b] += r[a] * r[b];
+    }
+  }
+  m.rc[0] = u(gen);
+  m.rc[1] = u(gen);
+  m.N = m.m0 + static_cast<double>(gen() % 30);
+  if (rule == 0) { // SRD: Q = 1 - R(+-alpha), in the plane (z untouched)
+    const double alpha = (gen() % 2 ? 1.0 : -1.0) * 130.0 * M_PI / 180.0;
+    const double c = std::cos(alpha), s = std::sin(alpha);
+    m.Q[0][0] = 1.0 - c;
+    m.Q[0][1] = s;
+    m.Q[1][0] = -s;
+    m.Q[1][1] = 1.0 - c;
+  } else {
+    for (int a = 0; a < 3; ++a)
+      m.Q[a][a] = 1.0;
+  }
+  if (rule == 2)
+    m.spin[2][2] = 1.0 / (1.0 + std::abs(u(gen)) * 10.0);
+  return m;
+}
+
+} // namespace
+
+TEST(GhostResponse, ClosedForm2dIsTheGeneralAlgebra) {
+  std::mt19937_64 gen(7);
+  for (int rule = 0; rule < 3; ++rule)
+    for (int trial = 0; trial < 2000; ++trial) {
+      const GhostMoments m = random_group(gen, rule);
+      GhostResponse a{}, b{};
+      ghost_response_general(m, 2, a);
+      ghost_response_2d(m, b);
+      double scale = 1.0; // the size of the terms: n |r|^2 with |r| up to ~4
+      for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < 3; ++k)
+          scale = std::max(scale, std::abs(a.G[k][i]));
+      for (int i = 0; i < 3; ++i) {
+        for (int k = 0; k < 3; ++k)
+          ASSERT_NEAR(b.G[k][i], a.G[k][i], 1e-12 * scale)
+              << "rule " << rule << " trial " << trial << " G[" << k << "][" << i << "]";
+        for (int k = 0; k < 3; ++k) {
+          ASSERT_NEAR(b.du[i][k], a.du[i][k], 1e-13) << "rule " << rule << " du " << i << k;
+          ASSERT_NEAR(b.dw[i][k], a.dw[i][k], 1e-13) << "rule " << rule << " dw " << i << k;
+        }
+      }
+    }
+}
