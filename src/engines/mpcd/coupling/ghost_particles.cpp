@@ -386,16 +386,31 @@ void NoSlipCoupling::ghost_responses(const mpcd::CellGrid &grid,
   // The fluid of each cut cell: count and summed offsets from the corner (in fixed point: the
   // same bits whatever the order of the particles, on any number of ranks).
   slot_fixed_.assign(slot_cells_.size(), {0, 0, 0, 0});
+  // A cell's particles lie mostly together (sorted by cell every few steps): a run of them is
+  // summed in registers and stored once (integers: the same sums in any order).
   const std::size_t n = fluid.size();
+  const double sx = grid.shift[0], sy = grid.shift[1], sz = grid.shift[2];
+  std::int32_t run = -1;
+  std::int64_t acc[4] = {0, 0, 0, 0};
+  const auto flush = [&] {
+    if (run >= 0)
+      for (int k = 0; k < 4; ++k)
+        slot_fixed_[static_cast<std::size_t>(run)][k] += acc[k];
+  };
   for (std::size_t i = 0; i < n; ++i) {
     const std::int32_t slot = cell_slot_[fluid.cell[i]];
-    if (slot < 0)
-      continue;
-    auto &f = slot_fixed_[static_cast<std::size_t>(slot)];
-    f[0] += 1;
-    for (int k = 0; k < dim_; ++k)
-      f[1 + k] += fixed::from_double(mpcd::in_cell_offset(fluid.x[k][i], grid.shift[k]));
+    if (slot != run) {
+      flush();
+      run = slot;
+      acc[0] = acc[1] = acc[2] = acc[3] = 0;
+    }
+    acc[0] += 1;
+    acc[1] += fixed::from_double(mpcd::in_cell_offset(fluid.x[0][i], sx));
+    acc[2] += fixed::from_double(mpcd::in_cell_offset(fluid.x[1][i], sy));
+    if (dim_ == 3)
+      acc[3] += fixed::from_double(mpcd::in_cell_offset(fluid.x[2][i], sz));
   }
+  flush();
   for (std::size_t k = 0; k < slot_cells_.size(); ++k) {
     slot_fluid_[k][0] = static_cast<double>(slot_fixed_[k][0]);
     for (int a = 0; a < 3; ++a)
@@ -487,39 +502,62 @@ void NoSlipCoupling::shift_cut_cells(const mpcd::CellGrid &grid,
     }
     slot_rc_[slot] = collision.group_change[q].rc; // the cell's, from its corner
   }
-  slot_shift_.resize(slots);
-  slot_spin_.resize(slots);
-  slot_residual_.resize(slots);
-  for (std::size_t k = 0; k < slots; ++k)
-    for (int a = 0; a < 3; ++a) {
-      slot_shift_[k][a] = fixed::to_double(slot_sums_[k][a]);
-      slot_spin_[k][a] = fixed::to_double(slot_sums_[k][3 + a]);
-      slot_residual_[k][a] = fixed::to_double(slot_sums_[k][6 + a]);
-    }
+  // Per slot the fluid's velocity change as v += c + w x r (r from the cell's corner):
+  // c = shift + residual - w x rc, the residual spreading evenly whatever momentum the colloids'
+  // G dX/2 has beyond the fluid's response n shift + w x (sum r - n rc).
+  slot_motion_.resize(slots);
   for (std::size_t k = 0; k < slots; ++k) {
+    double shift[3], w[3], residual[3], rc[3] = {0.0, 0.0, 0.0}, wrc[3];
+    for (int a = 0; a < 3; ++a) {
+      shift[a] = fixed::to_double(slot_sums_[k][a]);
+      w[a] = fixed::to_double(slot_sums_[k][3 + a]);
+      residual[a] = 0.0;
+    }
+    for (int a = 0; a < dim_; ++a)
+      rc[a] = slot_rc_[k][a];
     const auto &f = slot_fluid_[k];
-    if (f[0] == 0.0)
-      continue;
-    // The fluid's momentum from the response: n c + w x (sum r - n rc).
-    double off[3] = {0.0, 0.0, 0.0}, wr[3];
-    for (int a = 0; a < dim_; ++a)
-      off[a] = f[1 + a] - f[0] * slot_rc_[k][a];
-    cross(slot_spin_[k].data(), off, wr);
-    for (int a = 0; a < dim_; ++a)
-      slot_residual_[k][a] = (slot_residual_[k][a] - (f[0] * slot_shift_[k][a] + wr[a])) / f[0];
+    if (f[0] > 0.0) {
+      double off[3] = {0.0, 0.0, 0.0}, wr[3];
+      for (int a = 0; a < dim_; ++a)
+        off[a] = f[1 + a] - f[0] * rc[a];
+      cross(w, off, wr);
+      for (int a = 0; a < dim_; ++a)
+        residual[a] = (fixed::to_double(slot_sums_[k][6 + a]) - (f[0] * shift[a] + wr[a])) / f[0];
+    }
+    cross(w, rc, wrc);
+    auto &m = slot_motion_[k];
+    for (int a = 0; a < 3; ++a) {
+      m[a] = shift[a] + residual[a] - wrc[a];
+      m[3 + a] = w[a];
+    }
   }
   const std::size_t n = fluid.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::int32_t slot = cell_slot_[fluid.cell[i]];
-    if (slot < 0)
-      continue;
-    const auto k = static_cast<std::size_t>(slot);
-    double r[3] = {0.0, 0.0, 0.0}, wr[3];
-    for (int a = 0; a < dim_; ++a)
-      r[a] = mpcd::in_cell_offset(fluid.x[a][i], grid.shift[a]) - slot_rc_[k][a];
-    cross(slot_spin_[k].data(), r, wr);
-    for (int a = 0; a < dim_; ++a)
-      fluid.v[a][i] += slot_shift_[k][a] + wr[a] + slot_residual_[k][a];
+  const double sx = grid.shift[0], sy = grid.shift[1], sz = grid.shift[2];
+  if (dim_ == 2) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::int32_t slot = cell_slot_[fluid.cell[i]];
+      if (slot < 0)
+        continue;
+      const double *m = slot_motion_[static_cast<std::size_t>(slot)].data();
+      const double rx = mpcd::in_cell_offset(fluid.x[0][i], sx);
+      const double ry = mpcd::in_cell_offset(fluid.x[1][i], sy);
+      fluid.v[0][i] += m[0] - m[5] * ry;
+      fluid.v[1][i] += m[1] + m[5] * rx;
+    }
+  } else {
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::int32_t slot = cell_slot_[fluid.cell[i]];
+      if (slot < 0)
+        continue;
+      const double *m = slot_motion_[static_cast<std::size_t>(slot)].data();
+      const double r[3] = {mpcd::in_cell_offset(fluid.x[0][i], sx),
+                           mpcd::in_cell_offset(fluid.x[1][i], sy),
+                           mpcd::in_cell_offset(fluid.x[2][i], sz)};
+      double wr[3];
+      cross(m + 3, r, wr);
+      for (int a = 0; a < 3; ++a)
+        fluid.v[a][i] += m[a] + wr[a];
+    }
   }
   for (const std::uint32_t cell : slot_cells_)
     cell_slot_[cell] = -1;

@@ -203,9 +203,9 @@ private:
   std::vector<std::array<double, 4>> slot_fluid_;
   std::vector<std::array<std::int64_t, 4>> slot_fixed_; // their fixed-point sums
   std::vector<std::array<std::int64_t, 9>> slot_sums_;  // per slot: du, dw, G dX/2's momentum
-  std::vector<std::array<double, 3>> slot_shift_;
   std::vector<double> slot_total_; // particles in the cell's mean (ghosts, virtual ones too)
-  std::vector<std::array<double, 3>> slot_spin_, slot_rc_, slot_residual_;
+  std::vector<std::array<double, 3>> slot_rc_;
+  std::vector<std::array<double, 6>> slot_motion_; // v += c + w x r: (c, w)
   // Implicit: per group, its G and, per degree of freedom of dX, the cell's mean velocity
   // change (times the rule's response) and rigid rotation it causes.
   std::vector<GhostResponse> group_response_;
