@@ -50,6 +50,10 @@ TIMING_RULES = [
     (re.compile(r"^(packing: .*relaxation steps), \S+ s$"), r"\1, <t> s"),
     # the no-slip coupling's share of the loop time (and of its messages): only timings
     (re.compile(r"^no-slip coupling( messages)?: \S+ s of the loop"), None),
+    # the density_kde windows' cost: "kde windows: 0.0656 ms per sample on rank 0 (...), 0 ms
+    # per window closed (...); 0 windows of 100000 steps"; the window count stays compared
+    (re.compile(r"^kde windows: \S+ ms per sample (.*), \S+ ms per window closed"),
+     r"kde windows: <t> ms per sample \1, <t> ms per window closed"),
     # progress lines: "step 100 / 1000 (10.0 %), 2.1e+07 particle-steps/s, ETA 5s" (when they
     # appear depends on the wall clock)
     (re.compile(r", ETA \S+$"), None),
