@@ -114,12 +114,20 @@ int main_inner(int argc, char **argv) {
       ->add_option("--dem-data", dem_opt.lammps_data,
                    "with --dem: also write the packing as a LAMMPS data file here")
       ->needs(dem);
-  bench->add_option("--particles", bench_opt.particles, "particles per case (default 1e6)")
+  bench
+      ->add_option("--particles", bench_opt.particles,
+                   "particles per case (default: beyond the cache, a working set of at least 4 "
+                   "times the last-level cache; pulses-2d: the scene's 187150)")
       ->check(CLI::PositiveNumber);
+  bench
+      ->add_option("--angle", bench_opt.angle_deg,
+                   "rotation angle of the SRD cases in degrees (default 130)")
+      ->check(CLI::Range(0.0, 360.0));
   bench->add_option("--steps", bench_opt.steps, "timed steps per case (default 100)")
       ->check(CLI::PositiveNumber);
   bench->add_option("--case", bench_opt.cases,
-                    "only this MPCD case (repeatable): srd-2d, srd-3d, at-2d, at+a-2d, at+a-3d");
+                    "only this MPCD case (repeatable): srd-2d, srd-3d, at-2d, at+a-2d, at+a-3d, "
+                    "pulses-2d (the Table 6.1 channel with its no-slip disks)");
 
   try {
     app.parse(argc, argv);

@@ -53,8 +53,8 @@ TIMING_RULES = [
     (re.compile(r"^no-slip coupling stages \(s"), None),
     # the axial fields' cost per sample: "axial_fields: 2.56 ms per sample on the busiest rank"
     (re.compile(r"^(axial_fields): \S+ ms per sample"), r"\1: <t> ms per sample"),
-    # the segregation windows' costs: "kde windows: 0.107 ms per sample on rank 0 (...), 0 ms
-    # per window closed (...)"
+    # the density_kde windows' cost: "kde windows: 0.0656 ms per sample on rank 0 (...), 0 ms
+    # per window closed (...); 0 windows of 100000 steps"; the window count stays compared
     (re.compile(r"^kde windows: \S+ ms per sample (.*), \S+ ms per window closed"),
      r"kde windows: <t> ms per sample \1, <t> ms per window closed"),
     # progress lines: "step 100 / 1000 (10.0 %), 2.1e+07 particle-steps/s, ETA 5s" (when they

@@ -69,7 +69,11 @@ std::size_t bytes_per_cell(const scene::Scene &s) {
 } // namespace
 
 std::size_t estimate_memory(const scene::Scene &scene) {
-  return particle_count(scene) * bytes_per_particle(scene) +
+  return estimate_memory(scene, particle_count(scene));
+}
+
+std::size_t estimate_memory(const scene::Scene &scene, std::uint64_t particles) {
+  return particles * bytes_per_particle(scene) +
          make_box(scene).num_cells() * bytes_per_cell(scene);
 }
 

@@ -136,6 +136,8 @@ parallel::Slabs check_ranks(const scene::Scene &scene, MPI_Comm comm);
 
 // Memory the run will need, without building it: bytes per particle times N plus cell arrays.
 std::size_t estimate_memory(const scene::Scene &scene);
+// The same for a given number of fluid particles (a packing's count is known only once packed).
+std::size_t estimate_memory(const scene::Scene &scene, std::uint64_t particles);
 
 // Number of fluid particles the scene creates (with [colloids]: the space they take excluded).
 std::uint64_t particle_count(const scene::Scene &scene);

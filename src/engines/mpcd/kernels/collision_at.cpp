@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 
 namespace narrows::mpcd {
 
@@ -25,9 +26,12 @@ template <class T>
 inline void prefetch_record(const std::vector<T> &records, const std::uint32_t *cell, std::size_t i,
                             std::size_t n, std::size_t stride) {
   if (i + ahead < n) {
-    const char *p = reinterpret_cast<const char *>(&records[cell[i + ahead] * stride]);
-    for (std::size_t b = 0; b < stride * sizeof(T); b += 64)
-      __builtin_prefetch(p + b, 1);
+    // Every cache line the record touches: a record of 72 or 120 bytes at any offset can span
+    // three lines (its start plus multiples of 64 bytes missed the third).
+    const auto begin = reinterpret_cast<std::uintptr_t>(&records[cell[i + ahead] * stride]);
+    const std::uintptr_t end = begin + stride * sizeof(T);
+    for (std::uintptr_t line = begin & ~std::uintptr_t(63); line < end; line += 64)
+      __builtin_prefetch(reinterpret_cast<const void *>(line), 1);
   }
 }
 
