@@ -11,7 +11,7 @@ set_tests_properties("validation.PoiseuilleVirtualParticles.HoldTheFluidAtTheWal
 set_tests_properties("validation.Rules/Viscosity.KolmogorovFlowMatchesTheory/srd3d_a130_dt1" PROPERTIES COST 54)
 set_tests_properties("validation.FhpVacf.LongTimeTailApproachesOneOverT" PROPERTIES COST 50)
 set_tests_properties("validation.Rules/Viscosity.KolmogorovFlowMatchesTheory/srd2d_a140_dt0_5" PROPERTIES COST 43)
-set_tests_properties("validation.NoSlipColloid.FreeDiscInKolmogorovFlowSpinsAtHalfTheShearRate" PROPERTIES COST 40)
+set_tests_properties("validation.NoSlipColloid.FreeDiscInKolmogorovFlowSpinsAtHalfTheShearRate" PROPERTIES COST 60)
 set_tests_properties("validation.Rules/Viscosity.KolmogorovFlowMatchesTheory/srd2d_a130_dt0_5" PROPERTIES COST 41)
 set_tests_properties("validation.FhpColloid.HeldDiscVacfTailGoesAsInverseTime" PROPERTIES COST 38)
 set_tests_properties("validation.Rules/Poiseuille.ViscosityFromTheProfile/at_a2d_dt0_02_n25_seed" PROPERTIES COST 31)

@@ -340,7 +340,9 @@ SpinResult spin_in_kolmogorov_flow(int blocks) {
 // Acceptance 3b (issue 20): within 5 % of half the ambient vorticity, with a standard error
 // small enough that 5 % is 2.5 of them (80 blocks of ~0.12-0.16 scatter: ~0.013-0.018; ~30 s).
 TEST(NoSlipColloid, FreeDiscInKolmogorovFlowSpinsAtHalfTheShearRate) {
-  const SpinResult r = spin_in_kolmogorov_flow(80);
+  // 120 blocks: with 80 the error bar was 0.0215 in one realisation, above the 0.02 that
+  // lets the 5 % bound bite.
+  const SpinResult r = spin_in_kolmogorov_flow(120);
   EXPECT_NEAR(r.ratio, 1.0, 0.05);
   EXPECT_LT(r.error, 0.02);
 }
