@@ -303,11 +303,9 @@ private:
     std::size_t fastest = 0;
     double v_fastest = -1.0;
     for (std::size_t a = 0; a < c_.size(); ++a) {
-      double v2 = 0.0;
-      for (int k = 0; k < c_.dim; ++k)
-        v2 += c_.v[k][a] * c_.v[k][a];
-      if (!(v2 <= v_fastest)) {
-        v_fastest = v2;
+      const double v = std::hypot(c_.v[0][a], c_.v[1][a], c_.dim == 3 ? c_.v[2][a] : 0.0);
+      if (!(v <= v_fastest)) { // (hypot: no overflow to inf at 1e300)
+        v_fastest = v;
         fastest = a;
       }
     }
@@ -317,7 +315,7 @@ private:
                   "dt = %.3g) among %zu colloids; the fastest, id %llu, moves at %.3g; the step "
                   "cannot end (allowed: colloid speeds far below a radius per step)",
                   static_cast<unsigned long long>(max_events), t, dt_, c_.size(),
-                  static_cast<unsigned long long>(c_.id[fastest]), std::sqrt(v_fastest));
+                  static_cast<unsigned long long>(c_.id[fastest]), v_fastest);
     throw invariant_error(line);
   }
   void push(double t, std::size_t a, std::size_t b) {

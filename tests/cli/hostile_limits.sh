@@ -237,6 +237,56 @@ edited "segregation fractions at close packing" segregation /continuum/fraction_
   "the fractions of cell 3 (/continuum/fraction_\*\[3\]) add up to .*; allowed: below close packing continuum.max_packing = 0.82"
 check "no refusal blames continuum.cfl" '! grep -q "continuum.cfl" "$tmp/rerr"'
 
+# ---- hard contacts with a colloid speed of 1e300 in a checkpoint: the event loop of one step
+# never ended and ignored SIGTERM (so the guard here is a SIGKILL); now a bound on events per
+# step stops it (exit 3, the reason).
+cat > "$tmp/hard.toml" << 'TOML'
+[run]
+dimensions = 2
+seed = 21
+steps = 10
+[domain]
+size = [30.0, 12.0]
+[fluid]
+collision = "at+a"
+density = 8
+dt = 0.05
+[walls]
+virtual_particles = true
+[colloids]
+coupling = "no-slip"
+contacts = "hard"
+radius = 1.6
+count = 10
+placement = "random"
+[output]
+every = 5
+checkpoint_every = 5
+progress = false
+TOML
+runs "hard contacts: the base run" "$narrows" run "$tmp/hard.toml" --out "$tmp/hard" > /dev/null
+mkdir -p "$tmp/fast"
+cp "$tmp/hard/checkpoint-0000000005.h5" "$tmp/fast/"
+$py - "$tmp/fast/checkpoint-0000000005.h5" << 'PY'
+import sys, h5py
+with h5py.File(sys.argv[1], "r+") as f:
+    d = f["particles/colloids/velocity/value"]
+    a = d[...]
+    a[0, 1] = 1e300
+    d[...] = a
+    f.visititems(lambda name, obj: obj.attrs.__delitem__("checksum") if "checksum" in obj.attrs else None)
+PY
+for ranks in 1 2; do
+  t0=$(date +%s)
+  exits 3 --err "$tmp/fast.err" "hard contacts, v = 1e300, $ranks rank(s)" timeout -s KILL 120 \
+    "${mpi[@]}" -n "$ranks" "$narrows" run "$tmp/hard.toml" --restart "$tmp/fast" \
+    --out "$tmp/fast_out$ranks"
+  took=$(($(date +%s) - t0))
+  check "hard contacts, v = 1e300, $ranks rank(s): within 60 s (took $took s)" '[ "$took" -le 60 ]'
+  check "hard contacts, v = 1e300, $ranks rank(s): says why" \
+    'grep -q "hard contacts: more than [0-9]* collision events in one step .* the fastest, id [0-9]*, moves at [0-9.]*e+[0-9]*; the step cannot end" "$tmp/fast.err" || { cat "$tmp/fast.err"; false; }'
+done
+
 # ---- SIGTERM 0.1 s after the start (before the run shell exists): kept, the run stops after
 # its first step with a checkpoint, exit 0 (it was killed by the default action, exit 143).
 for delay in 0.1 0.3; do
