@@ -9,13 +9,16 @@
 #include "narrows/engines/mpcd/driver.hpp"
 #include "narrows/run/drive.hpp"
 #include "narrows/run/shell.hpp"
+#include "narrows/run/stop_signals.hpp"
 #include "narrows/scene/parse.hpp"
 
 #include <CLI/CLI.hpp>
 #include <mpi.h>
 
+#include <csignal>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -57,7 +60,7 @@ const EngineEntry &engine_of(narrows::scene::Engine engine) {
   throw std::logic_error("no entry in the table of engines for run.engine");
 }
 
-int main_inner(int argc, char **argv) {
+int main_inner(int argc, char **argv, std::optional<narrows::run::StopSignals> &signals) {
   CLI::App app{"narrows: hydrodynamics of colloids in narrow channels (MPCD, lattice gases)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string(NARROWS_VERSION));
@@ -147,6 +150,13 @@ int main_inner(int argc, char **argv) {
       throw narrows::input_error("command line: " + given->get_name() +
                                  " ''; allowed: a non-empty path (see narrows --help)");
 
+  if (!*run) {
+    // Only a run stops cleanly on a signal; check, info and bench end by the default action,
+    // also for a signal that came while the command line was read.
+    signals.reset();
+    if (const int sig = narrows::run::stop_signal_received())
+      std::raise(sig);
+  }
   const bool root = rank_of_world() == 0;
   if (*bench && kmc_sites > 0.0) {
     if (root)
@@ -202,10 +212,14 @@ int main_inner(int argc, char **argv) {
 } // namespace
 
 int main(int argc, char **argv) {
+  // The stop-signal handlers come before any work (MPI_Init alone takes a few tenths of a
+  // second): a SIGTERM early in a run is kept and stops it after its first step, with a
+  // checkpoint, instead of killing it by the default action.
+  std::optional<narrows::run::StopSignals> signals(std::in_place);
   MPI_Init(&argc, &argv);
   int code = 0;
   try {
-    code = main_inner(argc, argv);
+    code = main_inner(argc, argv, signals);
   } catch (const narrows::Error &e) {
     if (rank_of_world() == 0)
       std::cerr << "narrows: " << e.what() << std::endl;

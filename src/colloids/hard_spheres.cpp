@@ -2,10 +2,12 @@
 #include "narrows/colloids/hard_spheres.hpp"
 
 #include "narrows/colloids/pair_geometry.hpp"
+#include "narrows/core/error.hpp"
 #include "narrows/engines/mpcd/kernels/streaming.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <queue>
 #include <vector>
@@ -253,7 +255,15 @@ public:
     bin_along_x();
     for (std::size_t a = 0; a < c_.size(); ++a)
       predict(a, 0.0);
+    // A bound on the events of one step, stale ones included: a physical step has a few
+    // collisions per colloid, but a colloid of speed 1e300 (an edited checkpoint) between two
+    // others or the walls collides ever more often and the step would never end (nor honour a
+    // stop signal, which is asked for between steps).
+    const std::uint64_t max_events = 1000000 + 1000 * static_cast<std::uint64_t>(c_.size());
+    std::uint64_t events = 0;
     while (!queue_.empty() && queue_.top().t <= dt_) {
+      if (++events > max_events)
+        too_many_events(max_events, queue_.top().t);
       const Event e = queue_.top();
       queue_.pop();
       if (e.stamp_a != stamp_[e.a] || (e.b < wall_high && e.stamp_b != stamp_[e.b]))
@@ -289,6 +299,25 @@ public:
   }
 
 private:
+  [[noreturn]] void too_many_events(std::uint64_t max_events, double t) const {
+    std::size_t fastest = 0;
+    double v_fastest = -1.0;
+    for (std::size_t a = 0; a < c_.size(); ++a) {
+      const double v = std::hypot(c_.v[0][a], c_.v[1][a], c_.dim == 3 ? c_.v[2][a] : 0.0);
+      if (!(v <= v_fastest)) { // (hypot: no overflow to inf at 1e300)
+        v_fastest = v;
+        fastest = a;
+      }
+    }
+    char line[400];
+    std::snprintf(line, sizeof line,
+                  "hard contacts: more than %llu collision events in one step (at t = %.3g of "
+                  "dt = %.3g) among %zu colloids; the fastest, id %llu, moves at %.3g; the step "
+                  "cannot end (allowed: colloid speeds far below a radius per step)",
+                  static_cast<unsigned long long>(max_events), t, dt_, c_.size(),
+                  static_cast<unsigned long long>(c_.id[fastest]), v_fastest);
+    throw invariant_error(line);
+  }
   void push(double t, std::size_t a, std::size_t b) {
     if (t > dt_)
       return;

@@ -158,6 +158,8 @@ PackingReport pack_colloids(Colloids &c, const mpcd::Box &box, std::uint64_t see
     int positive = 0;
     std::fill(v.begin(), v.end(), 0.0);
     for (std::int64_t it = 0;; ++it) {
+      if (it % every == 0 && params.poll)
+        params.poll();
       if (it % every == 0 && max_overlap(c, box) < goal)
         return true;
       if (it >= params.patience)

@@ -4,6 +4,8 @@
 
 #include "narrows/core/error.hpp"
 
+#include <unistd.h>
+
 #include <new>
 #include <string>
 
@@ -41,6 +43,17 @@ void collectively(MPI_Comm comm, const std::function<void()> &work) {
   message.resize(length);
   MPI_Bcast(message.data(), static_cast<int>(length), MPI_CHAR, first, comm);
   throw Error(static_cast<ExitCode>(code), message);
+}
+
+double memory_per_rank(MPI_Comm comm) {
+  MPI_Comm node;
+  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  int on_node = 1;
+  MPI_Comm_size(node, &on_node);
+  MPI_Comm_free(&node);
+  const double pages = static_cast<double>(sysconf(_SC_PHYS_PAGES));
+  const double page = static_cast<double>(sysconf(_SC_PAGESIZE));
+  return pages * page / on_node;
 }
 
 } // namespace narrows::run

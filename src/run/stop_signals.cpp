@@ -8,8 +8,9 @@ volatile std::sig_atomic_t stop_signal = 0;
 extern "C" void on_stop_signal(int sig) { stop_signal = sig; }
 } // namespace
 
+// The flag is not cleared here: main() installs the handlers before any work, and a signal
+// that arrived before the run shell existed must still stop the run.
 StopSignals::StopSignals() {
-  stop_signal = 0;
   struct sigaction sa {};
   sa.sa_handler = on_stop_signal;
   sigemptyset(&sa.sa_mask);
@@ -29,6 +30,8 @@ int StopSignals::requested(MPI_Comm comm) const {
 }
 
 int StopSignals::received() const { return stop_signal; }
+
+int stop_signal_received() { return stop_signal; }
 
 const char *signal_name(int sig) {
   switch (sig) {

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,20 @@ const toml::value &required_key(const Checker &c, const toml::value *sec, const 
     c.fail(std::string("continuum.") + name,
            std::string("missing required key 'continuum.") + name + "'; allowed: " + what);
   return *x;
+}
+
+// The grid spacing length / cells within 1e-100 to 1e100: the time step divides by dx^2, which
+// is 0 below about 1e-162 (continuum.length = 5e-324 gave dt = 10 and a NaN Courant number).
+void check_spacing(const Checker &c, const Continuum &out) {
+  const double dx = out.length / static_cast<double>(out.cells);
+  if (!(dx >= 1e-100 && dx <= 1e100)) {
+    char line[300];
+    std::snprintf(line, sizeof line,
+                  "continuum.length = %.3g over continuum.cells = %lld gives a spacing of %.3g; "
+                  "allowed: a length / cells from 1e-100 to 1e100",
+                  out.length, static_cast<long long>(out.cells), dx);
+    c.fail("continuum.length", line);
+  }
 }
 
 // The densities a flux is defined for: charge sigma in [-1, 1] (family 1), particle density in
@@ -329,7 +344,7 @@ void parse_segregation(const Checker &c, const toml::value *sec, Continuum &out)
              std::string("continuum.") + k +
                  " is not a key of continuum.model = \"segregation\"; allowed: dimensions, "
                  "half_width, cells, centre_speed, shear, k_c, k_eta, k_d, max_packing, kind, "
-                 "time, samples, cfl");
+                 "time, samples, cfl, max_work");
   const auto required = [&](const char *name, const std::string &what) -> const toml::value & {
     return required_key(c, sec, name, what);
   };
@@ -417,7 +432,7 @@ void parse_jamming(const Checker &c, const toml::value *sec, Continuum &out) {
                  " is a key of continuum.model = \"conservation-law\"; allowed with "
                  "\"jamming\": mu or vss or vss_fit, drive, diffusion, length, cells, boundary, "
                  "initial, time, "
-                 "samples, cfl");
+                 "samples, cfl, max_work");
   const auto required = [&](const char *name, const std::string &what) -> const toml::value & {
     return required_key(c, sec, name, what);
   };
@@ -439,6 +454,7 @@ void parse_jamming(const Checker &c, const toml::value *sec, Continuum &out) {
   const std::string cells_allowed = "an even integer from 8 to 16777216 (grid points)";
   out.cells = c.integer(required("cells", cells_allowed), "continuum.cells", cells_allowed,
                         [](std::int64_t n) { return n >= 8 && n <= 16777216 && n % 2 == 0; });
+  check_spacing(c, out);
   parse_jamming_initial(c,
                         required("initial", "{ kind = \"sine\", mean, amplitude, mode }, { kind "
                                             "= \"random\", mean, amplitude, seed }, { kind = "
@@ -467,14 +483,14 @@ Continuum parse_continuum(const toml::value *sec, const Checker &c) {
     refuse_segregation_keys(c, sec, "jamming",
                             "mu or vss or vss_fit, drive, diffusion, length, cells, boundary, "
                             "initial, time, "
-                            "samples, cfl");
+                            "samples, cfl, max_work");
     parse_jamming(c, sec, out);
   } else if (out.model == ContinuumModel::segregation) {
     parse_segregation(c, sec, out);
   } else {
     refuse_segregation_keys(c, sec, "conservation-law",
                             "flux and its parameters, length, cells, diffusion, boundary, "
-                            "reservoirs, initial, time, samples, cfl, limiter");
+                            "reservoirs, initial, time, samples, cfl, max_work, limiter");
     for (const char *k : {"mu", "vss", "vss_fit", "drive"})
       if (find(sec, k) != nullptr)
         c.fail(std::string("continuum.") + k,
@@ -494,6 +510,10 @@ Continuum parse_continuum(const toml::value *sec, const Checker &c) {
   if (const toml::value *v = find(sec, "cfl"))
     out.cfl = c.number(*v, "continuum.cfl", "a number > 0 and <= 0.5 (Courant number)",
                        [](double x) { return x > 0.0 && x <= 0.5; });
+  if (const toml::value *v = find(sec, "max_work"))
+    out.max_work =
+        c.number(*v, "continuum.max_work", "a number > 0 (grid-point steps a run may take)",
+                 [](double x) { return x > 0.0; });
   return out;
 }
 
@@ -538,6 +558,7 @@ void parse_conservation_law(const Checker &c, const toml::value *sec, Continuum 
   const std::string cells_allowed = "an integer from 4 to 100000000";
   out.cells = c.integer(required("cells", cells_allowed), "continuum.cells", cells_allowed,
                         [](std::int64_t n) { return n >= 4 && n <= 100000000; });
+  check_spacing(c, out);
   if (const toml::value *v = find(sec, "diffusion"))
     out.diffusion = c.number(*v, "continuum.diffusion", "a number >= 0 (D of D rho_xx)",
                              [](double x) { return x >= 0.0; });

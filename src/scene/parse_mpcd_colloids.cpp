@@ -9,6 +9,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -498,10 +499,11 @@ void check_no_slip(const Checker &c, const Scene &s) {
                                     to_string(rule) +
                                     "\"; allowed with srd, at or at+a (the ghost particles "
                                     "inside the colloids take part in the cell collision)");
-  if (s.fluid.density > 255.0)
-    c.fail("colloids.coupling",
-           "colloids.coupling = \"no-slip\" with fluid.density = " + float_text(s.fluid.density) +
-               "; allowed: a density up to 255 (ghost particles per cell)");
+  if (s.fluid.density > 250.0) // docs/scenes.md: fluid.density <= 250 (ghost particles per cell)
+    c.fail("fluid.density",
+           "fluid.density = " + float_text(s.fluid.density) +
+               " with colloids.coupling = \"no-slip\"; allowed: a density up to 250 (the ghost "
+               "particles per cell of the colloids)");
   // The impulses of one step change a colloid's spin explicitly: a particle bounced at the
   // surface takes 2 (U + Omega x r - v), so K hits per step turn Omega by a factor
   // 1 - f, f = 4 K / M (2D, I = M R^2 / 2) or 10 K / (3 M) (3D, I = 2 M R^2 / 5, tangential
@@ -546,14 +548,33 @@ void check_no_slip(const Checker &c, const Scene &s) {
     const auto &k = col.spring;
     const double stiff = std::max(k.kn, (d == 2 ? 3.0 : 3.5) * k.kt);
     const double omega_h = std::sqrt(stiff / (0.5 * m_min)) * s.fluid.dt / k.substeps;
-    if (omega_h > 0.25)
+    if (omega_h > 0.25) {
+      // The sub-steps that would do, as a number (no integer cast: kn = 1e300 needs ~1e149);
+      // beyond the key's range of 10000 only softer springs (or a smaller fluid.dt) help.
+      const double needed = std::ceil(k.substeps * omega_h / 0.25);
+      const std::string key =
+          k.kn >= (d == 2 ? 3.0 : 3.5) * k.kt ? "colloids.spring.kn" : "colloids.spring.kt";
+      const double h_min = s.fluid.dt / 10000.0; // the smallest sub-step
+      const double k_max = 0.5 * m_min * (0.25 / h_min) * (0.25 / h_min);
+      char k_text[32];
+      std::snprintf(k_text, sizeof k_text, "%.3g", k_max);
+      if (!(needed <= 10000.0))
+        c.fail(key, key + " = " + float_text(key == "colloids.spring.kn" ? k.kn : k.kt) +
+                        ": the stiffest contact of the lightest colloids (M " + float_text(m_min) +
+                        ") oscillates " + float_text(omega_h) +
+                        " radians per sub-step at colloids.spring.substeps = " +
+                        std::to_string(k.substeps) + "; allowed: at most 0.25, which needs " +
+                        float_text(needed) +
+                        " sub-steps, above the largest, 10000: softer springs (stiffness "
+                        "max(kn, " +
+                        (d == 2 ? "3" : "3.5") + " kt) <= " + k_text + ") or a smaller fluid.dt");
       c.fail("colloids.spring.substeps",
              "colloids.spring.substeps = " + std::to_string(k.substeps) +
                  ": the stiffest contact of the lightest colloids (M " + float_text(m_min) +
                  ") oscillates " + float_text(omega_h) +
                  " radians per sub-step; allowed: at most 0.25, i.e. substeps >= " +
-                 std::to_string(static_cast<int>(std::ceil(k.substeps * omega_h / 0.25))) +
-                 ", or softer springs");
+                 std::to_string(static_cast<int>(needed)) + ", or softer springs");
+    }
   }
   if (col.contacts == ColloidContacts::none && (s.walls || col.count > 1))
     c.fail("colloids.contacts",

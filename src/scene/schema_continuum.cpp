@@ -110,6 +110,9 @@ const EngineSchema &continuum_schema() {
          {"cfl", "number", "0.4; jamming: 0.1", "0 < cfl <= 0.5", "",
           "Courant number of the time step (jamming: the Strang splitting's error in growth rates "
           "is second order, under 1 % at 0.1, 6 % at 0.4)"},
+         {"max_work", "number", "1e11", "> 0", "",
+          "refuse the scene (at `check` and `run`) when its grid points × time steps exceed this "
+          "(each step advances every point); about 1e7 point-steps take a second"},
          {"limiter", "string", R"(`"mc"`)",
           R"(`"mc"` (monotonised central), `"minmod"`; conservation-law only)", "",
           "TVD slope limiter"},

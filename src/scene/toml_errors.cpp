@@ -120,9 +120,11 @@ constexpr int max_scene_nesting = 64;
 
 // toml11 scans a value's whole line for comments (region::comments) after parsing each value,
 // so an array of n values on one line takes O(n^2). Long lines of arrays are broken after
-// their commas (newlines are allowed between array elements; not inside inline tables, whose
-// lines are left alone). Returns the text toml11 reads; line_map[k] is the scene file's line
-// of its line k + 1 (empty when nothing was broken).
+// their commas: newlines are allowed between array elements, also of an array inside an inline
+// table (TOML 1.0: "unless they are valid within a value"; the profile of
+// continuum.initial.values is one), but not between the keys of an inline table. Returns the text
+// toml11 reads; line_map[k] is the scene file's line of its line k + 1 (empty when nothing was
+// broken).
 std::string break_long_arrays(const std::string &text, std::vector<std::size_t> &line_map) {
   constexpr std::size_t long_line = 1024;
   bool any_long = false;
@@ -172,8 +174,7 @@ std::string break_long_arrays(const std::string &text, std::vector<std::size_t> 
     if (ch == '\n') {
       newline();
       ++line;
-    } else if (ch == ',' && column > 80 && !open.empty() &&
-               std::all_of(open.begin(), open.end(), [](char b) { return b == '['; })) {
+    } else if (ch == ',' && column > 80 && !open.empty() && open.back() == '[') {
       out += '\n';
       newline();
     }

@@ -16,6 +16,7 @@
 #include "narrows/engines/mpcd/kernels/cell_grid.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 namespace narrows::colloids {
@@ -38,6 +39,10 @@ struct PackingParams {
   // packed).
   std::int64_t max_iterations = 2000000;
   std::int64_t max_shakes = 20;
+  // Called every few FIRE iterations (the same ones on every rank: the packing is the same
+  // everywhere); it may throw to end the packing, e.g. on a stop signal (a large packing takes
+  // minutes, before the run loop asks for signals).
+  std::function<void()> poll;
 };
 
 struct PackingReport {

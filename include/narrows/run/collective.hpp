@@ -15,4 +15,8 @@ namespace narrows::run {
 // last collective call, or wrap smaller steps.
 void collectively(MPI_Comm comm, const std::function<void()> &work);
 
+// Bytes of memory one rank may use: the machine's physical memory shared by the ranks of comm
+// on this node (collective), for the refusals of scenes that would not fit.
+double memory_per_rank(MPI_Comm comm);
+
 } // namespace narrows::run

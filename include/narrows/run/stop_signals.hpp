@@ -8,7 +8,8 @@
 namespace narrows::run {
 
 // Installs handlers for SIGTERM and SIGUSR1 while alive; the previous handlers come back on
-// destruction.
+// destruction. main() holds one from before MPI_Init, so that no signal kills a run by the
+// default action; a signal received at any time is kept until the run loop asks for it.
 class StopSignals {
 public:
   StopSignals();
@@ -26,5 +27,9 @@ private:
 };
 
 const char *signal_name(int sig);
+
+// This rank only (not collective): the stop signal received since the program started (0 if
+// none), for work before the run loop (packing colloids) that polls it.
+int stop_signal_received();
 
 } // namespace narrows::run

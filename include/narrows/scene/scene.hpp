@@ -274,6 +274,7 @@ struct Continuum {
   double time = 0.0;                  // simulated time
   std::int64_t samples = 100;         // observable samples over `time` (+ t = 0)
   double cfl = 0.4;                   // Courant number of the time step
+  double max_work = 1e11;             // refuse more grid-point steps (about 3 h)
   ContinuumLimiter limiter = ContinuumLimiter::mc;
   // jamming only
   JammingFit fit = JammingFit::mu_1; // v_ss of Table 6.2 for this wall friction

@@ -124,6 +124,23 @@ public:
                               " is not finite at step " + std::to_string(step) +
                               "; the scheme is unstable (report it)");
   }
+  std::string out_of_range() const override {
+    // The densities the flux is defined for (as continuum.initial accepts them).
+    double lo = -1e300, hi = 1e300;
+    const char *what = "";
+    if (m_.flux == scene::ContinuumFlux::family1) {
+      lo = -1.0, hi = 1.0, what = "a charge density from -1 to 1 (continuum.flux = \"family1\")";
+    } else if (m_.flux == scene::ContinuumFlux::tasep) {
+      lo = 0.0, hi = 1.0, what = "a particle density from 0 to 1 (continuum.flux = \"tasep\")";
+    } else if (m_.flux == scene::ContinuumFlux::family2) {
+      lo = 0.0, hi = 1.0, what = "a particle density from 0 to 1 (continuum.flux = \"family2\")";
+    }
+    for (std::size_t i = 0; i < u_.size(); ++i)
+      if (!(u_[i] >= lo && u_[i] <= hi))
+        return "/continuum/density[" + std::to_string(i) + "] = " + format("%.17g", u_[i]) +
+               " is out of range; allowed: " + what;
+    return {};
+  }
   void sample(io::ObservablesWriter *writer, std::int64_t s, double t) override {
     const double x = shock_position(u_, p_.grid.dx, p_.grid.periodic);
     shock_t_.push_back(t);
@@ -164,12 +181,14 @@ private:
 
 } // namespace
 
-std::vector<std::string> check_lines(const scene::Scene &scene, MPI_Comm) {
+std::vector<std::string> check_lines(const scene::Scene &scene, MPI_Comm comm) {
+  check_memory(scene, comm);
   return describe(scene);
 }
 
 std::unique_ptr<run::Engine> make_engine(const scene::Scene &scene, const run::Options &,
                                          MPI_Comm comm) {
+  check_memory(scene, comm);
   switch (scene.continuum->model) {
   case scene::ContinuumModel::jamming:
     return field_engine(scene, comm, make_jamming(scene));

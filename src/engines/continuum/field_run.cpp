@@ -23,6 +23,31 @@ bool wants(const scene::Scene &scene, const char *name) {
   return std::find(o.begin(), o.end(), name) != o.end();
 }
 
+double memory_bytes(const scene::Continuum &m) {
+  const auto cells = static_cast<double>(m.cells);
+  switch (m.model) {
+  case scene::ContinuumModel::jamming:
+    return 40.0 * 8.0 * cells; // phi, v and the spectral solver's stages
+  case scene::ContinuumModel::segregation:
+    return 8.0 * 8.0 * cells * static_cast<double>(m.segregation.kinds.size());
+  default:
+    return 7.0 * 8.0 * cells; // the density and the scheme's work arrays
+  }
+}
+
+void check_memory(const scene::Scene &scene, MPI_Comm comm) {
+  const double need = memory_bytes(*scene.continuum), have = run::memory_per_rank(comm);
+  run::collectively(comm, [&] { // nodes may differ in memory: every rank refuses alike
+    if (need > have)
+      throw input_error(scene.file + ": continuum.cells = " +
+                        std::to_string(scene.continuum->cells) + " needs about " +
+                        format("%.3g MiB per rank (every rank holds the whole grid), this machine "
+                               "has %.3g MiB per rank",
+                               need / 1048576.0, have / 1048576.0) +
+                        "; allowed: fewer continuum.cells or fewer ranks per node");
+  });
+}
+
 namespace {
 
 class FieldEngine final : public run::Engine {
@@ -52,6 +77,8 @@ public:
             throw input_error(file + ": /continuum/" + name + "[" + std::to_string(i) +
                               "] is not finite; allowed: finite values");
       }
+      if (const std::string why = model.out_of_range(); !why.empty())
+        throw input_error(file + ": " + why);
       step_ = shell.restart_info().step;
     });
   }

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <cstdio>
 #include <numbers>
 
 namespace narrows::continuum {
@@ -82,10 +83,22 @@ JammingPlan make_jamming_plan(const scene::Continuum &m) {
   jamming_initial(m, phi, v);
   const JammingModel model(m);
   p.speed_bound = std::max(model.vss(0.0), model.vss(1.0));
+  const double vss_bound = p.speed_bound;
   for (double x : v)
     p.speed_bound = std::max(p.speed_bound, std::abs(x));
   const double dt_max = m.cfl * p.dx / p.speed_bound;
-  const SampleSteps steps = sample_steps(m.time, m.samples, dt_max);
+  char why[300];
+  if (!m.velocity.empty() && p.speed_bound > vss_bound)
+    std::snprintf(why, sizeof why,
+                  "CFL %g with the speed bound %.3g of continuum.initial.velocity on points %.3g "
+                  "apart; slower continuum.initial.velocity lengthen it",
+                  m.cfl, p.speed_bound, p.dx);
+  else
+    std::snprintf(why, sizeof why,
+                  "CFL %g with the speed bound %.3g on points %.3g apart; fewer continuum.cells "
+                  "lengthen it",
+                  m.cfl, p.speed_bound, p.dx);
+  const SampleSteps steps = sample_steps(m, m.cells, dt_max, why);
   p.per_sample = steps.per_sample;
   p.steps = steps.steps;
   p.dt = steps.dt;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 namespace narrows::continuum {
@@ -26,14 +27,18 @@ std::vector<double> initial_cells(const scene::Continuum &m) {
     }
     break;
   case scene::ContinuumInitial::profile: {
-    // Integral of the piecewise-linear interpolant through the points x_k = k h.
+    // Integral of the piecewise-linear interpolant through the points x_k = k h. The cell
+    // edges advance monotonically, so the whole intervals are summed once (prefix sums):
+    // linear in cells + values (a profile of 1e7 values on 1e8 cells took hours when every
+    // edge summed from 0).
     const std::size_t K = m.profile.size() - 1;
     const double h = m.length / static_cast<double>(K);
+    std::vector<double> whole(K + 1, 0.0); // integral from 0 to x_k
+    for (std::size_t k = 0; k < K; ++k)
+      whole[k + 1] = whole[k] + 0.5 * h * (m.profile[k] + m.profile[k + 1]);
     const auto integral = [&](double x) { // of the interpolant from 0 to x
-      double s = 0.0;
       const std::size_t full = std::min<std::size_t>(K, static_cast<std::size_t>(x / h));
-      for (std::size_t k = 0; k < full; ++k)
-        s += 0.5 * h * (m.profile[k] + m.profile[k + 1]);
+      double s = whole[full];
       if (full < K) {
         const double t = x - static_cast<double>(full) * h;
         const double v = m.profile[full] + (m.profile[full + 1] - m.profile[full]) * t / h;
@@ -74,16 +79,32 @@ std::vector<double> cell_centres(const Grid &grid) {
   return x;
 }
 
-SampleSteps sample_steps(double time, std::int64_t samples, double dt_max) {
-  const double per = std::ceil(time / static_cast<double>(samples) / dt_max);
-  if (!(per * static_cast<double>(samples) <= 9e9))
-    throw input_error("continuum: " + std::to_string(per * static_cast<double>(samples)) +
-                      " steps (continuum.time / the CFL time step); allowed: at most 9e9 "
-                      "(fewer continuum.cells, a shorter continuum.time)");
+SampleSteps sample_steps(const scene::Continuum &m, std::int64_t points, double dt_max,
+                         const std::string &why) {
+  const auto samples = static_cast<double>(m.samples);
+  const double per = std::ceil(m.time / samples / dt_max);
+  char line[600];
+  if (!(per * samples <= 9e9)) {
+    std::snprintf(line, sizeof line,
+                  "continuum.time = %.6g needs %.3g steps of dt <= %.3g (%s); allowed: at most "
+                  "9e9 steps",
+                  m.time, per * samples, dt_max, why.c_str());
+    throw input_error(line);
+  }
   SampleSteps out;
   out.per_sample = std::max<std::int64_t>(1, static_cast<std::int64_t>(per));
-  out.steps = out.per_sample * samples;
-  out.dt = time / static_cast<double>(out.steps);
+  out.steps = out.per_sample * m.samples;
+  out.dt = m.time / static_cast<double>(out.steps);
+  const double work = static_cast<double>(out.steps) * static_cast<double>(points);
+  if (!(work <= m.max_work)) {
+    std::snprintf(line, sizeof line,
+                  "continuum.max_work: %.3g point-steps (%lld points x %lld steps of dt %.3g: "
+                  "%s); allowed: at most continuum.max_work = %.3g (raise continuum.max_work to "
+                  "run it: about 1e7 point-steps take a second)",
+                  work, static_cast<long long>(points), static_cast<long long>(out.steps), out.dt,
+                  why.c_str(), m.max_work);
+    throw input_error(line);
+  }
   return out;
 }
 
@@ -104,7 +125,12 @@ Plan make_plan(const scene::Continuum &m) {
   const Flux flux(m);
   p.max_speed = flux.max_speed(p.lo, p.hi);
   const double dt_max = stable_dt(p.max_speed, p.grid.dx, m.diffusion, m.cfl);
-  const SampleSteps steps = sample_steps(m.time, m.samples, dt_max);
+  char why[300];
+  std::snprintf(why, sizeof why,
+                "CFL %g with max|J'| = %.3g, continuum.diffusion = %.3g on cells of dx = %.3g; "
+                "fewer continuum.cells or a smaller continuum.diffusion lengthen it",
+                m.cfl, p.max_speed, m.diffusion, p.grid.dx);
+  const SampleSteps steps = sample_steps(m, m.cells, dt_max, why);
   p.per_sample = steps.per_sample;
   p.steps = steps.steps;
   p.dt = steps.dt;

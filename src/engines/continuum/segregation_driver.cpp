@@ -143,6 +143,36 @@ public:
                               "; allowed: a smaller continuum.cfl or more continuum.cells");
     }
   }
+  std::string out_of_range() const override {
+    for (std::size_t j = 0; j < cells_; ++j) {
+      double x[max_segregation_kinds], total = 0.0;
+      for (std::size_t i = 0; i < n_; ++i) {
+        x[i] = phi_[i][j];
+        total += x[i];
+        if (!(x[i] >= 0.0))
+          return "/continuum/fraction_" + std::to_string(i) + "[" + std::to_string(j) +
+                 "] = " + format("%.17g", x[i]) + " is out of range; allowed: a fraction >= 0";
+      }
+      if (!segregation_.admissible(x))
+        return "the fractions of cell " + std::to_string(j) + " (/continuum/fraction_*[" +
+               std::to_string(j) + "]) add up to " + format("%.17g", total) +
+               "; allowed: below close packing continuum.max_packing = " +
+               format("%g", s_.max_packing);
+    }
+    // The walls conserve each kind's amount: its mean stays the scene's fraction (to rounding).
+    for (std::size_t i = 0; i < n_; ++i) {
+      double mean = 0.0;
+      for (std::size_t j = 0; j < cells_; ++j)
+        mean += phi_[i][j] / static_cast<double>(cells_);
+      const double want = s_.kinds[i].fraction;
+      if (!(std::abs(mean - want) <= 1e-6 * want))
+        return "/continuum/fraction_" + std::to_string(i) + " has the mean " +
+               format("%.17g", mean) + " but continuum.kind[" + std::to_string(i) +
+               "].fraction = " + format("%g", want) +
+               " (the walls conserve each kind's amount); allowed: the checkpoint of this scene";
+    }
+    return {};
+  }
   void sample(io::ObservablesWriter *writer, std::int64_t st, double t) override {
     if (writer == nullptr)
       return;

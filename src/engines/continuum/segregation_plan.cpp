@@ -5,6 +5,7 @@
 #include "narrows/engines/continuum/segregation_solver.hpp"
 
 #include <algorithm>
+#include <cstdio>
 
 namespace narrows::continuum {
 
@@ -32,7 +33,12 @@ SegregationPlan make_segregation_plan(const scene::Continuum &m) {
   bound(start);
   if (p.steady.ok)
     bound(steady_at(p.steady, grid.faces()));
-  const SampleSteps steps = sample_steps(m.time, m.samples, m.cfl / worst);
+  char why[300];
+  std::snprintf(why, sizeof why,
+                "continuum.cfl %g with the largest rate %.3g on cells of h = %.3g; fewer "
+                "continuum.cells lengthen it",
+                m.cfl, worst, p.h);
+  const SampleSteps steps = sample_steps(m, m.cells, m.cfl / worst, why);
   p.per_sample = steps.per_sample;
   p.steps = steps.steps;
   p.dt = steps.dt;

@@ -179,7 +179,8 @@ private:
 } // namespace
 
 Colloids place_colloids(const scene::Colloids &spec, const mpcd::Box &box, double density,
-                        std::uint64_t seed, PackingReport *report) {
+                        std::uint64_t seed, PackingReport *report,
+                        const std::function<void()> &poll) {
   Colloids c;
   c.dim = box.dim;
   const auto n = static_cast<std::size_t>(spec.count);
@@ -189,8 +190,10 @@ Colloids place_colloids(const scene::Colloids &spec, const mpcd::Box &box, doubl
   set_radii_and_masses(c, spec, density, seed);
   switch (spec.placement) {
   case scene::ColloidPlacement::packing: {
-    const PackingReport r =
-        pack_colloids(c, box, seed, "colloids.packing_fraction = " + number(spec.packing_fraction));
+    colloids::PackingParams params;
+    params.poll = poll;
+    const PackingReport r = pack_colloids(
+        c, box, seed, "colloids.packing_fraction = " + number(spec.packing_fraction), params);
     if (report)
       *report = r;
     break;

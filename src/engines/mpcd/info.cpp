@@ -6,8 +6,7 @@
 #include "narrows/engines/mpcd/invariants.hpp"
 #include "narrows/engines/mpcd/simulation.hpp"
 #include "narrows/engines/mpcd/transport_theory.hpp"
-
-#include <unistd.h>
+#include "narrows/run/collective.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -58,18 +57,7 @@ Regime regime(const scene::Scene &s) {
   return r;
 }
 
-// Bytes of memory one rank may use: the machine's physical memory shared by the ranks of comm
-// on this node.
-double memory_per_rank(MPI_Comm comm) {
-  MPI_Comm node;
-  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
-  int on_node = 1;
-  MPI_Comm_size(node, &on_node);
-  MPI_Comm_free(&node);
-  const double pages = static_cast<double>(sysconf(_SC_PHYS_PAGES));
-  const double page = static_cast<double>(sysconf(_SC_PAGESIZE));
-  return pages * page / on_node;
-}
+using run::memory_per_rank; // the machine's memory per rank of comm on this node
 
 // Mean free path lambda = dt sqrt(kT/m) beyond which positions are noise: a particle flies a
 // million cells a step, and its wrapped position keeps fewer than 10 significant digits.

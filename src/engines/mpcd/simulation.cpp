@@ -12,6 +12,7 @@
 #include "narrows/engines/mpcd/kernels/thermostat.hpp"
 #include "narrows/engines/mpcd/walls/bounce_back.hpp"
 #include "narrows/engines/mpcd/walls/virtual_particles.hpp"
+#include "narrows/run/stop_signals.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -110,9 +111,18 @@ MpcdSimulation::MpcdSimulation(const scene::Scene &scene, MPI_Comm comm, bool al
         // Packed here only (run_scene leaves it out of check_colloid_placement): every rank
         // packs the same colloids; a target that cannot be packed is the scene's error.
         colloids::PackingReport report;
+        // A stop signal ends a long packing on every rank alike (it is the same everywhere).
+        const auto poll = [comm] {
+          int local = run::stop_signal_received(), any = 0;
+          MPI_Allreduce(&local, &any, 1, MPI_INT, MPI_MAX, comm);
+          if (any != 0)
+            throw Error(ExitCode::ok, std::string("received ") + run::signal_name(any) +
+                                          " while packing the colloids: stopped before step 0, "
+                                          "nothing written");
+        };
         try {
-          colloids_ =
-              place_colloids(*scene.colloids, box_, scene.fluid.density, scene.run.seed, &report);
+          colloids_ = place_colloids(*scene.colloids, box_, scene.fluid.density, scene.run.seed,
+                                     &report, poll);
         } catch (const Error &e) {
           if (e.code() != ExitCode::bad_input)
             throw;

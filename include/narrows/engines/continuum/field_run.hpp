@@ -41,6 +41,11 @@ public:
   virtual void step(double dt) = 0;
   // Throws invariant_error if the fields are no longer sound at this step.
   virtual void check(std::int64_t step) const = 0;
+  // After a restart restored the fields (finite): the first value outside the model's range,
+  // as "/continuum/<name>[i] = x ...; allowed: ..." naming the range; empty if all are inside.
+  // A checkpoint edited out of range is refused before the first step, not stopped later by
+  // check() with a message about the numerics.
+  virtual std::string out_of_range() const { return {}; }
   // At a sample, on every rank; `writer` is rank 0's (nullptr elsewhere).
   virtual void sample(io::ObservablesWriter *writer, std::int64_t step, double t) = 0;
   // The lines the log ends with after the last step (not after a stop signal).
@@ -51,6 +56,12 @@ public:
 // no decomposition) and rank 0 writes.
 std::unique_ptr<run::Engine> field_engine(const scene::Scene &scene, MPI_Comm comm,
                                           std::unique_ptr<FieldModel> model);
+
+// Bytes one rank holds for the model's grid (every rank advances the whole grid): the figure
+// `check` prints. check_memory refuses (collective, one line naming continuum.cells) a grid
+// that exceeds this rank's share of the machine's memory, before anything is allocated.
+double memory_bytes(const scene::Continuum &m);
+void check_memory(const scene::Scene &scene, MPI_Comm comm);
 
 // Small helpers of the model drivers: printf-style text of up to four numbers; whether
 // output.observables lists `name`; the model's plan, its refusal naming the scene file.

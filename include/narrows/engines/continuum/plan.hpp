@@ -6,6 +6,7 @@
 #include "narrows/scene/scene.hpp"
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace narrows::continuum {
@@ -22,13 +23,17 @@ struct Plan {
 };
 
 // The steps of a run of `time` with `samples` samples at a step no longer than dt_max: the
-// largest dt <= dt_max that puts every sample time k time / samples on a step (input_error
-// beyond 9e9 steps). Shared by the continuum models.
+// largest dt <= dt_max that puts every sample time k time / samples on a step. Shared by the
+// continuum models. Refused (input_error, one line naming the key): beyond 9e9 steps, or more
+// than continuum.max_work point-steps (`points` grid points a step). `why` says what sets
+// dt_max and what would lengthen it ("speed bound 1e+300 of continuum.initial.velocity; slower
+// velocities"), for the message.
 struct SampleSteps {
   double dt = 0.0;
   std::int64_t steps = 0, per_sample = 0;
 };
-SampleSteps sample_steps(double time, std::int64_t samples, double dt_max);
+SampleSteps sample_steps(const scene::Continuum &m, std::int64_t points, double dt_max,
+                         const std::string &why);
 
 // dt is the largest step <= stable_dt (scheme.hpp) that puts every sample time
 // k continuum.time / continuum.samples on a step, so samples are exact in time and the run

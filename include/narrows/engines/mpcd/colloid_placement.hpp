@@ -10,6 +10,7 @@
 #include "narrows/scene/scene.hpp"
 
 #include <cstdint>
+#include <functional>
 
 namespace narrows::mpcd {
 
@@ -33,9 +34,10 @@ void set_radii_and_masses(colloids::Colloids &c, const scene::Colloids &spec, do
 // (centres closer than r_a + r_b);
 // packing: grown from random points with frictionless springs (colloids/packing.hpp, the same on
 // every rank), what it reached into `report` if given; input_error if the overlaps cannot be
-// removed.
+// removed; `poll` is called during the packing (colloids::PackingParams::poll).
 colloids::Colloids place_colloids(const scene::Colloids &spec, const mpcd::Box &box, double density,
-                                  std::uint64_t seed, colloids::PackingReport *report = nullptr);
+                                  std::uint64_t seed, colloids::PackingReport *report = nullptr,
+                                  const std::function<void()> &poll = {});
 
 // Fluid particles the scene has with colloids: round(n (V_box - sum_a V_a)) (Tabatabaei (2008)
 // §3.4.1: N_f = n (L_x L_y - N_c pi r_c^2) for equal radii); `seed` draws the radii.
