@@ -58,7 +58,7 @@ std::size_t sysfs_bytes(std::string text) {
 // The cache the arrays of a case compete for. Read where glibc has it (sysconf, from CPUID),
 // else from the kernel's description of cpu0's caches (the highest level listed).
 LastLevelCache last_level_cache() {
-  for (const auto [name, level] :
+  for (const auto &[name, level] :
        {std::pair{_SC_LEVEL3_CACHE_SIZE, 3}, std::pair{_SC_LEVEL2_CACHE_SIZE, 2}}) {
     const long bytes = sysconf(name);
     if (bytes > 0)

@@ -386,31 +386,51 @@ void NoSlipCoupling::ghost_responses(const mpcd::CellGrid &grid,
   // The fluid of each cut cell: count and summed offsets from the corner (in fixed point: the
   // same bits whatever the order of the particles, on any number of ranks).
   slot_fixed_.assign(slot_cells_.size(), {0, 0, 0, 0});
-  // A cell's particles lie mostly together (sorted by cell every few steps): a run of them is
-  // summed in registers and stored once (integers: the same sums in any order).
-  const std::size_t n = fluid.size();
-  const double sx = grid.shift[0], sy = grid.shift[1], sz = grid.shift[2];
-  std::int32_t run = -1;
-  std::int64_t acc[4] = {0, 0, 0, 0};
-  const auto flush = [&] {
-    if (run >= 0)
-      for (int k = 0; k < 4; ++k)
-        slot_fixed_[static_cast<std::size_t>(run)][k] += acc[k];
-  };
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::int32_t slot = cell_slot_[fluid.cell[i]];
-    if (slot != run) {
-      flush();
-      run = slot;
-      acc[0] = acc[1] = acc[2] = acc[3] = 0;
+  if (collision.position_stride > 0) {
+    // MPC-AT+a summed them already, with the ghosts' from_double(sum r) and n added: taken off
+    // again, the same integers as a pass over the fluid gives.
+    const auto stride = static_cast<std::size_t>(collision.position_stride);
+    const auto offset = static_cast<std::size_t>(collision.position_offset);
+    for (std::size_t k = 0; k < slot_cells_.size(); ++k) {
+      const std::size_t cell = slot_cells_[k];
+      slot_fixed_[k][0] = grid.sums[cell].n;
+      for (int a = 0; a < dim_; ++a)
+        slot_fixed_[k][1 + a] = collision.cell_fixed[cell * stride + offset + a];
     }
-    acc[0] += 1;
-    acc[1] += fixed::from_double(mpcd::in_cell_offset(fluid.x[0][i], sx));
-    acc[2] += fixed::from_double(mpcd::in_cell_offset(fluid.x[1][i], sy));
-    if (dim_ == 3)
-      acc[3] += fixed::from_double(mpcd::in_cell_offset(fluid.x[2][i], sz));
+    for (std::size_t q = 0; q < groups; ++q) {
+      const mpcd::ParticleGroup &g = grid.groups[q];
+      auto &f = slot_fixed_[static_cast<std::size_t>(cell_slot_[g.cell])];
+      f[0] -= g.n;
+      for (int a = 0; a < dim_; ++a)
+        f[1 + a] -= fixed::from_double(g.r[a]);
+    }
+  } else {
+    // A cell's particles lie mostly together (sorted by cell every few steps): a run of them is
+    // summed in registers and stored once (integers: the same sums in any order).
+    const std::size_t n = fluid.size();
+    const double sx = grid.shift[0], sy = grid.shift[1], sz = grid.shift[2];
+    std::int32_t run = -1;
+    std::int64_t acc[4] = {0, 0, 0, 0};
+    const auto flush = [&] {
+      if (run >= 0)
+        for (int k = 0; k < 4; ++k)
+          slot_fixed_[static_cast<std::size_t>(run)][k] += acc[k];
+    };
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::int32_t slot = cell_slot_[fluid.cell[i]];
+      if (slot != run) {
+        flush();
+        run = slot;
+        acc[0] = acc[1] = acc[2] = acc[3] = 0;
+      }
+      acc[0] += 1;
+      acc[1] += fixed::from_double(mpcd::in_cell_offset(fluid.x[0][i], sx));
+      acc[2] += fixed::from_double(mpcd::in_cell_offset(fluid.x[1][i], sy));
+      if (dim_ == 3)
+        acc[3] += fixed::from_double(mpcd::in_cell_offset(fluid.x[2][i], sz));
+    }
+    flush();
   }
-  flush();
   for (std::size_t k = 0; k < slot_cells_.size(); ++k) {
     slot_fluid_[k][0] = static_cast<double>(slot_fixed_[k][0]);
     for (int a = 0; a < 3; ++a)

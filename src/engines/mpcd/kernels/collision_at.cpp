@@ -381,6 +381,8 @@ void at_a_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, st
     v2_max = std::max(v2_max, v2);
   }
   s.v2_max = v2_max;
+  s.position_stride = SS;
+  s.position_offset = D;
   // GCC 12 (-march=native, AVX-512) vectorises the 2D cell loop above with ymm registers and
   // leaves them dirty on return (no vzeroupper, unlike every other kernel). Each later call
   // into libm's SSE-encoded code (the log of the next step's noise, the sines of a sine
@@ -395,6 +397,7 @@ void at_a_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, st
 
 void collide_at(Fluid &fluid, const CellGrid &grid, CollisionScratch &scratch, double kT,
                 std::uint64_t seed, std::uint64_t step) {
+  scratch.position_stride = 0;
   if (grid.dim == 3)
     at_kernel<3>(fluid, grid, scratch, kT, seed, step);
   else

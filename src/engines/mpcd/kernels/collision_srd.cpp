@@ -179,6 +179,7 @@ template <int D> void srd_particles(Fluid &f, std::vector<double> &par, std::siz
 
 void collide_srd(Fluid &fluid, const CellGrid &grid, CollisionScratch &scratch, double angle_rad,
                  std::uint64_t seed, std::uint64_t step) {
+  scratch.position_stride = 0;
   if (grid.dim == 3) {
     srd_cells<3>(grid, scratch.cell, angle_rad, seed, step);
     srd_groups<3>(grid, scratch.cell, scratch.group_change);

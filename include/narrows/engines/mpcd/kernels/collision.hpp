@@ -19,6 +19,10 @@ struct CollisionScratch {
   // The largest |v|^2 of the fluid the last collision left, found on its way (MPC-AT+a; -1:
   // not known): the next step's fluid reach (colloids/near_fluid.hpp) without a pass of its own.
   double v2_max = -1.0;
+  // MPC-AT+a: cell_fixed holds, from entry position_offset of each cell's record of
+  // position_stride, the cell's summed in-cell offsets (fixed point; fluid and groups), which
+  // the no-slip coupling reads instead of summing its cut cells' fluid again. 0: not kept.
+  int position_stride = 0, position_offset = 0;
 };
 
 // Every rule below (not the random solvents' own steps) also collides the particle groups of
