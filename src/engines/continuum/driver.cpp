@@ -124,6 +124,19 @@ public:
                               " is not finite at step " + std::to_string(step) +
                               "; the scheme is unstable (report it)");
   }
+  std::string restored_out_of_range() const override {
+    // The scheme keeps the solution within the range of its initial and boundary data (the
+    // maximum principle of scalar conservation laws, kept by the limited MUSCL scheme), up to
+    // rounding.
+    const double tol = 1e-9 * (p_.hi - p_.lo) + 1e-12 * (1.0 + std::abs(p_.lo) + std::abs(p_.hi));
+    for (std::size_t i = 0; i < u_.size(); ++i)
+      if (!(u_[i] >= p_.lo - tol && u_[i] <= p_.hi + tol))
+        return "density[" + std::to_string(i) + "] = " + format("%.17g", u_[i]) +
+               "; allowed: " + format("%.17g to %.17g", p_.lo, p_.hi) +
+               ", the range of the scene's initial and boundary densities, which the "
+               "conservation law keeps";
+    return {};
+  }
   void sample(io::ObservablesWriter *writer, std::int64_t s, double t) override {
     const double x = shock_position(u_, p_.grid.dx, p_.grid.periodic);
     shock_t_.push_back(t);

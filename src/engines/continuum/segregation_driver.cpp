@@ -143,6 +143,38 @@ public:
                               "; allowed: a smaller continuum.cfl or more continuum.cells");
     }
   }
+  std::string restored_out_of_range() const override {
+    for (std::size_t j = 0; j < cells_; ++j) {
+      double x[max_segregation_kinds];
+      for (std::size_t i = 0; i < n_; ++i)
+        x[i] = phi_[i][j];
+      if (!segregation_.admissible(x)) {
+        std::size_t i = 0;
+        double total = 0.0;
+        for (std::size_t k = 0; k < n_; ++k) {
+          total += x[k];
+          if (x[k] < 0.0)
+            i = k;
+        }
+        return "fraction_" + std::to_string(i) + "[" + std::to_string(j) +
+               "] = " + format("%.17g", x[i]) + format(" (all kinds %.17g)", total) +
+               "; allowed: fractions >= 0 whose sum is below close packing phi_M = " +
+               format("%.6g", s_.max_packing);
+      }
+    }
+    // The no-flux walls conserve each kind: its mean fraction stays the scene's.
+    for (std::size_t i = 0; i < n_; ++i) {
+      double sum = 0.0;
+      for (std::size_t j = 0; j < cells_; ++j)
+        sum += phi_[i][j];
+      const double mean = sum / static_cast<double>(cells_), given = s_.kinds[i].fraction;
+      if (!(std::abs(mean - given) <= 1e-6 * given))
+        return "fraction_" + std::to_string(i) + format(" has the mean %.17g", mean) +
+               "; allowed: " + format("%.17g", given) +
+               ", the kind's fraction in the scene (the walls conserve each kind)";
+    }
+    return {};
+  }
   void sample(io::ObservablesWriter *writer, std::int64_t st, double t) override {
     if (writer == nullptr)
       return;
