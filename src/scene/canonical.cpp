@@ -248,13 +248,17 @@ std::optional<SceneDifference> first_difference(const std::string &given_text,
       ++g;
     if (take_s)
       ++s;
-    if (same_value(key, a, b) || exempt(key))
+    if (a == b || exempt(key))
       continue;
     const std::string sec = section_of(key);
     const bool in_given = has_section(given, sec), in_stored = has_section(stored, sec);
+    // A section on one side only differs whatever its keys' values ([walls] with its defaults
+    // is not the same scene as no walls).
     if (in_given != in_stored && sec != "output")
       return SceneDifference{"[" + sec + "]", in_given ? "present" : "absent",
                              in_stored ? "present" : "absent"};
+    if (same_value(key, a, b))
+      continue;
     const auto shown = [&](const std::string &x) {
       const std::string d = x == "(not set)" ? default_of(key) : x;
       return d == x ? x : "(not set: the default " + d + ")";

@@ -6,6 +6,7 @@ refuse it (issue 35 item 1).
 Usage: edit_checkpoint.py IN OUT EDIT [EDIT ...]   (IN may equal OUT)
   set DATASET INDEX VALUE   one entry (INDEX "3", "3,1", or "" for a scalar; VALUE a number, inf, nan, 1e300)
   scale DATASET FACTOR      every entry times FACTOR
+  fill DATASET VALUE        every entry VALUE
   delete PATH               removes a dataset or group (e.g. /particles/colloids/orientation_w)
   append DATASET            one more row (a copy of the last)
   drop DATASET              one row less (the last)
@@ -94,6 +95,11 @@ def main():
             elif op == "scale":
                 name, factor = args[i + 1:i + 3]
                 f[name][...] = f[name][()] * float(factor)
+                touched.add(name)
+                i += 3
+            elif op == "fill":
+                name, value = args[i + 1:i + 3]
+                f[name][...] = float(value)
                 touched.add(name)
                 i += 3
             elif op == "delete":
