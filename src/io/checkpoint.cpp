@@ -847,7 +847,19 @@ void check_stored_shapes(hid_t file, const SpeciesFields &s, bool exact, std::ui
   for (const auto &f : fields)
     shapes.push_back(shape_of(open_required(file, f.dataset, path).get(), path));
   std::string line;
-  const std::uint64_t rows0 = shapes.empty() || shapes[0].empty() ? 0 : shapes[0][0];
+  // The row count most fields have (the first field's on a tie): the odd field is named.
+  std::uint64_t rows0 = shapes.empty() || shapes[0].empty() ? 0 : shapes[0][0];
+  std::size_t most = 0;
+  for (const auto &a : shapes) {
+    const std::size_t same =
+        static_cast<std::size_t>(std::count_if(shapes.begin(), shapes.end(), [&](const auto &b) {
+          return !a.empty() && !b.empty() && b[0] == a[0];
+        }));
+    if (!a.empty() && same > most) {
+      most = same;
+      rows0 = a[0];
+    }
+  }
   for (std::size_t i = 0; i < fields.size() && line.empty(); ++i) {
     const auto &f = fields[i];
     const auto &shape = shapes[i];
@@ -859,9 +871,9 @@ void check_stored_shapes(hid_t file, const SpeciesFields &s, bool exact, std::ui
                              std::to_string(f.width) + " components per particle)"
                        : std::string("[N] (one value per particle)"));
     else if (exact && shape[0] != rows0)
-      line = f.dataset + " has " + std::to_string(shape[0]) + " rows, " + fields[0].dataset +
-             " has " + std::to_string(rows0) +
-             "; allowed: the same number of rows in every field of /particles/" + s.name;
+      line = f.dataset + " has " + std::to_string(shape[0]) +
+             " rows, the other fields of /particles/" + s.name + " " + std::to_string(rows0) +
+             "; allowed: the same number of rows in every field of the species";
     else if (!exact && shape[0] < need)
       line = f.dataset + " has " + std::to_string(shape[0]) + " rows; allowed: at least " +
              std::to_string(need) + " (the rows this run reads)";

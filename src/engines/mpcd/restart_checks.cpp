@@ -484,6 +484,28 @@ void check_restored_colloids(const colloids::Colloids &c, const colloids::Contac
       throw input_error(cset + "owner_id/value, partner_id/value row " + std::to_string(j) +
                         " holds a contact of " + what +
                         ", which do not touch; allowed: contacts between touching bodies only");
+    // The tangential spring as the force loop leaves it (colloids/springs.cpp): capped at
+    // |k_t xi| <= mu k_n delta after every update (Coulomb), zero without k_t, and a force the
+    // fixed-point sums can hold.
+    const scene::ColloidSprings &k = spec.spring;
+    const double mu = colloids::is_wall_id(p) ? k.mu_cw : k.mu_cc;
+    const double xi =
+        std::hypot(contacts.xi[0][j], contacts.xi[1][j], D == 3 ? contacts.xi[2][j] : 0.0);
+    const double delta = std::max(-gap, 0.0);
+    double most = fixed::max_magnitude / (k.kt * std::max(1.0, c.radius[a]));
+    std::string rule = "a force and torque the fixed-point sums hold";
+    if (k.kt == 0.0) {
+      most = 0.0;
+      rule = "colloids.spring.kt = 0";
+    } else if (std::isfinite(mu) && mu * k.kn * delta / k.kt * (1.0 + 1e-9) + 1e-12 < most) {
+      most = mu * k.kn * delta / k.kt * (1.0 + 1e-9) + 1e-12;
+      rule = "mu k_n delta / k_t, the Coulomb cap";
+    }
+    rule = number_text(most) + " (" + rule + ")";
+    if (!(xi <= most))
+      throw input_error(cset + "tangential_displacement/value row " + std::to_string(j) +
+                        " (contact of " + what + ") has length " + number_text(xi) +
+                        "; allowed: at most " + rule);
     touching.erase({a, p});
   }
   if (!touching.empty()) {
