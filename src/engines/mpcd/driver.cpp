@@ -267,7 +267,7 @@ public:
           // Every rank holds all colloids and contacts: the same refusal everywhere.
           check_restored_colloids(all, contacts, scene,
                                   io::read_box_edges(file, "colloids", scene.run.dimensions, comm),
-                                  file);
+                                  shell.restart_info().step, file);
           sim.restore_colloids(std::move(all));
           if (springs)
             sim.restore_contacts(std::move(contacts));

@@ -13,6 +13,7 @@
 // evaluation on what is refused here (the same test, component by component).
 #include "narrows/engines/mpcd/restart_checks.hpp"
 
+#include "narrows/colloids/packing.hpp"
 #include "narrows/colloids/potentials.hpp"
 #include "narrows/core/error.hpp"
 #include "narrows/core/fixed_point.hpp"
@@ -328,7 +329,7 @@ void check_restored_fluid(const mpcd::Fluid &f, const io::CheckpointInfo &info, 
 
 void check_restored_colloids(const colloids::Colloids &c, const colloids::ContactHistory &contacts,
                              const scene::Scene &scene, const std::array<double, 3> &edges,
-                             const std::string &path) {
+                             std::int64_t step, const std::string &path) {
   const int D = c.dim;
   const scene::Colloids &spec = *scene.colloids;
   mpcd::Box box;
@@ -348,6 +349,12 @@ void check_restored_colloids(const colloids::Colloids &c, const colloids::Contac
   const bool md = spec.coupling == scene::ColloidCoupling::md;
   // The hard-sphere event loop's rounding margin (colloids/hard_spheres.cpp).
   const double margin = 1e-6 * (1.0 + box.length[0]);
+  // Hard contacts never create an overlap, but keep those a packed start leaves: up to the
+  // packing's acceptance tolerance of the smallest radius (colloids/packing.hpp).
+  double r_min = std::numeric_limits<double>::infinity();
+  for (const double r : c.radius)
+    r_min = std::min(r_min, r);
+  const double hard_allowance = colloids::PackingParams{}.tolerance * r_min + margin;
   const double Ly = box.length[1];
   // Rows are in id order (read_colloids): row a is colloid id a.
   for (std::size_t a = 0; a < c.size(); ++a) {
@@ -377,11 +384,11 @@ void check_restored_colloids(const colloids::Colloids &c, const colloids::Contac
     if (!(y > 0.0 && y < Ly))
       throw input_error(where + "; allowed: a centre between the walls, 0 < y < " +
                         number_text(Ly));
-    if (hard && !(y >= r - margin && y <= Ly - r + margin))
+    if (hard && !(y >= r - hard_allowance && y <= Ly - r + hard_allowance))
       throw input_error(where +
                         " overlaps a wall; allowed: hard contacts keep r <= y <= L_y - r "
                         "(within " +
-                        number_text(margin) + ")");
+                        number_text(hard_allowance) + ", the deepest overlap a packing leaves)");
     if (md) {
       const double sw = spec.wall_sigma_of(r);
       double force = 0.0;
@@ -422,8 +429,9 @@ void check_restored_colloids(const colloids::Colloids &c, const colloids::Contac
         }
         const double R = c.radius[a] + c.radius[b], dist = std::sqrt(r2);
         std::string refused;
-        if (hard && dist < R - margin)
-          refused = "hard contacts allow none (within " + number_text(margin) + ")";
+        if (hard && dist < R - hard_allowance)
+          refused = "hard contacts allow none (within " + number_text(hard_allowance) +
+                    ", the deepest overlap a packing leaves)";
         else if (springs && !(dist > std::max(c.radius[a], c.radius[b])))
           refused = "spring contacts allow overlaps with each centre outside the other colloid";
         else if (md && dist < std::pow(2.0, 1.0 / 24.0) * R) {
@@ -508,7 +516,7 @@ void check_restored_colloids(const colloids::Colloids &c, const colloids::Contac
                         "; allowed: at most " + rule);
     touching.erase({a, p});
   }
-  if (!touching.empty()) {
+  if (!touching.empty() && step > 0) {
     const auto [a, p] = *touching.begin();
     throw input_error(
         cset + "owner_id/value: no contact row of colloid id " + std::to_string(a) + " and " +

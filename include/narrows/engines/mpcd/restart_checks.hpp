@@ -55,10 +55,12 @@ void check_fluid_outside_colloids(const mpcd::Fluid &local_fluid,
 //   MD colloids a 48-24 pair force (Tabatabaei (2008) eq 3.43) beyond the fixed-point range, at
 //   which a run stops; hard contacts likewise off the walls, MD colloids a wall force beyond it;
 // - spring contacts: a contact row between colloids that do not touch (or a wall contact of a
-//   colloid off the wall), and a touching pair (colloid or wall) without its contact row (rows
-//   removed, or the contact group deleted).
+//   colloid off the wall), a tangential spring beyond its Coulomb cap, and after step 0 (whose
+//   history is empty: the first force evaluation makes it) a touching pair (colloid or wall)
+//   without its contact row (rows removed, or the contact group deleted).
 void check_restored_colloids(const colloids::Colloids &all,
                              const colloids::ContactHistory &contacts, const scene::Scene &scene,
-                             const std::array<double, 3> &edges, const std::string &path);
+                             const std::array<double, 3> &edges, std::int64_t step,
+                             const std::string &path);
 
 } // namespace narrows::mpcd
