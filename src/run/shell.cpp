@@ -32,6 +32,35 @@ scene::Scene scene_of_checkpoint(Options &options, const std::vector<std::string
   return s;
 }
 
+namespace {
+
+// The two texts of the scene a checkpoint stores must be one scene: /parameters/scene (what ran)
+// and /parameters/canonical_scene (what a restart compares with). Issue 35: an edited
+// /parameters/scene passed while the canonical text was left as it was.
+void check_stored_scenes(const io::CheckpointInfo &info, const std::string &file) {
+  if (info.canonical_scene.empty()) // an older checkpoint: its scene text is all there is
+    return;
+  const std::string text = scene::canonical_text(info.scene_text, file + ":/parameters/scene");
+  if (text == info.canonical_scene)
+    return;
+  const auto line_at = [](const std::string &t, std::size_t at) {
+    const std::size_t begin = t.rfind('\n', at == 0 ? 0 : at - 1);
+    const std::size_t from = begin == std::string::npos || at == 0 ? 0 : begin + 1;
+    const std::size_t end = t.find('\n', from);
+    return from >= t.size() ? std::string("(nothing)") : t.substr(from, end - from);
+  };
+  std::size_t at = 0;
+  while (at < text.size() && at < info.canonical_scene.size() &&
+         text[at] == info.canonical_scene[at])
+    ++at;
+  throw input_error(file + ": /parameters/scene has '" + line_at(text, at) +
+                    "' where /parameters/canonical_scene has '" +
+                    line_at(info.canonical_scene, at) +
+                    "'; allowed: one scene in both (a checkpoint as narrows run wrote it)");
+}
+
+} // namespace
+
 Shell::Shell(const scene::Scene &scene, const Options &options, MPI_Comm comm, RunSpan span)
     : scene_(scene), comm_(comm), span_(std::move(span)), options_(options) {
   MPI_Comm_rank(comm, &rank_);
@@ -52,6 +81,7 @@ Shell::Shell(const scene::Scene &scene, const Options &options, MPI_Comm comm, R
     }
     restart_file_ = io::resolve_restart(options.restart);
     restart_info_ = io::read_checkpoint_header(restart_file_, comm);
+    check_stored_scenes(restart_info_, restart_file_);
     const std::string &stored = restart_info_.canonical_scene.empty()
                                     ? restart_info_.scene_text
                                     : restart_info_.canonical_scene;

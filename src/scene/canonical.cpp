@@ -4,6 +4,7 @@
 
 #include "canonical_toml.hpp"
 #include "narrows/core/error.hpp"
+#include "narrows/scene/schema.hpp"
 
 #include <cctype>
 #include <cmath>
@@ -132,6 +133,60 @@ std::string section_of(const std::string &key) {
   return key.substr(0, key.find('.'));
 }
 
+// The canonical value of a key's documented default (its cell in the schema, e.g. "2500" or
+// `"none"`) when that is one TOML value; "(not set)" otherwise ("the defaults below", "2 r_a").
+std::string default_of(const std::string &key) {
+  std::vector<std::string> parts;
+  for (std::size_t at = 0;;) {
+    const std::size_t dot = key.find('.', at);
+    parts.push_back(key.substr(at, dot - at));
+    if (dot == std::string::npos)
+      break;
+    at = dot + 1;
+  }
+  const SectionSpec *section = parts.size() >= 2 ? find_section(parts[0]) : nullptr;
+  if (section == nullptr)
+    return "(not set)";
+  const std::vector<KeySpec> *keys = &section->keys;
+  const KeySpec *spec = nullptr;
+  for (std::size_t i = 1; i < parts.size(); ++i) {
+    spec = find_key(*keys, parts[i]);
+    if (spec == nullptr)
+      return "(not set)";
+    keys = &spec->sub_keys;
+  }
+  std::string text(spec->default_value);
+  if (text.size() >= 2 && text.front() == '`' && text.back() == '`')
+    text = text.substr(1, text.size() - 2);
+  if (text.find('`') != std::string::npos)
+    return "(not set)";
+  try {
+    std::istringstream in("v = " + text);
+    const toml::value root = toml::parse(in, "default");
+    const toml::value &v = root.as_table().at("v");
+    if (v.is_table())
+      return "(not set)";
+    return value_text(v);
+  } catch (const std::exception &) {
+    return "(not set)";
+  }
+}
+
+// Two canonical values of `key` that mean the same: a key not set has its documented default
+// (issue 35: --set colloids.spring.kn=2500 was refused as "(not set)"), and "inf" is the float
+// inf (mu_cw = inf against a checkpoint's "inf").
+bool same_value(const std::string &key, const std::string &a, const std::string &b) {
+  const auto value = [&](const std::string &x) {
+    const std::string v = x == "(not set)" ? default_of(key) : x;
+    if (v == "\"inf\"")
+      return std::string("inf");
+    if (v == "\"-inf\"")
+      return std::string("-inf");
+    return v;
+  };
+  return value(a) == value(b);
+}
+
 } // namespace
 
 namespace detail {
@@ -179,7 +234,7 @@ std::optional<SceneDifference> first_difference(const std::string &given_text,
     const auto a = given.find(key), b = stored.find(key);
     const std::string x = a == given.end() ? "(not set)" : a->second;
     const std::string y = b == stored.end() ? "(not set)" : b->second;
-    if (x != y)
+    if (!same_value(key, x, y))
       return SceneDifference{key, x, y};
   }
   auto g = given.begin(), s = stored.begin();
@@ -197,10 +252,18 @@ std::optional<SceneDifference> first_difference(const std::string &given_text,
       continue;
     const std::string sec = section_of(key);
     const bool in_given = has_section(given, sec), in_stored = has_section(stored, sec);
+    // A section on one side only differs whatever its keys' values ([walls] with its defaults
+    // is not the same scene as no walls).
     if (in_given != in_stored && sec != "output")
       return SceneDifference{"[" + sec + "]", in_given ? "present" : "absent",
                              in_stored ? "present" : "absent"};
-    return SceneDifference{key, a, b};
+    if (same_value(key, a, b))
+      continue;
+    const auto shown = [&](const std::string &x) {
+      const std::string d = x == "(not set)" ? default_of(key) : x;
+      return d == x ? x : "(not set: the default " + d + ")";
+    };
+    return SceneDifference{key, shown(a), shown(b)};
   }
   return std::nullopt;
 }

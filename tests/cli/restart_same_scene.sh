@@ -130,7 +130,7 @@ check "kmc: kmc.replicas and output.* may change on a restart" '[ $? -eq 0 ] || 
 # A deleted section or key is refused, naming it.
 refused "mpcd: [walls] deleted" "mpcd-nowalls.toml: \[walls\] = absent but checkpoint .* has present" \
   "$narrows" run "$tmp/mpcd-nowalls.toml" --set run.steps=8 --restart "$tmp/mpcd" --out "$tmp/y1"
-refused "lgca: lattice.walls deleted" "lattice.walls = (not set) but checkpoint .* has true" \
+refused "lgca: lattice.walls deleted" "lattice.walls = (not set: the default false) but checkpoint .* has true" \
   "$narrows" run "$tmp/lgca-nowalls.toml" --set run.steps=8 --restart "$tmp/lgca" --out "$tmp/y2"
 refused "kmc: kmc.left deleted" 'kmc.left."0->1" = (not set) but checkpoint .* has 0.3' \
   "$narrows" run "$tmp/kmc-noleft.toml" --set kmc.replicas=4 --restart "$tmp/kmc" --out "$tmp/y3"

@@ -87,7 +87,9 @@ TEST(CheckpointScene, FirstDifferenceNamesTheKey) {
   ASSERT_TRUE(seed);
   EXPECT_EQ(seed->key, "run.seed");
   EXPECT_EQ(seed->given, "3");
-  EXPECT_EQ(seed->stored, "(not set)");
+  EXPECT_EQ(seed->stored, "(not set: the default 42)");
+  // A key not set equals its documented default (issue 35 item 4).
+  EXPECT_FALSE(scene::first_difference(canon({"run.seed=42"}), scene_text, "c"));
   EXPECT_FALSE(scene::first_difference(canon({"run.seed=3"}), scene_text, "c", {"run.seed"}));
   EXPECT_EQ(code_of([] { scene::first_difference(scene_text, "[broken", "c.h5"); }),
             ExitCode::bad_input);

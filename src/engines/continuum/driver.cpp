@@ -124,21 +124,17 @@ public:
                               " is not finite at step " + std::to_string(step) +
                               "; the scheme is unstable (report it)");
   }
-  std::string out_of_range() const override {
-    // The densities the flux is defined for (as continuum.initial accepts them).
-    double lo = -1e300, hi = 1e300;
-    const char *what = "";
-    if (m_.flux == scene::ContinuumFlux::family1) {
-      lo = -1.0, hi = 1.0, what = "a charge density from -1 to 1 (continuum.flux = \"family1\")";
-    } else if (m_.flux == scene::ContinuumFlux::tasep) {
-      lo = 0.0, hi = 1.0, what = "a particle density from 0 to 1 (continuum.flux = \"tasep\")";
-    } else if (m_.flux == scene::ContinuumFlux::family2) {
-      lo = 0.0, hi = 1.0, what = "a particle density from 0 to 1 (continuum.flux = \"family2\")";
-    }
+  std::string restored_out_of_range() const override {
+    // The scheme keeps the solution within the range of its initial and boundary data (the
+    // maximum principle of scalar conservation laws, kept by the limited MUSCL scheme), up to
+    // rounding.
+    const double tol = 1e-9 * (p_.hi - p_.lo) + 1e-12 * (1.0 + std::abs(p_.lo) + std::abs(p_.hi));
     for (std::size_t i = 0; i < u_.size(); ++i)
-      if (!(u_[i] >= lo && u_[i] <= hi))
-        return "/continuum/density[" + std::to_string(i) + "] = " + format("%.17g", u_[i]) +
-               " is out of range; allowed: " + what;
+      if (!(u_[i] >= p_.lo - tol && u_[i] <= p_.hi + tol))
+        return "density[" + std::to_string(i) + "] = " + format("%.17g", u_[i]) +
+               "; allowed: " + format("%.17g to %.17g", p_.lo, p_.hi) +
+               ", the range of the scene's initial and boundary densities, which the "
+               "conservation law keeps";
     return {};
   }
   void sample(io::ObservablesWriter *writer, std::int64_t s, double t) override {

@@ -77,8 +77,8 @@ public:
             throw input_error(file + ": /continuum/" + name + "[" + std::to_string(i) +
                               "] is not finite; allowed: finite values");
       }
-      if (const std::string why = model.out_of_range(); !why.empty())
-        throw input_error(file + ": " + why);
+      if (const std::string bad = model.restored_out_of_range(); !bad.empty())
+        throw input_error(file + ": /continuum/" + bad);
       step_ = shell.restart_info().step;
     });
   }

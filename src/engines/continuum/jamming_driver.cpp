@@ -168,19 +168,20 @@ public:
                               std::to_string(step) + format(" (phi = %g, v = %g)", phi_[i], v_[i]) +
                               "; allowed: a smaller continuum.cfl or more continuum.cells");
   }
-  std::string out_of_range() const override {
-    for (std::size_t i = 0; i < n_; ++i)
-      if (!(phi_[i] >= 0.0 && phi_[i] <= 1.0))
-        return "/continuum/density[" + std::to_string(i) + "] = " + format("%.17g", phi_[i]) +
-               " is out of range; allowed: an area fraction phi from 0 to 1";
-    // The time step is the scene's (checked against /continuum/time_step): a faster point
-    // would cross more than a grid spacing per step.
-    const double fastest = p_.dx / p_.dt;
-    for (std::size_t i = 0; i < n_; ++i)
-      if (!(std::abs(v_[i]) <= fastest))
-        return "/continuum/velocity[" + std::to_string(i) + "] = " + format("%.17g", v_[i]) +
-               " is out of range; allowed: |v| <= dx / dt = " + format("%.6g", fastest) +
-               " (the Courant limit of this scene's time step)";
+  std::string restored_out_of_range() const override {
+    for (std::size_t i = 0; i < n_; ++i) {
+      // An area fraction, at which the steady velocity v_ss (eq 6.4) and so the friction
+      // sigma / v_ss are finite and > 0.
+      const double vss = jamming_.vss(phi_[i]);
+      if (!(phi_[i] >= 0.0 && phi_[i] <= 1.0 && vss > 0.0 && std::isfinite(vss)))
+        return "density[" + std::to_string(i) + "] = " + format("%.17g", phi_[i]) +
+               "; allowed: an area fraction 0 to 1 at which v_ss(phi) > 0 (here " +
+               format("%.6g", vss) + ")";
+      if (!(std::abs(v_[i]) * p_.dt <= p_.dx))
+        return "velocity[" + std::to_string(i) + "] = " + format("%.17g", v_[i]) +
+               "; allowed: |v| dt <= dx, " + format("|v| <= %.17g", p_.dx / p_.dt) +
+               " (the run's Courant limit)";
+    }
     return {};
   }
   void sample(io::ObservablesWriter *writer, std::int64_t s, double t) override {

@@ -143,33 +143,35 @@ public:
                               "; allowed: a smaller continuum.cfl or more continuum.cells");
     }
   }
-  std::string out_of_range() const override {
+  std::string restored_out_of_range() const override {
     for (std::size_t j = 0; j < cells_; ++j) {
-      double x[max_segregation_kinds], total = 0.0;
-      for (std::size_t i = 0; i < n_; ++i) {
+      double x[max_segregation_kinds];
+      for (std::size_t i = 0; i < n_; ++i)
         x[i] = phi_[i][j];
-        total += x[i];
-        if (!(x[i] >= 0.0))
-          return "/continuum/fraction_" + std::to_string(i) + "[" + std::to_string(j) +
-                 "] = " + format("%.17g", x[i]) + " is out of range; allowed: a fraction >= 0";
+      if (!segregation_.admissible(x)) {
+        std::size_t i = 0;
+        double total = 0.0;
+        for (std::size_t k = 0; k < n_; ++k) {
+          total += x[k];
+          if (x[k] < 0.0)
+            i = k;
+        }
+        return "fraction_" + std::to_string(i) + "[" + std::to_string(j) +
+               "] = " + format("%.17g", x[i]) + format(" (all kinds %.17g)", total) +
+               "; allowed: fractions >= 0 whose sum is below close packing phi_M = " +
+               format("%.6g", s_.max_packing);
       }
-      if (!segregation_.admissible(x))
-        return "the fractions of cell " + std::to_string(j) + " (/continuum/fraction_*[" +
-               std::to_string(j) + "]) add up to " + format("%.17g", total) +
-               "; allowed: below close packing continuum.max_packing = " +
-               format("%g", s_.max_packing);
     }
-    // The walls conserve each kind's amount: its mean stays the scene's fraction (to rounding).
+    // The no-flux walls conserve each kind: its mean fraction stays the scene's.
     for (std::size_t i = 0; i < n_; ++i) {
-      double mean = 0.0;
+      double sum = 0.0;
       for (std::size_t j = 0; j < cells_; ++j)
-        mean += phi_[i][j] / static_cast<double>(cells_);
-      const double want = s_.kinds[i].fraction;
-      if (!(std::abs(mean - want) <= 1e-6 * want))
-        return "/continuum/fraction_" + std::to_string(i) + " has the mean " +
-               format("%.17g", mean) + " but continuum.kind[" + std::to_string(i) +
-               "].fraction = " + format("%g", want) +
-               " (the walls conserve each kind's amount); allowed: the checkpoint of this scene";
+        sum += phi_[i][j];
+      const double mean = sum / static_cast<double>(cells_), given = s_.kinds[i].fraction;
+      if (!(std::abs(mean - given) <= 1e-6 * given))
+        return "fraction_" + std::to_string(i) + format(" has the mean %.17g", mean) +
+               "; allowed: " + format("%.17g", given) +
+               ", the kind's fraction in the scene (the walls conserve each kind)";
     }
     return {};
   }

@@ -7,7 +7,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
+#include <tuple>
 #include <vector>
 
 namespace narrows::mpcd {
@@ -18,6 +20,12 @@ namespace {
 const char *const spin_names[3] = {"angular_velocity_x", "angular_velocity_y",
                                    "angular_velocity_z"};
 int first_spin(int dim) { return dim == 2 ? 2 : 0; }
+
+std::string number_text(double v) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%.17g", v);
+  return b;
+}
 
 } // namespace
 
@@ -52,6 +60,40 @@ colloids::Colloids read_colloids(const std::string &path, const scene::Colloids 
     return std::any_of(absent.begin(), absent.end(),
                        [&](const species::Field *f) { return f->name == name; });
   };
+  // Checkpoints gained these fields in this order (radius and mass, then the angular velocity
+  // with the no-slip colloids, then the orientation; the contacts came after all of them): an
+  // older checkpoint lacks the newest ones only, and a checkpoint of no-slip colloids or of
+  // contacts lacks none of those its scene needs. Anything else lost a field (issue 35: a deleted
+  // orientation_w, radius or angular_velocity_z was silently reset).
+  {
+    const char *const order[4] = {"radius", "mass", "angular_velocity", "orientation"};
+    int needed = 0; // fields of `order` this scene's checkpoints always hold
+    if (spec.coupling == scene::ColloidCoupling::no_slip)
+      needed = 3;
+    if (spec.contacts != scene::ColloidContacts::none)
+      needed = 4;
+    const auto stored_name = [&](std::string_view name) {
+      const species::Field *f = fields.find(name);
+      return "/particles/colloids/" +
+             f->stored_name(f->shape == species::Shape::split ? f->first_stored : 0) + "/value";
+    };
+    for (int k = 0; k < 4; ++k) {
+      if (!lacks(order[k]))
+        continue;
+      for (int later = k + 1; later < 4; ++later)
+        if (!lacks(order[later]))
+          throw input_error(path + ": missing dataset " + stored_name(order[k]) + " but " +
+                            stored_name(order[later]) +
+                            " is there; allowed: every colloid field (only a checkpoint older "
+                            "than a field lacks it, and then all that came later too)");
+      if (k < needed)
+        throw input_error(path + ": missing dataset " + stored_name(order[k]) +
+                          "; allowed: a checkpoint of " +
+                          (needed == 4 ? "colloid contacts" : "no-slip colloids") +
+                          " holds radius, mass, angular_velocity_*" +
+                          (needed == 4 ? ", orientation_*" : "") + " (it is not reset)");
+    }
+  }
   const bool sizes = !lacks("radius") && !lacks("mass");
   io::SpeciesFields s = io::checkpoint_fields(fields, [&](const species::Field &f) {
     return lacks(f.name) || (!sizes && (f.name == "radius" || f.name == "mass"));
@@ -85,11 +127,11 @@ colloids::Colloids read_colloids(const std::string &path, const scene::Colloids 
       const double x = all.x[k][i], v = all.v[k][i];
       if (!(x >= 0.0 && x <= edges[k]))
         throw input_error(path + ": /particles/colloids/position/value" + at + " component " +
-                          std::to_string(k) + " = " + std::to_string(x) +
-                          "; allowed: inside the box, 0 to " + std::to_string(edges[k]));
+                          std::to_string(k) + " = " + number_text(x) +
+                          "; allowed: inside the box, 0 to " + number_text(edges[k]));
       if (!std::isfinite(v))
         throw input_error(path + ": /particles/colloids/velocity/value" + at + " component " +
-                          std::to_string(k) + " = " + std::to_string(v) +
+                          std::to_string(k) + " = " + number_text(v) +
                           "; allowed: a finite number");
     }
     const std::uint64_t id = all.id[i];
@@ -108,7 +150,7 @@ colloids::Colloids read_colloids(const std::string &path, const scene::Colloids 
       const double w = c.omega[k][id];
       if (!std::isfinite(w))
         throw input_error(path + ": /particles/colloids/" + spin_names[k] + "/value" + at + " = " +
-                          std::to_string(w) + "; allowed: a finite number");
+                          number_text(w) + "; allowed: a finite number");
     }
     double norm2 = 0.0;
     for (int k = 0; k < 4; ++k)
@@ -117,13 +159,16 @@ colloids::Colloids read_colloids(const std::string &path, const scene::Colloids 
       throw input_error(path + ": /particles/colloids/orientation_*" + at +
                         " is not a unit "
                         "quaternion (|q|^2 = " +
-                        std::to_string(norm2) + "); allowed: w^2 + x^2 + y^2 + z^2 = 1");
-    if (sizes) { // restored exactly as they were written
-      const double radius = c.radius[id], mass = c.mass[id];
-      if (!(radius > 0.0 && std::isfinite(radius) && mass > 0.0 && std::isfinite(mass)))
-        throw input_error(path + ": colloid id " + std::to_string(id) + " has radius " +
-                          std::to_string(radius) + " and mass " + std::to_string(mass) +
-                          "; allowed: finite numbers > 0");
+                        number_text(norm2) + "); allowed: w^2 + x^2 + y^2 + z^2 = 1");
+    if (sizes) { // restored exactly as they were written: the scene's (issue 35)
+      for (const auto &[name, stored, given] :
+           {std::tuple{"radius", c.radius[id], scene_radius[id]},
+            std::tuple{"mass", c.mass[id], scene_mass[id]}})
+        if (!(std::abs(stored - given) <= 1e-12 * given))
+          throw input_error(path + ": /particles/colloids/" + name + "/value" + at +
+                            " (colloid id " + std::to_string(id) + ") = " + number_text(stored) +
+                            "; allowed: " + number_text(given) + ", the " + name +
+                            " the scene gives this colloid");
     } else { // an older checkpoint: from the scene
       c.radius[id] = scene_radius[id];
       c.mass[id] = scene_mass[id];
@@ -178,7 +223,7 @@ colloids::ContactHistory read_contacts(const std::string &path, std::int64_t col
     for (int k = 0; k < dim; ++k)
       if (!std::isfinite(all.xi[k][j]))
         throw input_error(set + "tangential_displacement/value component " + std::to_string(k) +
-                          " = " + std::to_string(all.xi[k][j]) + at + "; allowed: a finite number");
+                          " = " + number_text(all.xi[k][j]) + at + "; allowed: a finite number");
   }
   return all;
 }

@@ -256,11 +256,21 @@ public:
       });
       if (scene.colloids) {
         run::collectively(comm, [&] {
-          sim.restore_colloids(read_colloids(file, *scene.colloids, scene.run.dimensions,
-                                             scene.fluid.density, scene.run.seed, comm));
-          if (scene.colloids->contacts == scene::ColloidContacts::spring)
-            sim.restore_contacts(read_contacts(file, scene.colloids->count, scene.run.dimensions,
-                                               scene.walls.has_value(), comm));
+          colloids::Colloids all = read_colloids(file, *scene.colloids, scene.run.dimensions,
+                                                 scene.fluid.density, scene.run.seed, comm);
+          const bool springs = scene.colloids->contacts == scene::ColloidContacts::spring;
+          colloids::ContactHistory contacts;
+          contacts.dim = scene.run.dimensions;
+          if (springs)
+            contacts = read_contacts(file, scene.colloids->count, scene.run.dimensions,
+                                     scene.walls.has_value(), comm);
+          // Every rank holds all colloids and contacts: the same refusal everywhere.
+          check_restored_colloids(all, contacts, scene,
+                                  io::read_box_edges(file, "colloids", scene.run.dimensions, comm),
+                                  shell.restart_info().step, file);
+          sim.restore_colloids(std::move(all));
+          if (springs)
+            sim.restore_contacts(std::move(contacts));
         });
         // Every colloid (gathered from the owners) against this rank's fluid.
         check_fluid_outside_colloids(sim.fluid(), sim.gather_colloids(), sim.box(),

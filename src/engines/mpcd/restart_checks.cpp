@@ -13,9 +13,11 @@
 // evaluation on what is refused here (the same test, component by component).
 #include "narrows/engines/mpcd/restart_checks.hpp"
 
+#include "narrows/colloids/packing.hpp"
 #include "narrows/colloids/potentials.hpp"
 #include "narrows/core/error.hpp"
 #include "narrows/core/fixed_point.hpp"
+#include "narrows/engines/mpcd/invariants.hpp"
 #include "narrows/run/collective.hpp"
 #include "narrows/scene/parse.hpp"
 
@@ -25,7 +27,9 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <optional>
+#include <set>
 #include <vector>
 
 namespace narrows::mpcd {
@@ -37,8 +41,10 @@ namespace {
 // ones only.
 class ColloidBins {
 public:
-  ColloidBins(const colloids::Colloids &c, const mpcd::Box &box) : c_(c), box_(box) {
-    double cut = 0.0;
+  // min_cut: bins at least this wide (a pair search of reach min_cut).
+  ColloidBins(const colloids::Colloids &c, const mpcd::Box &box, double min_cut = 0.0)
+      : c_(c), box_(box) {
+    double cut = min_cut;
     for (const double r : c.radius)
       cut = std::max(cut, colloids::repulsive_cutoff(6, r));
     // At most about 4 bins per colloid (+ 64): memory O(Nc) in a large box with small colloids.
@@ -319,6 +325,207 @@ void check_restored_fluid(const mpcd::Fluid &f, const io::CheckpointInfo &info, 
   }
   refuse_first_bad_row(bad, line, comm);
   check_unique_ids(f.id, first_row, total, ids, path, comm);
+}
+
+void check_restored_colloids(const colloids::Colloids &c, const colloids::ContactHistory &contacts,
+                             const scene::Scene &scene, const std::array<double, 3> &edges,
+                             std::int64_t step, const std::string &path) {
+  const int D = c.dim;
+  const scene::Colloids &spec = *scene.colloids;
+  mpcd::Box box;
+  box.dim = D;
+  box.walls_y = scene.walls.has_value();
+  for (int k = 0; k < D; ++k)
+    box.length[k] = scene.domain.size[k];
+  const std::string set = path + ": /particles/colloids/";
+  const auto colloid = [](std::size_t a) { return " (colloid id " + std::to_string(a) + ")"; };
+  for (int k = 0; k < D; ++k)
+    if (edges[k] != box.length[k])
+      throw input_error(set + "box/edges[" + std::to_string(k) + "] = " + number_text(edges[k]) +
+                        "; allowed: " + number_text(box.length[k]) + ", the scene's domain.size[" +
+                        std::to_string(k) + "]");
+  const bool hard = spec.contacts == scene::ColloidContacts::hard;
+  const bool springs = spec.contacts == scene::ColloidContacts::spring;
+  const bool md = spec.coupling == scene::ColloidCoupling::md;
+  // The hard-sphere event loop's rounding margin (colloids/hard_spheres.cpp).
+  const double margin = 1e-6 * (1.0 + box.length[0]);
+  // Hard contacts never create an overlap, but keep those a packed start leaves: up to the
+  // packing's acceptance tolerance of the smallest radius (colloids/packing.hpp).
+  double r_min = std::numeric_limits<double>::infinity();
+  for (const double r : c.radius)
+    r_min = std::min(r_min, r);
+  const double hard_allowance = colloids::PackingParams{}.tolerance * r_min + margin;
+  const double Ly = box.length[1];
+  // Rows are in id order (read_colloids): row a is colloid id a.
+  for (std::size_t a = 0; a < c.size(); ++a) {
+    const double r = c.radius[a];
+    for (int k = 0; k < D; ++k) {
+      if (!(c.x[k][a] >= 0.0 && c.x[k][a] <= box.length[k]))
+        throw input_error(set + "position/value" + colloid(a) + " component " + std::to_string(k) +
+                          " = " + number_text(c.x[k][a]) +
+                          "; allowed: inside the scene's box, 0 to " + number_text(box.length[k]));
+      if (!(std::abs(c.v[k][a]) <= max_speed))
+        throw input_error(set + "velocity/value" + colloid(a) + " component " + std::to_string(k) +
+                          " = " + number_text(c.v[k][a]) + "; allowed: |v| <= " +
+                          number_text(max_speed) + ", the run's speed limit");
+    }
+    for (int k = D == 2 ? 2 : 0; k < 3; ++k)
+      if (!(std::abs(c.omega[k][a]) * r <= max_speed))
+        throw input_error(set + "angular_velocity_" + std::string(1, "xyz"[k]) + "/value" +
+                          colloid(a) + " = " + number_text(c.omega[k][a]) +
+                          "; allowed: |omega| r <= " + number_text(max_speed) +
+                          ", the run's speed limit at the surface");
+    if (!box.walls_y)
+      continue;
+    const double y = c.x[1][a];
+    const std::string where = set + "position/value" + colloid(a) +
+                              " component 1 = " + number_text(y) + " (radius " + number_text(r) +
+                              ")";
+    if (!(y > 0.0 && y < Ly))
+      throw input_error(where + "; allowed: a centre between the walls, 0 < y < " +
+                        number_text(Ly));
+    if (hard && !(y >= r - hard_allowance && y <= Ly - r + hard_allowance))
+      throw input_error(where +
+                        " overlaps a wall; allowed: hard contacts keep r <= y <= L_y - r "
+                        "(within " +
+                        number_text(hard_allowance) + ", the deepest overlap a packing leaves)");
+    if (md) {
+      const double sw = spec.wall_sigma_of(r);
+      double force = 0.0;
+      for (const double h : {y, Ly - y})
+        if (h < colloids::wall_cutoff(sw))
+          force = std::max(force,
+                           std::abs(colloids::wall_term(h, sw, spec.epsilon, spec.wall_q).force));
+      if (!(force < fixed::max_magnitude))
+        throw input_error(where + " is so deep in the wall potential that its force is " +
+                          number_text(force) + "; allowed: a wall force below " +
+                          number_text(fixed::max_magnitude) + ", beyond which a run stops");
+    }
+  }
+  // Pairs closer than r_a + r_b (the reach of every contact model and of the 48-24 cut-off
+  // 2^(1/24) (r_a + r_b) of MD colloids), found through bins at least 2 r_max (+ that cut-off)
+  // wide.
+  double r_max = 0.0;
+  for (const double r : c.radius)
+    r_max = std::max(r_max, r);
+  const double reach = std::pow(2.0, 1.0 / 24.0) * 2.0 * r_max;
+  std::set<std::pair<std::uint64_t, std::uint64_t>> touching; // (spring contacts)
+  if (c.size() > 1) {
+    const ColloidBins bins(c, box, reach);
+    for (std::size_t a = 0; a < c.size(); ++a) {
+      std::array<double, 3> x{0.0, 0.0, 0.0};
+      for (int k = 0; k < D; ++k)
+        x[k] = c.x[k][a];
+      bins.around(x, [&](std::size_t b) {
+        if (b <= a)
+          return;
+        std::array<double, 3> d{0.0, 0.0, 0.0};
+        double r2 = 0.0;
+        for (int k = 0; k < D; ++k) {
+          d[k] = x[k] - c.x[k][b];
+          if (!(box.walls_y && k == 1))
+            d[k] -= box.length[k] * std::nearbyint(d[k] / box.length[k]);
+          r2 += d[k] * d[k];
+        }
+        const double R = c.radius[a] + c.radius[b], dist = std::sqrt(r2);
+        std::string refused;
+        if (hard && dist < R - hard_allowance)
+          refused = "hard contacts allow none (within " + number_text(hard_allowance) +
+                    ", the deepest overlap a packing leaves)";
+        else if (springs && !(dist > std::max(c.radius[a], c.radius[b])))
+          refused = "spring contacts allow overlaps with each centre outside the other colloid";
+        else if (md && dist < std::pow(2.0, 1.0 / 24.0) * R) {
+          const colloids::PairTerm t = colloids::repulsive_pair<24>(r2, R * R, spec.epsilon);
+          bool beyond = r2 == 0.0;
+          for (int k = 0; k < D; ++k)
+            beyond = beyond || !(std::abs(t.f_over_r * d[k]) < fixed::max_magnitude);
+          if (beyond)
+            refused = "MD colloids allow a 48-24 pair force below " +
+                      number_text(fixed::max_magnitude) + ", beyond which a run stops";
+        }
+        if (!refused.empty())
+          throw input_error(set + "position/value: colloid ids " + std::to_string(a) + " and " +
+                            std::to_string(b) + " overlap: centres " + number_text(dist) +
+                            " apart, radii " + number_text(c.radius[a]) + " and " +
+                            number_text(c.radius[b]) + "; allowed: " + refused);
+        if (springs && dist < R - margin)
+          touching.insert({a, b});
+      });
+    }
+  }
+  if (!springs)
+    return;
+  if (box.walls_y)
+    for (std::size_t a = 0; a < c.size(); ++a) {
+      if (c.x[1][a] < c.radius[a] - margin)
+        touching.insert({a, colloids::wall_low_id});
+      if (Ly - c.x[1][a] < c.radius[a] - margin)
+        touching.insert({a, colloids::wall_high_id});
+    }
+  // Each contact row between bodies that touch (at the last force evaluation, which follows the
+  // last move: the history is that of the stored positions, within the rounding margin).
+  const std::string cset = path + ": /particles/contacts/";
+  for (std::size_t j = 0; j < contacts.size(); ++j) {
+    const std::uint64_t a = contacts.owner[j], p = contacts.partner[j];
+    double gap = 0.0; // > 0: apart
+    std::string what;
+    if (colloids::is_wall_id(p)) {
+      const double h = p == colloids::wall_low_id ? c.x[1][a] : Ly - c.x[1][a];
+      gap = h - c.radius[a];
+      what = "colloid id " + std::to_string(a) + " and the wall " +
+             (p == colloids::wall_low_id ? "y = 0" : "y = L_y") + ": its centre " + number_text(h) +
+             " from the wall, radius " + number_text(c.radius[a]);
+    } else {
+      double r2 = 0.0;
+      for (int k = 0; k < D; ++k) {
+        double d = c.x[k][a] - c.x[k][p];
+        if (!(box.walls_y && k == 1))
+          d -= box.length[k] * std::nearbyint(d / box.length[k]);
+        r2 += d * d;
+      }
+      gap = std::sqrt(r2) - c.radius[a] - c.radius[p];
+      what = "colloid ids " + std::to_string(a) + " and " + std::to_string(p) + ": centres " +
+             number_text(std::sqrt(r2)) + " apart, radii " + number_text(c.radius[a]) + " and " +
+             number_text(c.radius[p]);
+    }
+    if (gap > margin)
+      throw input_error(cset + "owner_id/value, partner_id/value row " + std::to_string(j) +
+                        " holds a contact of " + what +
+                        ", which do not touch; allowed: contacts between touching bodies only");
+    // The tangential spring as the force loop leaves it (colloids/springs.cpp): capped at
+    // |k_t xi| <= mu k_n delta after every update (Coulomb), zero without k_t, and a force the
+    // fixed-point sums can hold.
+    const scene::ColloidSprings &k = spec.spring;
+    const double mu = colloids::is_wall_id(p) ? k.mu_cw : k.mu_cc;
+    const double xi =
+        std::hypot(contacts.xi[0][j], contacts.xi[1][j], D == 3 ? contacts.xi[2][j] : 0.0);
+    const double delta = std::max(-gap, 0.0);
+    double most = fixed::max_magnitude / (k.kt * std::max(1.0, c.radius[a]));
+    std::string rule = "a force and torque the fixed-point sums hold";
+    if (k.kt == 0.0) {
+      most = 0.0;
+      rule = "colloids.spring.kt = 0";
+    } else if (std::isfinite(mu) && mu * k.kn * delta / k.kt * (1.0 + 1e-9) + 1e-12 < most) {
+      most = mu * k.kn * delta / k.kt * (1.0 + 1e-9) + 1e-12;
+      rule = "mu k_n delta / k_t, the Coulomb cap";
+    }
+    rule = number_text(most) + " (" + rule + ")";
+    if (!(xi <= most))
+      throw input_error(cset + "tangential_displacement/value row " + std::to_string(j) +
+                        " (contact of " + what + ") has length " + number_text(xi) +
+                        "; allowed: at most " + rule);
+    touching.erase({a, p});
+  }
+  if (!touching.empty() && step > 0) {
+    const auto [a, p] = *touching.begin();
+    throw input_error(
+        cset + "owner_id/value: no contact row of colloid id " + std::to_string(a) + " and " +
+        (colloids::is_wall_id(p)
+             ? std::string(p == colloids::wall_low_id ? "the wall y = 0" : "the wall y = L_y")
+             : "colloid id " + std::to_string(p)) +
+        ", which overlap (rows removed, or the contact group deleted); allowed: a "
+        "contact row for every touching pair");
+  }
 }
 
 } // namespace narrows::mpcd

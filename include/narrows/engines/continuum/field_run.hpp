@@ -41,11 +41,9 @@ public:
   virtual void step(double dt) = 0;
   // Throws invariant_error if the fields are no longer sound at this step.
   virtual void check(std::int64_t step) const = 0;
-  // After a restart restored the fields (finite): the first value outside the model's range,
-  // as "/continuum/<name>[i] = x ...; allowed: ..." naming the range; empty if all are inside.
-  // A checkpoint edited out of range is refused before the first step, not stopped later by
-  // check() with a message about the numerics.
-  virtual std::string out_of_range() const { return {}; }
+  // On a restart, after the fields were read (finite): the first value outside the model's range
+  // as "<field>[i] = value; allowed: ...", naming what the model keeps (empty: all in range).
+  virtual std::string restored_out_of_range() const { return {}; }
   // At a sample, on every rank; `writer` is rank 0's (nullptr elsewhere).
   virtual void sample(io::ObservablesWriter *writer, std::int64_t step, double t) = 0;
   // The lines the log ends with after the last step (not after a stop signal).

@@ -4,8 +4,10 @@
 #pragma once
 
 #include "narrows/colloids/colloids.hpp"
+#include "narrows/colloids/contact_history.hpp"
 #include "narrows/engines/mpcd/kernels/fluid.hpp"
 #include "narrows/io/checkpoint.hpp"
+#include "narrows/scene/scene.hpp"
 
 #include <mpi.h>
 
@@ -41,5 +43,24 @@ void check_fluid_outside_colloids(const mpcd::Fluid &local_fluid,
                                   const colloids::Colloids &all_colloids, const mpcd::Box &box,
                                   double epsilon, double kT, const std::string &file,
                                   MPI_Comm comm);
+
+// Refuses (input_error naming `path`, the dataset, the row and what is allowed) restored colloids
+// (all of them, on every rank, so every rank refuses alike) in a state no run of `scene` can
+// reach (issue 35 item 1):
+// - the colloids' box edges other than the scene's domain.size, a centre outside the box or in
+//   a wall (with [walls]: 0 < y < L_y);
+// - a speed |v_k| or a surface speed |omega_k| r above the run's speed limit (max_speed);
+// - two colloids overlapping beyond the contact model's allowance: hard contacts none (the event
+//   loop's rounding margin 1e-6 (1 + L_x)); spring contacts a centre inside the other colloid;
+//   MD colloids a 48-24 pair force (Tabatabaei (2008) eq 3.43) beyond the fixed-point range, at
+//   which a run stops; hard contacts likewise off the walls, MD colloids a wall force beyond it;
+// - spring contacts: a contact row between colloids that do not touch (or a wall contact of a
+//   colloid off the wall), a tangential spring beyond its Coulomb cap, and after step 0 (whose
+//   history is empty: the first force evaluation makes it) a touching pair (colloid or wall)
+//   without its contact row (rows removed, or the contact group deleted).
+void check_restored_colloids(const colloids::Colloids &all,
+                             const colloids::ContactHistory &contacts, const scene::Scene &scene,
+                             const std::array<double, 3> &edges, std::int64_t step,
+                             const std::string &path);
 
 } // namespace narrows::mpcd
