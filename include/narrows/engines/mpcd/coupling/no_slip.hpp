@@ -206,9 +206,10 @@ private:
   std::vector<double> slot_total_; // particles in the cell's mean (ghosts, virtual ones too)
   std::vector<std::array<double, 3>> slot_rc_;
   std::vector<std::array<double, 6>> slot_motion_; // v += c + w x r: (c, w)
-  // Implicit: per group, its G and, per degree of freedom of dX, the cell's mean velocity
-  // change (times the rule's response) and rigid rotation it causes.
-  std::vector<GhostResponse> group_response_;
+  // Implicit: per group and degree of freedom i of dX, the cell's mean velocity change (times
+  // the rule's response) and rigid rotation it causes, and column i's momentum rows of G:
+  // du (3), dw (3), G (dim) for each i in turn.
+  std::vector<double> group_fluid_;
   std::vector<std::uint32_t> slot_cells_;
   // Bounce-back scratch: the particles being bounced, their fluid rows and colloid rows.
   mpcd::Fluid batch_;
