@@ -355,16 +355,6 @@ void NoSlipCoupling::take_back_ghost_particles(mpcd::CellGrid &grid,
   grid.groups.clear();
 }
 
-namespace {
-
-void cross(const double *a, const double *b, double *out) {
-  out[0] = a[1] * b[2] - a[2] * b[1];
-  out[1] = a[2] * b[0] - a[0] * b[2];
-  out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-} // namespace
-
 // The implicit exchange's response of each colloid to its ghosts in a cut cell
 // (ghost_response.hpp), added to the colloid's G; the fluid's per unit dX kept for
 // shift_cut_cells.

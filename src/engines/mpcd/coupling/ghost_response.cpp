@@ -5,12 +5,6 @@ namespace narrows::coupling {
 
 namespace {
 
-void cross(const double *a, const double *b, double *out) {
-  out[0] = a[1] * b[2] - a[2] * b[1];
-  out[1] = a[2] * b[0] - a[0] * b[2];
-  out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
 // sum_j r_j x (M r_j) from the second moment m2 = sum_j r_j r_j^T.
 void cross_moment(const double (&M)[3][3], const double (&m2)[3][3], double *out) {
   double T[3][3] = {}; // T[c][b] = sum_j (M r_j)_c r_jb = (M m2)_cb

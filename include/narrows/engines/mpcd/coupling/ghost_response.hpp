@@ -27,6 +27,13 @@ struct GhostResponse {
   double du[6][3], dw[6][3];
 };
 
+// out = a x b (3 components).
+inline void cross(const double *a, const double *b, double *out) {
+  out[0] = a[1] * b[2] - a[2] * b[1];
+  out[1] = a[2] * b[0] - a[0] * b[2];
+  out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
 // Any dimension (dim 2 or 3): each unit dX through the whole of the rule (3 x 3 algebra).
 void ghost_response_general(const GhostMoments &g, int dim, GhostResponse &out);
 // 2D in closed form (every vector in the plane, every rotation about z): the same response,
