@@ -51,6 +51,8 @@ TIMING_RULES = [
     # the no-slip coupling's share of the loop time (and of its messages): only timings
     (re.compile(r"^no-slip coupling( messages)?: \S+ s of the loop"), None),
     (re.compile(r"^no-slip coupling stages \(s"), None),
+    # (bytes sent depend on the ghost regions, which may be wider than a step needs: not a result)
+    (re.compile(r"^colloid messages: \S+ bytes per step"), r"colloid messages: <n> bytes per step"),
     # the axial fields' cost per sample: "axial_fields: 2.56 ms per sample on the busiest rank"
     (re.compile(r"^(axial_fields): \S+ ms per sample"), r"\1: <t> ms per sample"),
     # the density_kde windows' cost: "kde windows: 0.0656 ms per sample on rank 0 (...), 0 ms

@@ -7,10 +7,13 @@
 #include <stdlib.h>
 
 enum { ALLTOALL, ALLTOALLV, ALLREDUCE, REDUCE, BCAST, ALLGATHER, ALLGATHERV, GATHER, GATHERV,
-       SCAN, EXSCAN, BARRIER, SENDRECV, SEND, ISEND, IRECV, KINDS };
+       SCAN, EXSCAN, BARRIER, SENDRECV, SEND, ISEND, IRECV, MPROBE, IMRECV, WAITALL,
+       NEIGHBOR_ALLTOALL, NEIGHBOR_ALLTOALLV, KINDS };
 static const char *names[KINDS] = {"alltoall", "alltoallv", "allreduce", "reduce", "bcast",
                                    "allgather", "allgatherv", "gather", "gatherv", "scan",
-                                   "exscan", "barrier", "sendrecv", "send", "isend", "irecv"};
+                                   "exscan", "barrier", "sendrecv", "send", "isend", "irecv",
+                                   "mprobe", "imrecv", "waitall", "neighbor_alltoall",
+                                   "neighbor_alltoallv"};
 static unsigned long long calls[KINDS], bytes[KINDS];
 
 static long long size_of(MPI_Datatype t) {
@@ -102,6 +105,30 @@ int MPI_Irecv(void *b, int c, MPI_Datatype t, int src, int tag, MPI_Comm comm,
               MPI_Request *req) {
   COUNT(IRECV, (long long)c * size_of(t)); /* (bytes received) */
   return PMPI_Irecv(b, c, t, src, tag, comm, req);
+}
+int MPI_Mprobe(int src, int tag, MPI_Comm comm, MPI_Message *m, MPI_Status *st) {
+  COUNT(MPROBE, 0);
+  return PMPI_Mprobe(src, tag, comm, m, st);
+}
+int MPI_Imrecv(void *b, int c, MPI_Datatype t, MPI_Message *m, MPI_Request *req) {
+  COUNT(IMRECV, (long long)c * size_of(t)); /* (bytes received) */
+  return PMPI_Imrecv(b, c, t, m, req);
+}
+/* One per halo exchange of parallel/exchange.cpp (each ends in one MPI_Waitall). */
+int MPI_Waitall(int n, MPI_Request reqs[], MPI_Status st[]) {
+  COUNT(WAITALL, 0);
+  return PMPI_Waitall(n, reqs, st);
+}
+int MPI_Neighbor_alltoall(const void *sb, int sc, MPI_Datatype st, void *rb, int rc,
+                          MPI_Datatype rt, MPI_Comm comm) {
+  COUNT(NEIGHBOR_ALLTOALL, (long long)sc * size_of(st));
+  return PMPI_Neighbor_alltoall(sb, sc, st, rb, rc, rt, comm);
+}
+int MPI_Neighbor_alltoallv(const void *sb, const int *sc, const int *sd, MPI_Datatype st,
+                           void *rb, const int *rc, const int *rd, MPI_Datatype rt,
+                           MPI_Comm comm) {
+  COUNT(NEIGHBOR_ALLTOALLV, 0);
+  return PMPI_Neighbor_alltoallv(sb, sc, sd, st, rb, rc, rd, rt, comm);
 }
 int MPI_Finalize(void) {
   const char *out = getenv("MPI_CALLS_OUT");

@@ -13,19 +13,21 @@ Measured (inputs):
 Model (stated, not measured here):
   * compute time per step and rank = fluid particles per rank x the one-rank cost: the work is
     proportional to the slab (the colloids and their contacts go with the fluid they displace);
-    no load imbalance (the jammed plugs of the thesis' runs make one, not modelled);
+    no load imbalance (the jammed plugs of the thesis' runs make one, not modelled), plus the
+    redundant spring work of the ghost shell: every rank moves its ghost colloids through the
+    spring sub-steps itself (coupling/no_slip.cpp), (substeps + 2) contact distances of
+    2 r_max + 2 m beyond the base region on each side, at the measured contact cost per
+    colloid-step (the "contacts" stage of the one-rank log);
   * a message costs alpha + bytes / bandwidth (alpha = 2 us, 10 GB/s: an InfiniBand cluster);
-  * MPI_Alltoall of one int per rank: Bruck's algorithm, ceil(log2 P) rounds of alpha + P/2 x 4
-    bytes; MPI_Allreduce/Allgather of a few numbers: 2 ceil(log2 P) alpha;
-  * a halo exchange (parallel/exchange.cpp) is an MPI_Alltoall of the row counts, then
-    point-to-point messages between the ranks that have rows for each other only (the
-    neighbouring slabs): the measured messages per step, each a latency, plus the measured
-    bytes over the bandwidth. (Until 2026-12-02 the rows went by MPI_Alltoallv, which may pay a
-    latency for each of the P - 1 ranks even when the message is empty: 0.02 at 512 ranks.)
-  * bytes per rank and step stay those measured on 3 ranks: they come from the two faces of a
-    slab, whose cross-section does not change with P. Beyond 12000 / P < the ghost range
-    (2 r_max + skin + a step's path, ~6.3 b: from P ~ 1900) a rank gets ghosts from more than
-    one neighbour each side; the bytes stay about the same, the messages double.
+  * a halo exchange (parallel/exchange.cpp) is one round of point-to-point messages, one to
+    each neighbouring rank that can hold rows (counts in the messages themselves; no
+    collective): the copies of ghost colloids and their contacts, and the impulse sums and
+    refreshes of the ghosts, reach every rank within the ghost shell (ceil(shell / slab) on each
+    side), the migrations one on each side; the measured bytes over the bandwidth;
+  * MPI_Allreduce of a few numbers: recursive doubling, ceil(log2 P) rounds of alpha (Thakur,
+    Rabenseifner and Gropp (2005), short messages);
+  * bytes per rank and step stay those measured on 3 ranks: they come from the ghost shell on
+    both faces of a slab, whose size does not change with P.
 """
 import argparse
 import math
@@ -62,32 +64,62 @@ def main():
     p.add_argument("--alpha", type=float, default=2e-6, help="latency per message, s")
     p.add_argument("--bandwidth", type=float, default=1e10, help="bytes/s per link")
     p.add_argument("--ranks", type=int, nargs="+", default=[64, 512, 3072])
+    p.add_argument("--length", type=float, default=12000.0, help="channel length along x, b")
+    p.add_argument("--colloids-per-length", type=float, default=1098 / 600.0,
+                   help="colloids per b of channel (Table 6.1: 1098 in 600 b)")
+    p.add_argument("--contact-cost", type=float, default=0.0,
+                   help="one-rank seconds of the spring contacts per colloid-step")
+    p.add_argument("--radius-max", type=float, default=2.94, help="largest colloid radius, b")
+    p.add_argument("--path", type=float, default=0.26,
+                   help="largest path of a colloid in a step, m (0.25 allowance + 3 v dt)")
+    p.add_argument("--substeps", type=int, default=10, help="spring sub-steps (0: no shell)")
+    p.add_argument("--wide", type=float, default=6,
+                   help="exchanges per step that reach across the ghost shell")
     a = p.parse_args()
     c = per_step(a.short, a.long, a.steps)
-    if c["alltoall"][0] <= 0:
+    exchanges = c["waitall"][0] if "waitall" in c else c["alltoall"][0]
+    if exchanges <= 0:
         sys.exit("scaling_model: no halo exchange was counted (run on more than one rank)")
-    halo_calls = c["alltoall"][0]  # one MPI_Alltoall of the counts per exchange
+    alltoall = c["alltoall"][0]
     messages = c["isend"][0]
     halo_bytes = c["isend"][1]
     small = c["allreduce"][0] + c["allgather"][0] + c["reduce"][0] + c["bcast"][0]
-    print(f"measured per step (busiest rank of 3): {halo_calls:.1f} halo exchanges "
-          f"(MPI_Alltoall of the counts each), {messages:.1f} messages of rows sent "
-          f"({halo_bytes:.4g} bytes), {small:.1f} small collectives (allreduce, allgather, "
-          f"reduce, bcast); one-rank cost {1.0 / a.rate:.3g} s per fluid particle-step")
+    contact = 2.0 * a.radius_max + 2.0 * a.path
+    shell = ((a.substeps + 2) * contact if a.substeps > 0 else 0.0) + 1.0 + 2.0 * a.path + \
+        2 ** (1 / 24) * 2.0 * a.radius_max + a.path
+    print(f"halo exchanges per step: {exchanges:.3g}")
+    print(f"measured per step (busiest rank of 3): {exchanges:.3g} halo exchanges "
+          f"({alltoall:.3g} of them after an MPI_Alltoall of the counts), {messages:.1f} messages "
+          f"of rows sent ({halo_bytes:.4g} bytes), {small:.1f} small collectives (allreduce, "
+          f"allgather, reduce, bcast); one-rank cost {1.0 / a.rate:.3g} s per fluid "
+          f"particle-step, contacts {a.contact_cost * 1e6:.3g} us per colloid-step")
     print(f"model: alpha = {a.alpha * 1e6:.3g} us, bandwidth = {a.bandwidth / 1e9:.3g} GB/s, "
-          f"{a.particles:.3g} fluid particles\n")
-    print("| ranks | slab (b) | compute/step | comm/step | of it counts (Alltoall) | efficiency |")
-    print("|---|---|---|---|---|---|")
+          f"{a.particles:.3g} fluid particles, {a.colloids_per_length:.3g} colloids per b, "
+          f"ghost shell {shell:.3g} b on each side ({a.wide} of the exchanges reach across it)\n")
+    print("| ranks | slab (b) | neighbours each side | compute/step | of it the shell's springs "
+          "| comm/step | efficiency |")
+    print("|---|---|---|---|---|---|---|")
+    lines = []
     for P in a.ranks:
         lg = math.ceil(math.log2(P))
-        compute = a.particles / P / a.rate
-        alltoall = halo_calls * lg * (a.alpha + P / 2 * 4 / a.bandwidth)
-        ghost_sides = 2 if 12000.0 / P < 6.3 else 1  # neighbours each side that send ghosts
-        rows = ghost_sides * messages * a.alpha + halo_bytes / a.bandwidth
-        collectives = small * 2 * lg * a.alpha
-        comm = alltoall + rows + collectives
-        print(f"| {P} | {12000.0 / P:.3g} | {compute * 1e3:.3g} ms | {comm * 1e3:.3g} ms | "
-              f"{alltoall * 1e3:.3g} ms | {compute / (compute + comm):.2f} |")
+        slab = a.length / P
+        sides = min(math.ceil(shell / slab), max((P - 1) // 2, 1))
+        ideal = a.particles / P / a.rate
+        ghosts = min(2.0 * shell, a.length - slab) * a.colloids_per_length
+        redundant = ghosts * a.contact_cost
+        compute = ideal + redundant
+        narrow = max(exchanges - a.wide, 0.0)
+        calls = narrow * 2 + min(a.wide, exchanges) * 2 * sides
+        rows = calls * a.alpha + halo_bytes / a.bandwidth
+        counts = alltoall * lg * (a.alpha + P / 2 * 4 / a.bandwidth)
+        collectives = small * lg * a.alpha
+        comm = rows + counts + collectives
+        eff = ideal / (compute + comm)
+        print(f"| {P} | {slab:.3g} | {sides} | {compute * 1e3:.3g} ms | {redundant * 1e3:.3g} ms "
+              f"| {comm * 1e3:.3g} ms | {eff:.2f} |")
+        lines.append(f"efficiency at {P} ranks: {eff:.2f}")
+    print()
+    print("\n".join(lines))
 
 
 if __name__ == "__main__":

@@ -2,8 +2,8 @@
 # Measures what tools/scaling_model.py needs and prints its prediction for the full Table 6.1
 # channel (l = 12000 b) on 64, 512 and 3072 ranks (issue 21, acceptance 7).
 #
-# Usage: bash tools/scaling_model.sh [NARROWS] [DIR]
-#   defaults: build/narrows, out/scaling_model
+# Usage: bash tools/scaling_model.sh [NARROWS] [DIR] [MODEL OPTIONS...]
+#   defaults: build/narrows, out/scaling_model; options go to scaling_model.py (e.g. --ranks)
 #
 # Runs run/pulses_table6_1.toml (l = 600 b) on 1 rank for 50 steps (the one-rank cost per fluid
 # particle-step) and on 3 ranks for 20 and 70 steps with tools/mpi_calls.c preloaded, which
@@ -13,6 +13,7 @@ set -eu
 here=$(cd "$(dirname "$0")/.." && pwd)
 narrows=${1:-$here/build/narrows}
 dir=${2:-out/scaling_model}
+shift $(($# < 2 ? $# : 2))
 mkdir -p "$dir"
 mpicc -shared -fPIC -O2 -o "$dir/mpi_calls.so" "$here/tools/mpi_calls.c"
 mpi=(mpirun --oversubscribe)
@@ -21,6 +22,12 @@ scene=$here/run/pulses_table6_1.toml
 "$narrows" run "$scene" --set run.steps=50 --set output.checkpoint_every=100000 \
   --out "$dir/one" --overwrite >"$dir/one.log" 2>&1
 rate=$(sed -n 's/^Loop time .*(\([0-9.e+]*\) particle-steps\/s)$/\1/p' "$dir/one.log")
+# the spring contacts' seconds per colloid-step (the "contacts" stage, 1098 colloids, 50 steps)
+contacts=$(sed -n 's/^no-slip coupling stages.* contacts \([0-9.e+-]*\),.*/\1/p' "$dir/one.log")
+colloids=$(sed -n 's/^packing: \([0-9]*\) colloids.*/\1/p' "$dir/one.log" | head -1)
+cost=$(/usr/bin/python3 -c "import sys; print(float(sys.argv[1]) / 50 / int(sys.argv[2]))" \
+  "$contacts" "$colloids")
+per_length=$(/usr/bin/python3 -c "import sys; print(int(sys.argv[1]) / 600)" "$colloids")
 for steps in 20 70; do
   rm -f "$dir/calls_$steps.txt"
   MPI_CALLS_OUT=$dir/calls_$steps.txt "${mpi[@]}" -n 3 -x LD_PRELOAD="$dir/mpi_calls.so" \
@@ -28,4 +35,4 @@ for steps in 20 70; do
     --set output.checkpoint_every=100000 --out "$dir/three_$steps" --overwrite >"$dir/three_$steps.log" 2>&1
 done
 /usr/bin/python3 "$here/tools/scaling_model.py" "$dir/calls_20.txt" "$dir/calls_70.txt" \
-  --steps 50 --rate "$rate"
+  --steps 50 --rate "$rate" --contact-cost "$cost" --colloids-per-length "$per_length" "$@"

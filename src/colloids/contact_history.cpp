@@ -10,8 +10,8 @@ namespace narrows::colloids {
 
 species::Table table(ContactHistory &h) {
   using namespace species;
-  // Only the rank of the owner colloid holds a contact: no ghost copies. Walls are partners
-  // wall_low_id and wall_high_id.
+  // Only the rank of the owner colloid keeps a contact (ghost copies live for one step). Walls
+  // are partners wall_low_id and wall_high_id.
   constexpr unsigned held = migrates | checkpoint;
   Table t("contacts", h.dim);
   t.scalar("owner_id", h.owner, held)
@@ -44,13 +44,16 @@ void ContactHistory::sort() {
   table(*this).permute(order);
 }
 
+long row_of(const Colloids &c, std::size_t rows, std::uint64_t id) {
+  const auto end = c.id.begin() + static_cast<std::ptrdiff_t>(rows);
+  const auto it = std::lower_bound(c.id.begin(), end, id);
+  return it != end && *it == id ? static_cast<long>(it - c.id.begin()) : -1;
+}
+
 namespace {
 
 // Row of the colloid with this id among c's rows (in id order), or -1.
-long row_of(const Colloids &c, std::uint64_t id) {
-  const auto it = std::lower_bound(c.id.begin(), c.id.end(), id);
-  return it != c.id.end() && *it == id ? static_cast<long>(it - c.id.begin()) : -1;
-}
+long row_of(const Colloids &c, std::uint64_t id) { return row_of(c, c.size(), id); }
 
 } // namespace
 
@@ -65,10 +68,12 @@ void migrate_contacts(ContactHistory &h, const Colloids &c, const parallel::Slab
   h.sort();
 }
 
-void keep_contacts_of(ContactHistory &h, const Colloids &c) {
+void keep_contacts_of(ContactHistory &h, const Colloids &c) { keep_contacts_of(h, c, c.size()); }
+
+void keep_contacts_of(ContactHistory &h, const Colloids &c, std::size_t rows) {
   std::vector<bool> keep(h.size());
   for (std::size_t j = 0; j < h.size(); ++j)
-    keep[j] = row_of(c, h.owner[j]) >= 0;
+    keep[j] = row_of(c, rows, h.owner[j]) >= 0;
   table(h).keep_rows(keep);
   h.sort();
 }

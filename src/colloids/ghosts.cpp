@@ -27,7 +27,7 @@ bool near_interval(double x, double lo, double hi, double range, double L) {
 } // namespace
 
 ColloidGhosts::ColloidGhosts(const parallel::Slabs &slabs, const mpcd::Box &box)
-    : slabs_(slabs), box_(box), exchange_(slabs.comm()) {}
+    : slabs_(slabs), box_(box), exchange_(slabs.comm()), contact_exchange_(slabs.comm()) {}
 
 double ColloidGhosts::largest_radius(const Colloids &c) {
   if (r_max_ < 0.0) { // radii never change: once per run
@@ -39,23 +39,25 @@ double ColloidGhosts::largest_radius(const Colloids &c) {
   return r_max_;
 }
 
-void ColloidGhosts::add(Colloids &c, std::vector<double> *margin, double own_extent) {
+void ColloidGhosts::add(Colloids &c, std::vector<double> *margin, double extent,
+                        double largest_margin) {
   owned_ = c.size();
   if (!active())
     return;
-  const int ranks = slabs_.ranks(), me = slabs_.rank();
-  extent_.resize(ranks);
-  MPI_Allgather(&own_extent, 1, MPI_DOUBLE, extent_.data(), 1, MPI_DOUBLE, slabs_.comm());
+  extent_ = extent;
+  largest_margin_ = largest_margin;
+  const int ranks = slabs_.ranks();
   const double r_max = largest_radius(c), L = box_.length[0];
+  // A colloid owned here lies within a column of this slab (the grid shift); it is copied to
+  // the ranks whose region [first - e, end + e] comes within its range.
+  reach_columns_ = extent + repulsive_cutoff(24, 2.0 * r_max) + largest_margin + 2.0;
+  exchange_.set_neighbours(slabs_, reach_columns_, "colloid ghost");
   list_.clear();
   for (std::size_t a = 0; a < owned_; ++a) {
     const double range = repulsive_cutoff(24, c.radius[a] + r_max) + (margin ? (*margin)[a] : 0.0);
-    for (int r = 0; r < ranks; ++r) {
-      if (r == me)
-        continue;
-      const double lo = slabs_.first_column_of(r) - extent_[r];
-      const double hi =
-          (r + 1 < ranks ? slabs_.first_column_of(r + 1) : slabs_.columns()) + extent_[r];
+    for (const int r : exchange_.neighbours()) {
+      const double lo = slabs_.first_column_of(r) - extent;
+      const double hi = (r + 1 < ranks ? slabs_.first_column_of(r + 1) : slabs_.columns()) + extent;
       if (near_interval(c.x[0][a], lo, hi, range, L)) {
         list_.index.push_back(a);
         list_.dest.push_back(r);
@@ -68,7 +70,10 @@ void ColloidGhosts::add(Colloids &c, std::vector<double> *margin, double own_ext
   halo_ = exchange_.copy(view, list_);
 }
 
-void ColloidGhosts::add_for_forces(Colloids &c) { add(c, nullptr, 1.0); }
+void ColloidGhosts::add_for_forces(Colloids &c) {
+  more_ = 0.0;
+  add(c, nullptr, 1.0, 0.0);
+}
 
 void ColloidGhosts::add_for_step(Colloids &c, std::vector<double> &margin, double fluid_reach) {
   add_for_step(c, margin, fluid_reach, 0.0);
@@ -80,11 +85,42 @@ void ColloidGhosts::add_for_step(Colloids &c, std::vector<double> &margin, doubl
     owned_ = c.size();
     return;
   }
-  double own = 0.0, largest = 0.0;
+  double own[2] = {0.0, fluid_reach}, all[2] = {0.0, 0.0};
   for (std::size_t a = 0; a < c.size(); ++a)
-    own = std::max(own, margin[a]);
-  MPI_Allreduce(&own, &largest, 1, MPI_DOUBLE, MPI_MAX, slabs_.comm());
-  add(c, &margin, std::max(1.0 + fluid_reach + 2.0 * largest, own) + more);
+    own[0] = std::max(own[0], margin[a]);
+  MPI_Allreduce(own, all, 2, MPI_DOUBLE, MPI_MAX, slabs_.comm());
+  add_for_step_agreed(c, margin, all[0], all[1], more);
+}
+
+void ColloidGhosts::add_for_step_agreed(Colloids &c, std::vector<double> &margin,
+                                        double largest_margin, double fluid_reach, double more) {
+  if (!active()) {
+    owned_ = c.size();
+    return;
+  }
+  more_ = more;
+  add(c, &margin, 1.0 + fluid_reach + 2.0 * largest_margin + more, largest_margin);
+}
+
+void ColloidGhosts::copy_contacts(ContactHistory &h, const Colloids &c) {
+  if (!active())
+    return;
+  // list_ names the owned rows in ascending order (add); the contacts' owners are owned rows.
+  contact_list_.clear();
+  for (std::size_t j = 0; j < h.size(); ++j) {
+    const long a = row_of(c, owned_, h.owner[j]);
+    if (a < 0)
+      continue;
+    const auto first =
+        std::lower_bound(list_.index.begin(), list_.index.end(), static_cast<std::size_t>(a));
+    for (auto it = first; it != list_.index.end() && *it == static_cast<std::size_t>(a); ++it) {
+      contact_list_.index.push_back(j);
+      contact_list_.dest.push_back(list_.dest[static_cast<std::size_t>(it - list_.index.begin())]);
+    }
+  }
+  contact_exchange_.set_neighbours(slabs_, reach_columns_, "contact ghost");
+  contact_exchange_.copy(parallel::view(table(h), species::migrates), contact_list_);
+  h.sort();
 }
 
 void ColloidGhosts::trusted_rows(const Colloids &c, double depth,
@@ -149,9 +185,8 @@ void ColloidGhosts::remove(Colloids &c, std::vector<double> *margin) {
 void ColloidGhosts::check_region(const mpcd::Fluid &near) const {
   if (!active())
     return;
-  const int r = slabs_.rank();
-  const double lo = slabs_.first_column() - extent_[r];
-  const double hi = slabs_.first_column() + slabs_.local_columns() + extent_[r];
+  const double lo = slabs_.first_column() - extent_;
+  const double hi = slabs_.first_column() + slabs_.local_columns() + extent_;
   for (std::size_t j = 0; j < near.size(); ++j)
     if (!near_interval(near.x[0][j], lo, hi, 0.0, box_.length[0])) {
       std::ostringstream os;

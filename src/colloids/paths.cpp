@@ -23,7 +23,13 @@ void move_ballistic(Colloids &c, std::size_t rows, const mpcd::Box &box, double 
 void check_paths(const Colloids &c, std::size_t owned,
                  const std::array<std::vector<double>, 3> &start, const std::vector<double> &margin,
                  const mpcd::Box &box, double slack, const char *allowed) {
-  for (std::size_t a = 0; a < owned; ++a) {
+  check_paths(c, 0, owned, start, margin, box, slack, allowed);
+}
+
+void check_paths(const Colloids &c, std::size_t from, std::size_t to,
+                 const std::array<std::vector<double>, 3> &start, const std::vector<double> &margin,
+                 const mpcd::Box &box, double slack, const char *allowed) {
+  for (std::size_t a = from; a < to; ++a) {
     double d2 = 0.0;
     for (int k = 0; k < c.dim; ++k) {
       double d = c.x[k][a] - start[k][a];

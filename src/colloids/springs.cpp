@@ -268,6 +268,7 @@ SpringContacts::SpringContacts(const SpringParams &params, const mpcd::Box &box)
     : params_(params), box_(box), dim_(box.dim) {}
 
 void SpringContacts::compute(const Colloids &c, std::size_t owned, ContactHistory &h, double step) {
+  counted_rows_ = owned;
   if (dim_ == 2)
     box_.walls_y ? compute<2, true>(c, owned, h, step) : compute<2, false>(c, owned, h, step);
   else
@@ -409,7 +410,7 @@ template <bool WallsY> void SpringContacts::forces_2d(const Colloids &c, double 
       fixed_range_error(over > 0.0 ? over : std::numeric_limits<double>::quiet_NaN());
     // 3. Into the sums (exact in any order); a wall's share of the forces goes nowhere.
     std::int64_t nowhere[S];
-    std::uint64_t sliding = 0;
+    std::uint64_t sliding = 0, counted = 0;
     for (std::size_t h = 0; h < nh; ++h) {
       std::int64_t *si = &sums_[hit.i[h] * S];
       std::int64_t *sj = hit.kind[h] != 0 ? nowhere : &sums_[hit.j[h] * S];
@@ -420,7 +421,9 @@ template <bool WallsY> void SpringContacts::forces_2d(const Colloids &c, double 
       sj[0] -= f0;
       sj[1] -= f1;
       sj[2] += out.force[3][h];
-      sliding += static_cast<std::uint64_t>(out.slides[h]);
+      const bool mine = hit.i[h] < counted_rows_; // (a ghost's contact: its owner counts it)
+      sliding += mine && out.slides[h] != 0;
+      counted += mine;
     }
     if (update) {
       // The advanced springs back to their slots (those of the slots that no longer touch were
@@ -430,7 +433,7 @@ template <bool WallsY> void SpringContacts::forces_2d(const Colloids &c, double 
         slots.xi[0][q] = hit.xi[0][h];
         slots.xi[1][q] = hit.xi[1][h];
       }
-      updates_ += nh;
+      updates_ += counted;
       sliding_ += sliding;
     }
   }
@@ -602,7 +605,7 @@ template <int D, bool WallsY> void SpringContacts::forces(const Colloids &c, dou
     }
 
     // 3. Into the fixed-point sums (exact in any order).
-    std::uint64_t sliding = 0;
+    std::uint64_t sliding = 0, counted = 0;
     for (std::size_t h = 0; h < nh; ++h) {
       const auto i = static_cast<std::size_t>(hi[h]), j = static_cast<std::size_t>(hj[h]);
       const bool wall = kind[h] != 0;
@@ -620,7 +623,9 @@ template <int D, bool WallsY> void SpringContacts::forces(const Colloids &c, dou
         if (sj)
           sj[D + k] += to_fixed(rj * ht[k][h]);
       }
-      sliding += slides[h];
+      const bool mine = i < counted_rows_; // (a ghost's contact: its owner counts it)
+      sliding += mine && slides[h] != 0;
+      counted += mine;
     }
     if (update) {
       // The springs of the block's slots that no longer touch are dropped.
@@ -632,7 +637,7 @@ template <int D, bool WallsY> void SpringContacts::forces(const Colloids &c, dou
         for (int k = 0; k < D; ++k)
           slot_xi_[k][hits_[h]] = hit_xi_[k][h];
       }
-      updates_ += nh;
+      updates_ += counted;
       sliding_ += sliding;
     }
   }
@@ -805,13 +810,14 @@ double SpringContacts::kick_drift(Colloids &c, std::size_t owned, double h, bool
 }
 
 void SpringContacts::advance(Colloids &c, std::size_t owned, ContactHistory &h, double dt,
-                             const SpringHooks *hooks, const std::vector<double> *external) {
+                             const std::vector<double> *external, std::size_t counted) {
+  counted_rows_ = std::min(counted, owned);
   if (dim_ == 2)
-    box_.walls_y ? advance<2, true>(c, owned, h, dt, hooks, external)
-                 : advance<2, false>(c, owned, h, dt, hooks, external);
+    box_.walls_y ? advance<2, true>(c, owned, h, dt, external)
+                 : advance<2, false>(c, owned, h, dt, external);
   else
-    box_.walls_y ? advance<3, true>(c, owned, h, dt, hooks, external)
-                 : advance<3, false>(c, owned, h, dt, hooks, external);
+    box_.walls_y ? advance<3, true>(c, owned, h, dt, external)
+                 : advance<3, false>(c, owned, h, dt, external);
 }
 
 template <int D, bool WallsY>
@@ -827,7 +833,7 @@ double SpringContacts::kick_drift(Colloids &c, std::size_t owned, double h, bool
 
 template <int D, bool WallsY>
 void SpringContacts::advance(Colloids &c, std::size_t owned, ContactHistory &h, double dt,
-                             const SpringHooks *hooks, const std::vector<double> *external) {
+                             const std::vector<double> *external) {
   const int n = params_.substeps;
   const double hs = dt / n;
   // The springs live in the list's slots during the step and go back to h at its end (and
@@ -842,18 +848,11 @@ void SpringContacts::advance(Colloids &c, std::size_t owned, ContactHistory &h, 
   // The forces the last step ended with: kept from its end when nothing they depend on (the
   // rows, their positions, the springs) has changed since, else computed again. The same bits
   // either way.
-  if (end_kept_ && !built && springs_kept && same_positions_as_end(c)) {
-    if (hooks)
-      sums_ = end_sums_;
-  } else
+  if (!(end_kept_ && !built && springs_kept && same_positions_as_end(c)))
     forces<D, WallsY>(c, 0.0);
-  if (hooks)
-    hooks->reverse(sums_, stride());
   for (int s = 0; s < n; ++s) {
     // The last sub-step's second half kick, this one's first and its drift, in one pass.
     const double moved = kick_drift<D, WallsY>(c, owned, 0.5 * hs, s > 0, hs, external);
-    if (hooks)
-      hooks->refresh(c);
     if (!pairs_fresh<D, WallsY>(c, owned, true, owned, moved)) { // (only positions changed)
       if (s > 0)
         store_springs(h); // the contacts of the last sub-step
@@ -862,20 +861,16 @@ void SpringContacts::advance(Colloids &c, std::size_t owned, ContactHistory &h, 
     }
     forces<D, WallsY>(c, hs);
     if (s == n - 1)
-      keep_end(c, hooks != nullptr);
-    if (hooks)
-      hooks->reverse(sums_, stride());
+      keep_end(c);
   }
   kick_drift<D, WallsY>(c, owned, 0.5 * hs, false, 0.0, external); // the last half kick
   store_springs(h);
 }
 
-void SpringContacts::keep_end(const Colloids &c, bool copy_sums) {
+void SpringContacts::keep_end(const Colloids &c) {
   for (int k = 0; k < dim_; ++k)
     end_x_[k].assign(c.x[k].begin(), c.x[k].end());
-  if (copy_sums) // (else sums_ stays as it is until the next call)
-    end_sums_ = sums_;
-  end_kept_ = true;
+  end_kept_ = true; // (sums_ stays as it is until the next call)
 }
 
 bool SpringContacts::same_positions_as_end(const Colloids &c) const {

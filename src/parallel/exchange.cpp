@@ -1,5 +1,6 @@
-// Migrate, copy, refresh and reverse for any structure-of-arrays species: the row counts by
-// MPI_Alltoall, the rows by point-to-point messages to and from the ranks that have any.
+// Migrate, copy, refresh and reverse for any structure-of-arrays species: the rows by
+// point-to-point messages, their counts in the messages themselves (to the neighbours), known
+// from the last copy (refresh, reverse) or by MPI_Alltoall (rows that may go anywhere).
 #include "narrows/parallel/exchange.hpp"
 
 #include "narrows/core/error.hpp"
@@ -66,56 +67,126 @@ namespace {
 // two exchanges between the same ranks are never matched with each other).
 constexpr int rows_tag = 0x6e72;
 
-// Rows of `row` words to every rank (counts in rows, send in rank order); the received rows in
-// recv, in the order of their source ranks. The counts go by MPI_Alltoall; the rows only between
-// ranks that have any for each other, as point-to-point messages (an MPI_Alltoallv may pay a
-// latency for each of the P - 1 ranks even when the message is empty: the cost of a halo
-// exchange would grow with the number of ranks).
-// Words (not rows) per rank and their offsets go to scount, rcount, sdispl, rdispl (kept by the
-// caller: no allocation per exchange).
-void exchange_rows(MPI_Comm comm, int ranks, std::size_t row, const std::vector<int> &send_rows,
-                   std::vector<int> &recv_rows, std::vector<int> &scount, std::vector<int> &rcount,
-                   std::vector<int> &sdispl, std::vector<int> &rdispl,
-                   const std::vector<std::uint64_t> &send, std::vector<std::uint64_t> &recv,
-                   std::vector<MPI_Request> &requests, std::uint64_t &bytes_sent) {
-  recv_rows.assign(ranks, 0);
-  MPI_Alltoall(send_rows.data(), 1, MPI_INT, recv_rows.data(), 1, MPI_INT, comm);
-  scount.resize(ranks);
-  rcount.resize(ranks);
-  sdispl.assign(ranks, 0);
-  rdispl.assign(ranks, 0);
-  long long stotal = 0, rtotal = 0;
-  for (int r = 0; r < ranks; ++r) {
-    scount[r] = static_cast<int>(send_rows[r] * row);
-    rcount[r] = static_cast<int>(recv_rows[r] * row);
-    sdispl[r] = static_cast<int>(stotal);
-    rdispl[r] = static_cast<int>(rtotal);
-    stotal += scount[r];
-    rtotal += rcount[r];
+} // namespace
+
+void Exchange::set_neighbours(const Slabs &slabs, double columns, std::string what) {
+  what_ = std::move(what);
+  reach_columns_ = columns;
+  neighbours_.clear();
+  is_neighbour_.assign(ranks_, 0);
+  const long long C = slabs.columns();
+  const long long lo = slabs.first_column(), hi = lo + slabs.local_columns(); // [lo, hi)
+  for (int r = 0; r < ranks_; ++r) {
+    if (r == rank_)
+      continue;
+    const long long a = slabs.first_column_of(r);
+    const long long b = r + 1 < ranks_ ? slabs.first_column_of(r + 1) : C;
+    // Whole columns between the two slabs, going right from this one and going left (the
+    // ring of columns: the box is periodic along x).
+    const long long right = ((a - hi) % C + C) % C, left = ((lo - b) % C + C) % C;
+    if (static_cast<double>(std::min(right, left)) <= columns) {
+      neighbours_.push_back(r);
+      is_neighbour_[r] = 1;
+    }
   }
-  if (stotal > std::numeric_limits<int>::max() || rtotal > std::numeric_limits<int>::max())
-    throw Error(ExitCode::other, "exchange of more than 2^31 words in one step");
-  recv.resize(static_cast<std::size_t>(rtotal));
-  int me = 0;
-  MPI_Comm_rank(comm, &me);
-  bytes_sent += 8 * static_cast<std::uint64_t>(stotal - scount[me]);
-  requests.clear();
-  for (int r = 0; r < ranks; ++r)
-    if (r != me && rcount[r] > 0) {
-      requests.emplace_back();
-      MPI_Irecv(recv.data() + rdispl[r], rcount[r], MPI_UINT64_T, r, rows_tag, comm,
-                &requests.back());
-    }
-  for (int r = 0; r < ranks; ++r)
-    if (r != me && scount[r] > 0) {
-      requests.emplace_back();
-      MPI_Isend(send.data() + sdispl[r], scount[r], MPI_UINT64_T, r, rows_tag, comm,
-                &requests.back());
-    }
-  std::copy(send.begin() + sdispl[me], send.begin() + sdispl[me] + scount[me],
-            recv.begin() + rdispl[me]); // (the rows a rank keeps)
-  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+  neighbours_set_ = true;
 }
+
+void Exchange::check_destinations() const {
+  for (int r = 0; r < ranks_; ++r)
+    if (r != rank_ && send_counts_[r] > 0 && !is_neighbour_[r]) {
+      std::string ranks;
+      for (const int n : neighbours_)
+        ranks += (ranks.empty() ? "" : ", ") + std::to_string(n);
+      throw invariant_error(
+          std::to_string(send_counts_[r]) + " " + what_ + " row(s) of rank " +
+          std::to_string(rank_) + " belong to rank " + std::to_string(r) +
+          ", beyond the ranks whose slabs come within " + std::to_string(reach_columns_) +
+          " columns of this one (" + (ranks.empty() ? std::string("none") : ranks) +
+          "): something moved further within one step than the exchange allows (allowed: "
+          "fewer ranks, or a smaller fluid.dt)");
+    }
+}
+
+// Rows of `row` words to other ranks, as point-to-point messages between the ranks that have
+// rows for each other (an MPI_Alltoallv may pay a latency for each of the P - 1 ranks even when
+// the message is empty: the cost of a halo exchange would grow with the number of ranks).
+// Words (not rows) per rank and their offsets in send_words_, recv_words_, send_displs_,
+// recv_displs_ (no allocation per exchange once warm).
+void Exchange::exchange_rows(std::size_t row, bool counts_known, Reach reach) {
+  const bool to_neighbours = neighbours_set_ && reach == Reach::neighbours;
+  if (!counts_known) {
+    recv_counts_.assign(ranks_, 0);
+    if (to_neighbours)
+      check_destinations();
+    else
+      MPI_Alltoall(send_counts_.data(), 1, MPI_INT, recv_counts_.data(), 1, MPI_INT, comm_);
+  }
+  send_words_.resize(ranks_);
+  recv_words_.resize(ranks_);
+  send_displs_.assign(ranks_, 0);
+  recv_displs_.assign(ranks_, 0);
+  requests_.clear();
+  long long stotal = 0;
+  for (int r = 0; r < ranks_; ++r) {
+    send_words_[r] = static_cast<int>(send_counts_[r] * row);
+    send_displs_[r] = static_cast<int>(stotal);
+    stotal += send_words_[r];
+  }
+  if (stotal > std::numeric_limits<int>::max())
+    throw Error(ExitCode::other, "exchange of more than 2^31 words in one step");
+  bytes_sent_ += 8 * static_cast<std::uint64_t>(stotal - send_words_[rank_]);
+  // Sends first (non-blocking): to each neighbour one message, empty or not, when the
+  // receiver learns the count from it; else only where there are rows.
+  const bool counts_in_messages = to_neighbours && !counts_known;
+  for (int r = 0; r < ranks_; ++r)
+    if (r != rank_ && (send_words_[r] > 0 || (counts_in_messages && is_neighbour_[r]))) {
+      requests_.emplace_back();
+      MPI_Isend(send_.data() + send_displs_[r], send_words_[r], MPI_UINT64_T, r, rows_tag, comm_,
+                &requests_.back());
+    }
+  if (counts_in_messages) { // the counts: the sizes of the neighbours' messages
+    messages_.resize(neighbours_.size());
+    for (std::size_t j = 0; j < neighbours_.size(); ++j) {
+      MPI_Status status;
+      MPI_Mprobe(neighbours_[j], rows_tag, comm_, &messages_[j], &status);
+      int words = 0;
+      MPI_Get_count(&status, MPI_UINT64_T, &words);
+      recv_counts_[neighbours_[j]] = static_cast<int>(words / static_cast<int>(row ? row : 1));
+    }
+  }
+  recv_counts_[rank_] = send_counts_[rank_];
+  long long rtotal = 0;
+  for (int r = 0; r < ranks_; ++r) {
+    recv_words_[r] = static_cast<int>(recv_counts_[r] * row);
+    recv_displs_[r] = static_cast<int>(rtotal);
+    rtotal += recv_words_[r];
+  }
+  if (rtotal > std::numeric_limits<int>::max())
+    throw Error(ExitCode::other, "exchange of more than 2^31 words in one step");
+  recv_.resize(static_cast<std::size_t>(rtotal));
+  if (counts_in_messages) {
+    for (std::size_t j = 0; j < neighbours_.size(); ++j) {
+      const int r = neighbours_[j];
+      requests_.emplace_back();
+      MPI_Imrecv(recv_.data() + recv_displs_[r], recv_words_[r], MPI_UINT64_T, &messages_[j],
+                 &requests_.back());
+    }
+  } else {
+    for (int r = 0; r < ranks_; ++r)
+      if (r != rank_ && recv_words_[r] > 0) {
+        requests_.emplace_back();
+        MPI_Irecv(recv_.data() + recv_displs_[r], recv_words_[r], MPI_UINT64_T, r, rows_tag, comm_,
+                  &requests_.back());
+      }
+  }
+  std::copy(send_.begin() + send_displs_[rank_],
+            send_.begin() + send_displs_[rank_] + send_words_[rank_],
+            recv_.begin() + recv_displs_[rank_]); // (the rows a rank keeps)
+  MPI_Waitall(static_cast<int>(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE);
+}
+
+namespace {
 
 // Rows per destination rank (into counts) and where each rank's rows start in the send
 // buffer (returned); dest_of(j) is the destination of row j of `rows`.
@@ -136,7 +207,7 @@ std::vector<std::size_t> plan_rows(int ranks, std::size_t rows, DestOf dest_of,
 
 } // namespace
 
-void Exchange::migrate(const SoaView &s, const std::vector<int> &dest) {
+void Exchange::migrate(const SoaView &s, const std::vector<int> &dest, Reach reach) {
   leavers_.clear();
   leaver_dest_.clear();
   for (std::size_t i = 0; i < s.size(); ++i)
@@ -147,11 +218,11 @@ void Exchange::migrate(const SoaView &s, const std::vector<int> &dest) {
   // Copies: the overload below may be handed these very members by other callers.
   const std::vector<std::size_t> leavers = leavers_;
   const std::vector<int> to = leaver_dest_;
-  migrate(s, leavers, to);
+  migrate(s, leavers, to, reach);
 }
 
 void Exchange::migrate(const SoaView &s, const std::vector<std::size_t> &leavers,
-                       const std::vector<int> &to) {
+                       const std::vector<int> &to, Reach reach) {
   const std::size_t F = s.fields();
   std::size_t total = 0;
   auto next = plan_rows(
@@ -184,8 +255,7 @@ void Exchange::migrate(const SoaView &s, const std::vector<std::size_t> &leavers
         c.move_row(*it, n);
     }
   }
-  exchange_rows(comm_, ranks_, F, send_counts_, recv_counts_, send_words_, recv_words_,
-                send_displs_, recv_displs_, send_, recv_, requests_, bytes_sent_);
+  exchange_rows(F, false, reach);
   const std::size_t arrived = recv_.size() / (F ? F : 1);
   for (const auto &c : s.kept) // (arrivals get the fill, not what the last rows held)
     c.resize(n);
@@ -220,8 +290,9 @@ Halo Exchange::copy(const SoaView &s, const CopyList &list) {
       row[f++] = (*a)[i];
     row[f] = i;
   }
-  exchange_rows(comm_, ranks_, row_len, send_counts_, recv_counts_, send_words_, recv_words_,
-                send_displs_, recv_displs_, send_, recv_, requests_, bytes_sent_);
+  exchange_rows(row_len, false, Reach::neighbours);
+  copied_to_ = send_counts_;
+  copied_from_ = recv_counts_;
   const std::size_t n = s.size(), g = recv_.size() / row_len;
   s.resize(n + g);
   Halo h;
@@ -254,8 +325,8 @@ void Exchange::refresh(const std::vector<std::vector<double> *> &fields, const C
     for (std::size_t f = 0; f < F; ++f)
       row[f] = std::bit_cast<std::uint64_t>((*fields[f])[list.index[j]]);
   }
-  exchange_rows(comm_, ranks_, F, send_counts_, recv_counts_, send_words_, recv_words_,
-                send_displs_, recv_displs_, send_, recv_, requests_, bytes_sent_);
+  recv_counts_ = copied_from_; // (the ghosts of the last copy)
+  exchange_rows(F, true, Reach::neighbours);
   const std::size_t g = F ? recv_.size() / F : 0;
   for (std::size_t j = 0; j < g; ++j)
     for (std::size_t f = 0; f < F; ++f)
@@ -275,8 +346,8 @@ void Exchange::reverse(const Halo &h, const std::vector<std::int64_t> &per_ghost
     for (int j = 0; j < k; ++j)
       row[1 + j] = static_cast<std::uint64_t>(per_ghost[g * k + j]);
   }
-  exchange_rows(comm_, ranks_, row_len, send_counts_, recv_counts_, send_words_, recv_words_,
-                send_displs_, recv_displs_, send_, recv_, requests_, bytes_sent_);
+  recv_counts_ = copied_to_; // (one row back for each copy sent)
+  exchange_rows(row_len, true, Reach::neighbours);
   for (std::size_t j = 0; j < recv_.size() / row_len; ++j) {
     const std::uint64_t *row = &recv_[j * row_len];
     for (int q = 0; q < k; ++q)

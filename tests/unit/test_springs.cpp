@@ -199,7 +199,7 @@ Onset slide_onset(double mu, double fn, double rate, double t_end, double slip) 
     const double load = rate * (t + 0.5 * dt); // its mean over the step
     external = {load, -fn};
     const double w0 = c.omega[2][0];
-    s.advance(c, 1, h, dt, nullptr, &external);
+    s.advance(c, 1, h, dt, &external);
     const double u = c.v[0][0] + r * c.omega[2][0];
     if (std::abs(u) > slip) {
       out.load = load;

@@ -1,10 +1,11 @@
 // Contact history of the spring contacts (Kanehl (thesis) §4.2.3): the tangential spring of each
 // contact that lasts, as data of its own. A contact is keyed by the ids of its two colloids,
 // (owner, partner) with owner < partner, or (owner, wall) for a colloid touching a wall; it is
-// owned by the colloid `owner` and lives on the rank that owns that colloid, which alone
-// computes the pair (springs.hpp), so there is no copy on the other side that could disagree.
-// It migrates with its owner colloid, is gathered in key order for checkpoints and is dropped
-// as soon as the two bodies separate. Rows are kept sorted by key.
+// owned by the colloid `owner` and lives on the rank that owns that colloid. It migrates with
+// its owner colloid, is gathered in key order for checkpoints and is dropped as soon as the two
+// bodies separate. Rows are kept sorted by key. Within a step the ranks that hold the owner as a
+// ghost get a copy (ColloidGhosts::copy_contacts), compute the pair with it exactly as the owner
+// does (springs.hpp) and drop it at the step's end: only the owner's rank keeps it.
 #pragma once
 
 #include "narrows/colloids/colloids.hpp"
@@ -47,6 +48,10 @@ void migrate_contacts(ContactHistory &h, const Colloids &c, const parallel::Slab
 
 // Keeps the contacts whose owner colloid is one of c's (owned rows in id order).
 void keep_contacts_of(ContactHistory &h, const Colloids &c);
+// The same for the first `rows` rows of c (in id order; the rest, ghosts, not looked at).
+void keep_contacts_of(ContactHistory &h, const Colloids &c, std::size_t rows);
+// Row of the colloid with this id among the first `rows` rows of c (in id order), or -1.
+long row_of(const Colloids &c, std::size_t rows, std::uint64_t id);
 
 // All contacts of every rank, in key order, on every rank (collective).
 ContactHistory gather_contacts(const ContactHistory &mine, MPI_Comm comm);

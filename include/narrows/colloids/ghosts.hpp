@@ -11,15 +11,18 @@
 // MPCD step:
 //   for forces at the start of a step: e_r = 1 (the fluid of a rank lies within half a cell of
 //   its slab after binning on the shifted grid; the owned colloids within it), margins 0;
-//   for the whole step: e_r = max(1 + fluid reach + 2 M, largest margin of r's own colloids),
-//   where the fluid reach is |v| dt + a dt^2 / 2 of r's fastest particle and M the largest
-//   margin of any colloid (a fluid particle kicked by a colloid gains at most about twice the
-//   colloid's speed). check_region() refuses a near fluid particle that ended outside it.
-// The regions of all ranks are gathered (2 numbers per rank and step), so a region may reach
-// beyond the neighbouring slab (thin slabs on many ranks).
+//   for the whole step: e = 1 + fluid reach + 2 M, where the fluid reach is |v| dt + a dt^2 / 2
+//   of the fastest fluid particle of any rank and M the largest margin of any colloid (a fluid
+//   particle kicked by a colloid gains at most about twice the colloid's speed).
+//   check_region() refuses a near fluid particle that ended outside it.
+// e is the same on every rank (the largest of all ranks' needs), so each rank knows every
+// region from the slabs: the copies go to the ranks whose slabs come within e + R_max of this
+// rank's slab (the Exchange's neighbours, from 1 on each side up to all on thin slabs), and no
+// collective is needed beyond the one that agrees on M and the fluid reach.
 #pragma once
 
 #include "narrows/colloids/colloids.hpp"
+#include "narrows/colloids/contact_history.hpp"
 #include "narrows/engines/mpcd/kernels/fluid.hpp"
 #include "narrows/parallel/exchange.hpp"
 #include "narrows/parallel/slabs.hpp"
@@ -52,14 +55,28 @@ public:
   // Appends the ghosts for a whole step with this rank's region widened by `more` beyond what
   // add_for_step takes (room for chains of contacts; collective).
   void add_for_step(Colloids &c, std::vector<double> &margin, double fluid_reach, double more);
+  // The same with M (`largest_margin`) and the fluid reach already agreed over all ranks (the
+  // largest of every rank's; not collective: only the neighbours' messages).
+  void add_for_step_agreed(Colloids &c, std::vector<double> &margin, double largest_margin,
+                           double fluid_reach, double more);
   // One flag per row of c: owned rows, and ghosts whose centre lies within extent() - depth of
   // this rank's slab (their partners within `depth` are all here).
   void trusted_rows(const Colloids &c, double depth, std::vector<std::uint8_t> &flags) const;
   // e_r of this rank's region since the last add (0 on one rank: the region is the box).
-  double extent() const { return active() ? extent_[slabs_.rank()] : 0.0; }
+  double extent() const { return active() ? extent_ : 0.0; }
+  // M of the last add_for_step (0 after add_for_forces): the largest path of any colloid.
+  double largest_margin() const { return largest_margin_; }
   // Adds the per-row values of the ghost rows ([row * k + j]) to their owners' rows on the
   // owning ranks, and zeroes the ghost rows (collective).
   void reverse(std::vector<std::int64_t> &per_row, int k);
+  // Appends to h copies of the contacts (springs) of this rank's colloids that were copied as
+  // ghosts by the last add, to the same ranks, and sorts h: then each rank holds the springs of
+  // every pair whose colloid of the smaller id it holds (ghost shell of the spring contacts).
+  // The copies are this step's only: keep_contacts_of(h, c, owned()) drops them.
+  void copy_contacts(ContactHistory &h, const Colloids &c);
+  // e minus the widening `more` of the last add_for_step (the region whose ghosts the fluid can
+  // meet).
+  double base_extent() const { return active() ? extent_ - more_ : 0.0; }
   // Drops the ghost rows (and their margins).
   void remove(Colloids &c, std::vector<double> *margin = nullptr);
   // invariant_error if the near fluid left this rank's region of the step (a colloid it could
@@ -74,16 +91,21 @@ public:
   std::uint64_t bytes_sent() const { return exchange_.bytes_sent(); }
 
 private:
-  void add(Colloids &c, std::vector<double> *margin, double own_extent);
+  void add(Colloids &c, std::vector<double> *margin, double extent, double largest_margin);
 
   parallel::Slabs slabs_;
   mpcd::Box box_;
   parallel::Exchange exchange_;
   std::size_t owned_ = 0;
-  double r_max_ = -1.0;        // the largest radius of all colloids (fixed for a run)
-  std::vector<double> extent_; // per rank: e_r of the last add
-  parallel::CopyList list_;    // owned rows and the ranks they were copied to
-  parallel::Halo halo_;        // where each ghost row came from
+  double r_max_ = -1.0;         // the largest radius of all colloids (fixed for a run)
+  double extent_ = 0.0;         // e of the last add (the same on every rank)
+  double largest_margin_ = 0.0; // M of the last add
+  double more_ = 0.0;           // the widening of the last add
+  double reach_columns_ = 0.0;  // the neighbours' reach of the last add
+  parallel::CopyList contact_list_;
+  parallel::Exchange contact_exchange_;
+  parallel::CopyList list_; // owned rows and the ranks they were copied to
+  parallel::Halo halo_;     // where each ghost row came from
   std::vector<std::int64_t> ghost_values_;
   std::vector<std::vector<double> *> positions_; // the fields refresh_positions() sends
   std::vector<std::vector<double> *> motion_;    // the fields refresh_motion() sends

@@ -19,5 +19,9 @@ void move_ballistic(Colloids &c, std::size_t rows, const mpcd::Box &box, double 
 void check_paths(const Colloids &c, std::size_t owned,
                  const std::array<std::vector<double>, 3> &start, const std::vector<double> &margin,
                  const mpcd::Box &box, double slack, const char *allowed);
+// The same for rows [from, to) (ghost rows: the message names the copy).
+void check_paths(const Colloids &c, std::size_t from, std::size_t to,
+                 const std::array<std::vector<double>, 3> &start, const std::vector<double> &margin,
+                 const mpcd::Box &box, double slack, const char *allowed);
 
 } // namespace narrows::colloids

@@ -18,10 +18,12 @@
 // from the state the last step left (the same bits, on any number of ranks and on restart),
 // or kept from the end of the last step when no row, position or spring has changed since.
 //
-// Parallel model: each pair is computed once, on the rank that owns the colloid of the smaller
-// id (it owns the contact's history); the force and torque on a partner held as a ghost row go
-// back to its owner as fixed-point sums (ghosts.hpp reverse), so every sum is exact and the run
-// is bitwise that of one rank. Ghost rows are refreshed from their owners after every drift.
+// Parallel model: each rank computes every pair it holds (owned and ghost rows, each pair once
+// in the order of its ids) and moves every row, its ghosts too, through the sub-steps without
+// a message; the ghost shell (coupling/no_slip.cpp) is wide enough that the owned rows and the
+// ghosts the fluid meets come out exact: the same bits as one rank. The contact history of a
+// pair lives with its colloid of the smaller id (contact_history.hpp); the ghosts bring copies
+// of theirs for the step.
 #pragma once
 
 #include "narrows/colloids/colloids.hpp"
@@ -45,12 +47,6 @@ struct SpringParams {
 
 inline constexpr double never_slides = std::numeric_limits<double>::infinity();
 
-// How the sub-steps reach other ranks (both collective); empty on one process.
-struct SpringHooks {
-  std::function<void(Colloids &)> refresh;                       // ghosts' x, v, omega
-  std::function<void(std::vector<std::int64_t> &, int)> reverse; // ghost rows' sums to owners
-};
-
 class SpringContacts {
 public:
   SpringContacts(const SpringParams &params, const mpcd::Box &box);
@@ -69,10 +65,14 @@ public:
 
   // Moves the first `owned` rows of c over time dt in params().substeps velocity-Verlet
   // sub-steps under the contact forces (plus `external`, a constant force [a * dim + k] on
-  // each owned row, if given). Positions end wrapped along the periodic axes; with hooks the
-  // ghost rows follow their owners (refreshed after each drift, not after the last kick).
+  // each owned row, if given). Positions end wrapped along the periodic axes. On several ranks
+  // `owned` is every row, ghosts too: each rank computes every pair it holds and moves its
+  // ghosts itself (the ghost shell of coupling/no_slip.cpp, no messages within the step);
+  // contact_updates() counts the contacts whose owner (the smaller id) is among the first
+  // `counted` rows (default: owned), so that each contact is counted on one rank.
   void advance(Colloids &c, std::size_t owned, ContactHistory &h, double dt,
-               const SpringHooks *hooks = nullptr, const std::vector<double> *external = nullptr);
+               const std::vector<double> *external = nullptr,
+               std::size_t counted = std::numeric_limits<std::size_t>::max());
 
   // Elastic energy of the contacts of c (all rows owned) with springs h: sum of k_n delta^2 / 2
   // + k_t |xi|^2 / 2 (for tests; the wall and pair contacts alike).
@@ -97,7 +97,7 @@ private:
   void compute(const Colloids &c, std::size_t owned, ContactHistory &h, double step);
   template <int D, bool WallsY>
   void advance(Colloids &c, std::size_t owned, ContactHistory &h, double dt,
-               const SpringHooks *hooks, const std::vector<double> *external);
+               const std::vector<double> *external);
   // The contact forces of the slots that touch into sums_; with step > 0 their springs are
   // advanced first (and those of slots that no longer touch dropped).
   template <int D, bool WallsY> void forces(const Colloids &c, double step);
@@ -122,9 +122,9 @@ private:
   template <int D, bool WallsY, bool External, bool Moves>
   double kick_drift(Colloids &c, std::size_t owned, double h, bool twice, double drift,
                     const double *external);
-  // The positions and (with hooks, before the reverse) the sums of the last forces of a step,
-  // so that the next step starts from them when nothing changed in between.
-  void keep_end(const Colloids &c, bool copy_sums);
+  // The positions of the last forces of a step, so that the next step starts from its sums
+  // when nothing changed in between.
+  void keep_end(const Colloids &c);
   bool same_positions_as_end(const Colloids &c) const;
 
   SpringParams params_;
@@ -175,9 +175,9 @@ private:
   std::vector<double> inertia_;         // moments of inertia of the owned rows (advance)
   std::vector<std::uint8_t> rare_axes_; // (kick_drift: the axes a row jumped along)
   std::array<std::vector<double>, 3> end_x_;
-  std::vector<std::int64_t> end_sums_;
-  bool end_kept_ = false; // end_x_ (and end_sums_) hold the last forces() call
+  bool end_kept_ = false; // end_x_ holds the positions of the last forces() call
   std::uint64_t updates_ = 0, sliding_ = 0;
+  std::size_t counted_rows_ = 0; // contacts whose owner row is below it count in updates_
 };
 
 } // namespace narrows::colloids

@@ -67,6 +67,18 @@ std::size_t bytes_per_cell(const scene::Scene &s) {
   return b;
 }
 
+// How far (in cell columns) a fluid particle may go beyond its slab within one step: one column
+// of grid shift, 12 thermal standard deviations of a velocity component times dt (a speed
+// beyond has a probability of ~1e-33 per particle and step at equilibrium), the body force's
+// push over the step, and 2 columns for mean flows. The fluid's exchange talks to the ranks
+// within this reach only; a particle beyond it stops the run with a message.
+double fluid_migration_columns(const MpcdPlan &p) {
+  const double f =
+      std::sqrt(p.force[0] * p.force[0] + p.force[1] * p.force[1] + p.force[2] * p.force[2]) +
+      std::abs(p.sine_amplitude);
+  return 3.0 + p.dt * 12.0 * std::sqrt(std::max(p.kT, 0.0)) + f * p.dt * p.dt;
+}
+
 } // namespace
 
 std::size_t estimate_memory(const scene::Scene &scene) {
@@ -96,6 +108,8 @@ parallel::Slabs check_ranks(const scene::Scene &scene, MPI_Comm comm) {
 MpcdSimulation::MpcdSimulation(const scene::Scene &scene, MPI_Comm comm, bool allocate)
     : scene_(scene), comm_(comm), box_(make_box(scene)), slabs_(check_ranks(scene, comm)),
       exchange_(comm), plan_(make_plan(scene, box_, slabs_.ranks())) {
+  if (plan_.slabs)
+    exchange_.set_neighbours(slabs_, fluid_migration_columns(plan_), "fluid particle");
   if (plan_.no_slip)
     coupling_ = &no_slip_.emplace(plan_.no_slip_params, box_, slabs_);
   else if (plan_.colloids)
@@ -181,8 +195,9 @@ std::uint64_t MpcdSimulation::colloid_bytes_sent() const {
   return md_ ? md_->bytes_sent() : no_slip_ ? no_slip_->bytes_sent() : 0;
 }
 
-void MpcdSimulation::migrate_to_owners() {
-  // Used where nothing is binned (random solvent b): one scan for particles outside the slab.
+void MpcdSimulation::migrate_to_owners(parallel::Reach reach) {
+  // Used where nothing is binned (random solvent b), and for a checkpoint's blocks (reach
+  // anywhere): one scan for particles outside the slab.
   const std::size_t n = fluid_.size();
   const double sx = grid_.shift[0];
   const int columns = box_.cells[0], first = slabs_.first_column();
@@ -198,7 +213,7 @@ void MpcdSimulation::migrate_to_owners() {
   stray_dest_.resize(strays_.column.size());
   for (std::size_t j = 0; j < stray_dest_.size(); ++j)
     stray_dest_[j] = slabs_.owner(strays_.column[j]);
-  exchange_.migrate(fluid_view(fluid_), strays_.index, stray_dest_);
+  exchange_.migrate(fluid_view(fluid_), strays_.index, stray_dest_, reach);
 }
 
 void MpcdSimulation::migrate_strays_and_bin_arrivals() {
@@ -383,7 +398,8 @@ std::vector<std::string> describe_pipeline(const std::vector<Stage> &stages) {
 void MpcdSimulation::step_stages() {
   const auto step = static_cast<std::uint64_t>(step_);
   if (restored_) { // a checkpoint's blocks: each particle to the slab of its unshifted column,
-    migrate_to_owners(); // as after binning (colloid ghosts assume the fluid near its slab)
+    // (as after binning: colloid ghosts assume the fluid near its slab)
+    migrate_to_owners(parallel::Reach::anywhere);
     restored_ = false;
   }
   for (const Stage &stage : stages_)

@@ -97,7 +97,7 @@ private:
   void step_stages(); // the step itself; advance() adds the step and rank to its errors
   void build_stages();
   coupling::FluidStream stream_kernel() const;
-  void migrate_to_owners();
+  void migrate_to_owners(parallel::Reach reach = parallel::Reach::neighbours);
   void migrate_strays_and_bin_arrivals();
 
   scene::Scene scene_;

@@ -136,8 +136,10 @@ void MdIntegrator::check_paths(const Colloids &colloids) const {
 
 void MdIntegrator::hand_over(Colloids &colloids) {
   ghosts_.remove(colloids, &margin_);
-  if (ghosts_.active())
+  if (ghosts_.active()) { // (a colloid moved at most the largest margin, and a grid shift)
+    migration_.set_neighbours(slabs_, ghosts_.largest_margin() + 2.0, "colloid");
     migrate_colloids(colloids, slabs_, migration_);
+  }
 }
 
 PotentialEnergy MdIntegrator::potential_energy(const mpcd::Fluid &fluid, Colloids &colloids) {

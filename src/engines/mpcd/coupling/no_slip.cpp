@@ -55,18 +55,8 @@ NoSlipCoupling::NoSlipCoupling(const NoSlipParams &params, const mpcd::Box &box,
   dof_ = dim_ == 2 ? 3 : 6;
   stride_ = params_.implicit ? dof_ + dof_ * dof_ : dof_;
   history_.dim = dim_;
-  if (params_.spring_contacts) {
+  if (params_.spring_contacts)
     springs_.emplace(params_.spring, box_);
-    // Ghosts follow their owners after each drift; their forces go back to the owners.
-    spring_hooks_.refresh = [this](Colloids &c) {
-      const ScopedSeconds talk(message_seconds_);
-      ghosts_.refresh_state(c);
-    };
-    spring_hooks_.reverse = [this](std::vector<std::int64_t> &sums, int k) {
-      const ScopedSeconds talk(message_seconds_);
-      ghosts_.reverse(sums, k);
-    };
-  }
 }
 
 Stages NoSlipCoupling::before_stream(const StageContext &at) {
@@ -125,8 +115,8 @@ void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c, double
   // Each colloid's path this step: its speed, or with contacts up to twice the fastest speed
   // more (a collision can pass on the speed of the partner).
   const bool contacts = params_.hard_contacts || params_.spring_contacts;
-  double fastest = 0.0, v_max = 0.0;
   margin_.resize(owned);
+  double fastest = 0.0;
   for (std::size_t a = 0; a < owned; ++a) {
     double v2 = 0.0;
     for (int k = 0; k < dim_; ++k)
@@ -134,14 +124,6 @@ void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c, double
     margin_[a] = std::sqrt(v2);
     fastest = std::max(fastest, margin_[a]);
   }
-  {
-    const ScopedSeconds talk(message_seconds_);
-    MPI_Allreduce(&fastest, &v_max, 1, MPI_DOUBLE, MPI_MAX, slabs_.comm());
-  }
-  for (std::size_t a = 0; a < owned; ++a)
-    margin_[a] = contacts ? (margin_[a] + 2.0 * v_max) * dt + path_allowance
-                          : margin_[a] * dt * (1.0 + 1e-12) + 1e-12;
-  const double r_max = ghosts_.largest_radius(c);
   // The fluid's reach sizes the regions of other ranks (a pass over the fluid): not needed on
   // one rank, where every colloid is owned and nothing is copied.
   const double accel = std::sqrt(params_.fluid_accel[0] * params_.fluid_accel[0] +
@@ -149,23 +131,49 @@ void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c, double
                                  params_.fluid_accel[2] * params_.fluid_accel[2]) +
                        std::abs(params_.sine_amplitude);
   const double reach = ghosts_.active() ? fluid_reach(fluid, dt, accel, fluid_v2_max) : 0.0;
+  // The step's one collective: the fastest colloid and the fluid's largest reach of all ranks.
+  double own[2] = {fastest, reach}, all[2] = {fastest, reach};
+  if (ghosts_.active()) {
+    const ScopedSeconds talk(message_seconds_);
+    MPI_Allreduce(own, all, 2, MPI_DOUBLE, MPI_MAX, slabs_.comm());
+  }
+  const double v_max = all[0];
+  const auto path = [&](double speed) {
+    return contacts ? (speed + 2.0 * v_max) * dt + path_allowance
+                    : speed * dt * (1.0 + 1e-12) + 1e-12;
+  };
+  for (std::size_t a = 0; a < owned; ++a)
+    margin_[a] = path(margin_[a]);
+  const double r_max = ghosts_.largest_radius(c);
+  // The largest margin of all ranks: the path of the fastest colloid (path() is monotonic in
+  // the speed, each of its operations correctly rounded: the same number as the largest of
+  // the margins).
+  const double m_max = path(v_max);
   // With contacts the region reaches four collision distances further, so that the ghosts an
   // owned colloid can meet in a chain of up to three contacts within the step are all here and
   // trusted (trusted_rows; a longer chain is refused).
-  double m_max = 0.0, m_own = 0.0;
-  for (std::size_t a = 0; a < owned; ++a)
-    m_own = std::max(m_own, margin_[a]);
-  {
-    const ScopedSeconds talk(message_seconds_);
-    MPI_Allreduce(&m_own, &m_max, 1, MPI_DOUBLE, MPI_MAX, slabs_.comm());
-  }
+  // With spring contacts each rank moves its ghosts itself through the sub-steps (no messages
+  // between them): a ghost's motion is exact while every colloid it can touch is here and
+  // exact. A colloid can touch those within one contact distance `contact` of its start (two
+  // radii and two paths) within the step; a ghost within the region less one contact
+  // distance has all of them, and the exact region shrinks by one contact distance at each of
+  // the 1 + substeps force evaluations of a step. The region is widened by substeps + 2
+  // contact distances, so the colloids within its unwidened extent plus one contact distance
+  // end the step exact: those the fluid of this rank meets (lookup) and those the owned
+  // colloids touch. (Beyond it the ghosts' copies may go wrong; they are dropped at the
+  // hand-over, and check_paths below refuses one that strayed further than its path allows.)
   const double contact = 2.0 * r_max + 2.0 * m_max;
+  double more = 0.0;
+  if (params_.hard_contacts)
+    more = 4.0 * contact;
+  else if (springs_)
+    more = (springs_->params().substeps + 2.0) * contact;
   {
     const ScopedSeconds talk(message_seconds_);
-    ghosts_.add_for_step(c, margin_, reach, params_.hard_contacts ? 4.0 * contact : 0.0);
+    ghosts_.add_for_step_agreed(c, margin_, m_max, all[1], more);
   }
   for (int k = 0; k < dim_; ++k)
-    start_[k].assign(c.x[k].begin(), c.x[k].begin() + static_cast<std::ptrdiff_t>(owned));
+    start_[k].assign(c.x[k].begin(), c.x[k].end());
   Stopwatch contact_watch;
   if (params_.hard_contacts) {
     ghosts_.trusted_rows(c, contact, trusted_);
@@ -183,16 +191,24 @@ void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c, double
     const ScopedSeconds talk(message_seconds_);
     ghosts_.refresh_positions(c); // the owners' paths (a ghost may have missed a partner)
     ghosts_.refresh_motion(c);
-  } else if (springs_) { // every pair once, on the owner of its smaller id; ghosts follow
+  } else if (springs_) {    // every pair this rank holds, ghosts too (the ghost shell above)
+    if (ghosts_.active()) { // the springs of the ghosts' contacts
+      const ScopedSeconds talk(message_seconds_);
+      ghosts_.copy_contacts(history_, c);
+    }
+    const std::size_t rows = c.size();
     const bool falling = params_.gravity != std::array<double, 3>{0.0, 0.0, 0.0};
-    weight_.resize(owned * static_cast<std::size_t>(dim_));
-    for (std::size_t a = 0; a < owned; ++a)
+    weight_.resize(rows * static_cast<std::size_t>(dim_));
+    for (std::size_t a = 0; a < rows; ++a)
       for (int k = 0; k < dim_; ++k)
         weight_[a * static_cast<std::size_t>(dim_) + k] = c.mass[a] * params_.gravity[k];
-    springs_->advance(c, owned, history_, dt, ghosts_.active() ? &spring_hooks_ : nullptr,
-                      falling ? &weight_ : nullptr);
-    const ScopedSeconds talk(message_seconds_);
-    ghosts_.refresh_motion(c); // the last half kick
+    springs_->advance(c, rows, history_, dt, falling ? &weight_ : nullptr, owned);
+    if (ghosts_.active()) {
+      keep_contacts_of(history_, c, owned); // (the ghosts' copies go; their owners have them)
+      check_paths(c, owned, rows, start_, margin_, box_, 0.0,
+                  "its path allows, as a ghost copy moved through the spring sub-steps here (the "
+                  "ghost shell was too thin for it: report it)");
+    }
   } else {
     move_ballistic(c, c.size(), box_, dt); // owned and ghost rows alike: the same bits
   }
@@ -201,7 +217,8 @@ void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c, double
   check_paths(c, owned, start_, margin_, box_, 0.0,
               "its speed and those of the others allowed (allowed: a smaller fluid.dt)");
   Stopwatch lookup_watch;
-  lookup_.build(c, box_, slabs_.first_column(), slabs_.local_columns(), ghosts_.extent());
+  lookup_.build(c, box_, slabs_.first_column(), slabs_.local_columns(),
+                params_.hard_contacts ? ghosts_.extent() : ghosts_.base_extent());
   impulse_.assign(c.size() * static_cast<std::size_t>(stride_), 0);
   const double looked = lookup_watch.seconds();
   stage_seconds_[lookup] += looked;
@@ -328,8 +345,14 @@ void NoSlipCoupling::hand_over(Colloids &c) {
   ghosts_.remove(c, &margin_);
   if (ghosts_.active()) {
     const ScopedSeconds talk(message_seconds_);
-    if (springs_) // each contact goes where its owner colloid goes
+    // A colloid moved at most the largest margin this step: it goes at most that far (and a
+    // column of grid shift) beyond the slab it was in.
+    const double moved = ghosts_.largest_margin() + 2.0;
+    migration_.set_neighbours(slabs_, moved, "colloid");
+    if (springs_) { // each contact goes where its owner colloid goes
+      contact_migration_.set_neighbours(slabs_, moved, "contact");
       migrate_contacts(history_, c, slabs_, contact_migration_);
+    }
     migrate_colloids(c, slabs_, migration_);
   }
 }

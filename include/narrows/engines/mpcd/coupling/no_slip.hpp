@@ -232,7 +232,6 @@ private:
   std::optional<colloids::SpringContacts> springs_;
   colloids::ContactHistory history_;
   parallel::Exchange contact_migration_;
-  colloids::SpringHooks spring_hooks_;
   std::vector<double> weight_; // M g of each owned colloid, a force in the spring sub-steps
   double seconds_ = 0.0;
   double message_seconds_ = 0.0;
