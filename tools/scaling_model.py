@@ -73,7 +73,7 @@ def main():
     p.add_argument("--path", type=float, default=0.26,
                    help="largest path of a colloid in a step, m (0.25 allowance + 3 v dt)")
     p.add_argument("--substeps", type=int, default=10, help="spring sub-steps (0: no shell)")
-    p.add_argument("--wide", type=float, default=6,
+    p.add_argument("--wide", type=float, default=2,
                    help="exchanges per step that reach across the ghost shell")
     a = p.parse_args()
     c = per_step(a.short, a.long, a.steps)

@@ -102,6 +102,58 @@ void ColloidGhosts::add_for_step_agreed(Colloids &c, std::vector<double> &margin
   add(c, &margin, 1.0 + fluid_reach + 2.0 * largest_margin + more, largest_margin);
 }
 
+void ColloidGhosts::drop_widening(Colloids &c, std::vector<double> &margin,
+                                  const std::array<std::vector<double>, 3> &start) {
+  if (!active() || more_ == 0.0)
+    return;
+  const int ranks = slabs_.ranks(), me = slabs_.rank();
+  const double r_max = largest_radius(c), L = box_.length[0], e = extent_ - more_;
+  const auto range = [&](std::size_t a) {
+    return repulsive_cutoff(24, c.radius[a] + r_max) + margin[a];
+  };
+  const auto end_of = [&](int r) {
+    return r + 1 < ranks ? slabs_.first_column_of(r + 1) : slabs_.columns();
+  };
+  // The owners' side: the copies that rank r's unwidened region needs (as add() chose them).
+  std::vector<int> to(ranks, 0), from(ranks, 0);
+  std::size_t kept = 0;
+  for (std::size_t j = 0; j < list_.index.size(); ++j) {
+    const std::size_t a = list_.index[j];
+    const int r = list_.dest[j];
+    if (near_interval(start[0][a], slabs_.first_column_of(r) - e, end_of(r) + e, range(a), L)) {
+      list_.index[kept] = a;
+      list_.dest[kept++] = r;
+      ++to[r];
+    }
+  }
+  list_.index.resize(kept);
+  list_.dest.resize(kept);
+  // This rank's side: its ghosts that its unwidened region needs (the same test, same bits).
+  const double lo = slabs_.first_column_of(me) - e, hi = end_of(me) + e;
+  std::vector<bool> keep(c.size(), true);
+  kept = 0;
+  for (std::size_t g = 0; g < halo_.size(); ++g) {
+    const std::size_t a = owned_ + g;
+    keep[a] = near_interval(start[0][a], lo, hi, range(a), L);
+    if (keep[a]) {
+      halo_.source_rank[kept] = halo_.source_rank[g];
+      halo_.source_index[kept++] = halo_.source_index[g];
+      ++from[halo_.source_rank[g]];
+    }
+  }
+  halo_.source_rank.resize(kept);
+  halo_.source_index.resize(kept);
+  std::size_t m = 0;
+  for (std::size_t a = 0; a < margin.size(); ++a)
+    if (keep[a])
+      margin[m++] = margin[a];
+  margin.resize(m);
+  table(c).keep_rows(keep);
+  exchange_.keep_copies(to, from);
+  more_ = 0.0;
+  extent_ = e;
+}
+
 void ColloidGhosts::copy_contacts(ContactHistory &h, const Colloids &c) {
   if (!active())
     return;

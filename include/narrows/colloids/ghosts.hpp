@@ -27,6 +27,7 @@
 #include "narrows/parallel/exchange.hpp"
 #include "narrows/parallel/slabs.hpp"
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -74,6 +75,13 @@ public:
   // every pair whose colloid of the smaller id it holds (ghost shell of the spring contacts).
   // The copies are this step's only: keep_contacts_of(h, c, owned()) drops them.
   void copy_contacts(ContactHistory &h, const Colloids &c);
+  // Drops the ghosts (and their copies on the owners' side) that the unwidened region does not
+  // need: those a rank would not have got without the widening `more`, decided from the
+  // positions `start` of the copy (the same bits on both sides). The rest of the step's
+  // messages (impulse sums, refreshes) then go to the near ranks only. `margin` loses the same
+  // rows. Not collective.
+  void drop_widening(Colloids &c, std::vector<double> &margin,
+                     const std::array<std::vector<double>, 3> &start);
   // e minus the widening `more` of the last add_for_step (the region whose ghosts the fluid can
   // meet).
   double base_extent() const { return active() ? extent_ - more_ : 0.0; }

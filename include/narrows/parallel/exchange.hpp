@@ -108,6 +108,14 @@ public:
 
   MPI_Comm comm() const { return comm_; }
 
+  // After the caller dropped copies of the last copy() on both sides (the same ones, decided
+  // alike): rows per rank still copied to (`to`) and from (`from`) each rank, for refresh()
+  // and reverse().
+  void keep_copies(const std::vector<int> &to, const std::vector<int> &from) {
+    copied_to_ = to;
+    copied_from_ = from;
+  }
+
 private:
   // Sends send_ (rows of `row` words, send_counts_ rows per rank, in rank order) and receives
   // into recv_ (in the order of the source ranks; recv_counts_ rows per rank). With

@@ -208,6 +208,8 @@ void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c, double
       check_paths(c, owned, rows, start_, margin_, box_, 0.0,
                   "its path allows, as a ghost copy moved through the spring sub-steps here (the "
                   "ghost shell was too thin for it: report it)");
+      const ScopedSeconds talk(message_seconds_);
+      ghosts_.drop_widening(c, margin_, start_); // (the shell's work is done)
     }
   } else {
     move_ballistic(c, c.size(), box_, dt); // owned and ghost rows alike: the same bits
