@@ -27,21 +27,25 @@ struct WorkCounts {
 };
 
 // The cost of one item of each count in fluid particle-steps, measured on the Table 6.1 channel
-// (run/pulses_table6_1.toml, 1 rank, 200 steps on a 2-core machine): the fluid's share of the
-// loop per particle-step, and the no-slip coupling's stage timers divided by their counts
-// (motion + lookup + hand-over per colloid-step, contacts per contact update, bounce-back per
-// bounced particle, ghost sums + responses + solve + fluid shift per ghost particle).
+// (run/pulses_table6_1.toml: 1098 disks, 187150 fluid particles; 1 rank, 200 steps, a 2-core
+// machine at load ~10, so only the ratios mean something): the fluid's share of the loop, 8.79 s
+// of 27.36 s, per particle-step (2.35e-7 s); the no-slip coupling's stage timers divided by
+// their counts: motion + lookup + hand-over per colloid-step (1.18 s / 219600 = 5.4e-6 s),
+// contacts per contact update (0.338 s / 2.09e6), bounce-back per bounced particle (4.95 s /
+// 627282 = 7.9e-6 s: the search for the fluid inside colloids dominates it), ghost sums +
+// responses + solve + fluid shift per ghost particle (12.1 s / 4.95e7).
 struct WorkWeights {
   static constexpr double fluid = 1.0;
-  static constexpr double colloid = 60.0;
-  static constexpr double contact = 6.0;
-  static constexpr double bounce = 8.0;
-  static constexpr double ghost = 4.0;
-  // Per colloid-step, where the run has not counted them yet (the start): bounce-backs and
-  // ghost particles (Table 6.1 channel, first 200 steps).
-  static constexpr double bounces_per_colloid = 15.0;
-  static constexpr double ghosts_per_colloid = 250.0;
-  static constexpr double contact_updates_per_colloid = 20.0;
+  static constexpr double colloid = 23.0;
+  static constexpr double contact = 0.7;
+  static constexpr double bounce = 34.0;
+  static constexpr double ghost = 1.0;
+  // Per colloid-step, where the run has not counted them yet (the start), the same run's means:
+  // 2.86 bounce-backs, 225 ghost particles and 9.5 contact updates. A colloid costs ~360 fluid
+  // particle-steps, less than the ~490 fluid particles its disk (a = 2.5, n = 25) displaces.
+  static constexpr double bounces_per_colloid = 2.86;
+  static constexpr double ghosts_per_colloid = 225.0;
+  static constexpr double contact_updates_per_colloid = 9.5;
 };
 
 // max/mean of per-rank values (1 if they are all zero).
