@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Slabs balanced by work (issue 36 item 3): a no-slip channel with spring contacts whose colloids
-# sit in the first quarter of the box, on 3 ranks with equal slabs and with the slabs moved
+# sit in the first half of the box, on 3 ranks with equal slabs and with the slabs moved
 # every 10 steps (threshold 1: they move at nearly every check, fluid, colloids and contacts
 # migrating to the new owners), ends in bitwise the same state (fluid, colloids, contact
 # history) and the same observables (those summed in fixed point); a restart from equal slabs on 3 ranks, balanced on 4 ranks,
@@ -32,9 +32,8 @@ coupling = "no-slip"
 contacts = "spring"
 radius = 1.6
 placement = "list"
-positions = [[2.5, 2.0], [6.0, 2.0], [9.5, 2.0], [13.0, 2.0],
-             [2.5, 5.5], [6.0, 5.5], [9.5, 5.5], [13.0, 5.5],
-             [2.5, 9.0], [6.0, 9.0], [9.5, 9.0], [13.0, 9.0]]
+positions = [[2.5, 2.0], [6.0, 2.0], [9.5, 2.0], [13.0, 2.0], [16.5, 2.0], [20.0, 2.0],
+             [2.5, 5.5], [6.0, 5.5], [9.5, 5.5], [13.0, 5.5], [16.5, 5.5], [20.0, 5.5]]
 gravity = [0.0, -1.0]
 [colloids.spring]
 kn = 2500
