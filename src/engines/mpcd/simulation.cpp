@@ -260,11 +260,11 @@ void MpcdSimulation::count_work() {
   const double ratio = imbalance(all); // the same arithmetic on the same numbers: every rank
   bool moved = false;
   if (scene_.domain.balance == scene::Balance::work && ratio > scene_.domain.balance_threshold)
-    moved = balance_work();
+    moved = balance_work(&all, static_cast<double>(every));
   balance_checks_.push_back({step_, ratio, moved});
 }
 
-bool MpcdSimulation::balance_work() {
+bool MpcdSimulation::balance_work(const std::vector<double> *window_work, double window_steps) {
   if (slabs_.ranks() == 1)
     return false;
   using W = WorkWeights;
@@ -333,6 +333,20 @@ bool MpcdSimulation::balance_work() {
       else
         work[static_cast<std::size_t>(-1 - c)] += W::contact * substeps;
     }
+    // What each rank counted corrects the estimate of its columns (the per-colloid means miss
+    // where the bounce-backs and ghost particles are).
+    if (window_work && window_steps > 0.0)
+      for (int r = 0; r < slabs_.ranks(); ++r) {
+        const int lo = slabs_.first_column_of(r);
+        const int hi = r + 1 < slabs_.ranks() ? slabs_.first_column_of(r + 1) : columns;
+        double estimate = 0.0;
+        for (int c = lo; c < hi; ++c)
+          estimate += work[static_cast<std::size_t>(c)];
+        const double counted = (*window_work)[static_cast<std::size_t>(r)] / window_steps;
+        if (estimate > 0.0 && counted > 0.0)
+          for (int c = lo; c < hi; ++c)
+            work[static_cast<std::size_t>(c)] *= counted / estimate;
+      }
     first = balanced_first_columns(work, slabs_.ranks());
   }
   MPI_Bcast(first.data(), static_cast<int>(first.size()), MPI_INT, 0, comm_);

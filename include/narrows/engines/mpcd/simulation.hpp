@@ -98,8 +98,10 @@ public:
   const WorkCounts &work() const { return work_; }
   // Moves the slab boundaries so that the work estimated per cell column is even, and the
   // fluid, the colloids and their contacts to their new owners (collective, between steps; the
-  // results stay bitwise the same). Returns whether they moved.
-  bool balance_work();
+  // results stay bitwise the same). Returns whether they moved. With `window_work` (every
+  // rank's counted work over the last `window_steps` steps, the same on every rank) the
+  // estimate of each slab's columns is scaled to what its rank counted.
+  bool balance_work(const std::vector<double> *window_work = nullptr, double window_steps = 0.0);
   // The slabs given by their first columns (collective, the same on every rank; between steps).
   void set_slabs(const std::vector<int> &first_columns);
   // With domain.balance_every > 0, each check of the counted work over the last
