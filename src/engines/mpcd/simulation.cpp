@@ -320,8 +320,9 @@ bool MpcdSimulation::balance_work(const std::vector<double> *window_work, double
   if (slabs_.rank() == 0) {
     const double *t = &all[static_cast<std::size_t>(columns)];
     const bool counted = t[0] > 0.0;
-    const double bounces = counted ? t[1] / t[0] : W::bounces_per_colloid;
-    const double ghosts = counted ? t[2] / t[0] : W::ghosts_per_colloid;
+    // (the defaults are the no-slip coupling's; MD colloids have neither)
+    const double bounces = counted ? t[1] / t[0] : no_slip_ ? W::bounces_per_colloid : 0.0;
+    const double ghosts = counted ? t[2] / t[0] : no_slip_ ? W::ghosts_per_colloid : 0.0;
     double per_colloid = W::colloid + W::bounce * bounces + W::ghost * ghosts;
     // Contacts where they are; before any is held (the start), a mean share per colloid.
     if (substeps > 0.0 && t[4] == 0.0)
