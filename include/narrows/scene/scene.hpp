@@ -22,8 +22,16 @@ struct Run {
   std::int64_t steps = 0;  // the step at which the run ends
 };
 
+// How the MPCD box's slabs along x are chosen: equal numbers of cell columns, or boundaries that
+// even the counted work of the ranks (at the start, on a restart, and every balance_every steps
+// when the work's max/mean over the ranks exceeds balance_threshold). Results are the same.
+enum class Balance { none, work };
+
 struct Domain {
   std::array<double, 3> size{0.0, 0.0, 0.0}; // whole cells along x, y[, z]; z unused in 2D
+  Balance balance = Balance::none;
+  std::int64_t balance_every = 0; // steps between checks of the imbalance (0: start only)
+  double balance_threshold = 1.05;
 };
 
 struct Fluid {

@@ -234,7 +234,12 @@ public:
     check_ranks(scene, comm);
   }
 
-  run::RunSpan span() const override { return {scene_.run.steps, "run.steps", {}}; }
+  // The slabs' balance does not change results: a restart may change it.
+  run::RunSpan span() const override {
+    return {scene_.run.steps,
+            "run.steps",
+            {"domain.balance", "domain.balance_every", "domain.balance_threshold"}};
+  }
 
   void start(run::Shell &shell) override {
     const scene::Scene &scene = scene_;
@@ -277,6 +282,9 @@ public:
                                      scene.colloids->epsilon, scene.fluid.kT, file, comm);
       }
     }
+    // Slabs balanced by work: from the initial state or the checkpoint's colloids and contacts.
+    if (scene.domain.balance == scene::Balance::work)
+      sim.balance_work();
     // The colloid statistics, on a restart with the sums of the run chain so far.
     ColloidStatistics &colloid_stats = colloid_stats_.emplace(sim);
     if (restarting)
@@ -293,6 +301,8 @@ public:
       log.warn(w);
     if (shell.restarting())
       log.line("restarted from " + shell.restart_file() + " at step " + std::to_string(sim.step()));
+    if (scene.domain.balance == scene::Balance::work && sim.slabs().ranks() > 1)
+      log.line("slabs balanced by counted work: first columns " + slab_text(sim.slabs()));
     if (const auto &p = sim.packing()) {
       char line[256];
       std::snprintf(line, sizeof line,
@@ -470,6 +480,7 @@ public:
         log.line(text);
       }
     }
+    work_lines(log);
     if (const double s = busiest(observer_->axial_seconds_per_sample()); s > 0.0) {
       std::snprintf(text, sizeof text,
                     "axial_fields: %.3g ms per sample on the busiest rank (%lld colloids gathered, "
@@ -491,6 +502,79 @@ public:
   }
 
 private:
+  static std::string slab_text(const parallel::Slabs &slabs) {
+    std::string s;
+    for (int r = 0; r < slabs.ranks(); ++r)
+      s += (r ? " " : "") + std::to_string(slabs.first_column_of(r));
+    return s + " of " + std::to_string(slabs.columns());
+  }
+
+  // The counted work of each rank over the run (work_balance.hpp): its max/mean, the counts
+  // summed over the ranks (for the weights), and the balance checks.
+  void work_lines(run::Log &log) const {
+    const MpcdSimulation &sim = *sim_;
+    const WorkCounts &w = sim.work();
+    const double mine[6] = {w.work(), w.fluid, w.colloids, w.contacts, w.bounces, w.ghosts};
+    const int ranks = sim.slabs().ranks();
+    std::vector<double> all(6 * static_cast<std::size_t>(ranks));
+    MPI_Gather(mine, 6, MPI_DOUBLE, all.data(), 6, MPI_DOUBLE, 0, comm_);
+    if (sim.slabs().rank() != 0 || sim.scene().run.steps == 0)
+      return;
+    std::vector<double> work(static_cast<std::size_t>(ranks));
+    double sum[6] = {};
+    for (int r = 0; r < ranks; ++r) {
+      work[r] = all[6 * r];
+      for (int k = 0; k < 6; ++k)
+        sum[k] += all[6 * r + k];
+    }
+    char text[400];
+    using W = WorkWeights;
+    std::snprintf(text, sizeof text,
+                  "counted work: max/mean %.4f over the ranks (fluid particle-steps, colloid "
+                  "steps x %g, contact updates x %g, bounce-backs x %g, ghost particles x %g; "
+                  "%s)",
+                  imbalance(work), W::colloid, W::contact, W::bounce, W::ghost,
+                  sim.scene().domain.balance == scene::Balance::work ? "slabs balanced by work"
+                                                                     : "equal slabs");
+    std::string line = text;
+    line += "; per rank:";
+    for (int r = 0; r < ranks; ++r) {
+      std::snprintf(text, sizeof text, " %.4g", work[r]);
+      line += text;
+    }
+    log.line(line);
+    std::snprintf(text, sizeof text,
+                  "counted work totals: %.6g fluid particle-steps, %.6g colloid-steps, %.6g "
+                  "contact updates, %.6g bounce-backs, %.6g ghost particles",
+                  sum[1], sum[2], sum[3], sum[4], sum[5]);
+    log.line(text);
+    const auto &checks = sim.balance_checks();
+    if (checks.empty())
+      return;
+    double most = 0.0, mean = 0.0;
+    int moved = 0;
+    for (const auto &c : checks) {
+      most = std::max(most, c.imbalance);
+      mean += c.imbalance / static_cast<double>(checks.size());
+      moved += c.moved ? 1 : 0;
+    }
+    std::snprintf(text, sizeof text,
+                  "counted work every %lld steps: max/mean first %.4f, mean %.4f, largest %.4f, "
+                  "last %.4f; slabs moved %d times; now first columns %s",
+                  static_cast<long long>(sim.scene().domain.balance_every),
+                  checks.front().imbalance, mean, most, checks.back().imbalance, moved,
+                  slab_text(sim.slabs()).c_str());
+    log.line(text);
+    line = "counted work max/mean per check (step: value, * slabs moved):";
+    const std::size_t from = checks.size() > 40 ? checks.size() - 40 : 0;
+    for (std::size_t i = from; i < checks.size(); ++i) {
+      std::snprintf(text, sizeof text, " %lld: %.3f%s", static_cast<long long>(checks[i].step),
+                    checks[i].imbalance, checks[i].moved ? "*" : "");
+      line += text;
+    }
+    log.line(line);
+  }
+
   const scene::Scene &scene_;
   MPI_Comm comm_;
   std::optional<MpcdSimulation> sim_;

@@ -246,6 +246,140 @@ void MpcdSimulation::advance() {
     throw invariant_error(what);
   }
   ++step_;
+  count_work();
+}
+
+void MpcdSimulation::count_work() {
+  WorkCounts w;
+  w.fluid = static_cast<double>(fluid_.size());
+  w.colloids = static_cast<double>(colloids_.size()); // owned: the ghosts left
+  if (no_slip_) {
+    w.bounces = static_cast<double>(no_slip_->bounced() - bounced_);
+    bounced_ = no_slip_->bounced();
+    w.ghosts = static_cast<double>(no_slip_->ghost_particles());
+    if (const auto *springs = no_slip_->springs()) {
+      w.contacts = static_cast<double>(springs->contact_updates() - contact_updates_);
+      contact_updates_ = springs->contact_updates();
+    }
+  }
+  work_ += w;
+  window_ += w;
+  const std::int64_t every = scene_.domain.balance_every;
+  if (every <= 0 || step_ % every != 0 || slabs_.ranks() == 1)
+    return;
+  // One small collective every `every` steps: the window's work of every rank.
+  const double mine = window_.work();
+  std::vector<double> all(static_cast<std::size_t>(slabs_.ranks()));
+  MPI_Allgather(&mine, 1, MPI_DOUBLE, all.data(), 1, MPI_DOUBLE, comm_);
+  window_ = WorkCounts{};
+  const double ratio = imbalance(all); // the same arithmetic on the same numbers: every rank
+  bool moved = false;
+  if (scene_.domain.balance == scene::Balance::work && ratio > scene_.domain.balance_threshold)
+    moved = balance_work(&all, static_cast<double>(every));
+  balance_checks_.push_back({step_, ratio, moved});
+}
+
+bool MpcdSimulation::balance_work(const std::vector<double> *window_work, double window_steps) {
+  if (slabs_.ranks() == 1)
+    return false;
+  using W = WorkWeights;
+  const int columns = box_.cells[0];
+  // Per column the estimated work of a step; then the run's counts so far (over all ranks) for
+  // the mean bounce-backs, ghost particles and contact updates per colloid, and the contacts
+  // held now.
+  std::vector<double> local(static_cast<std::size_t>(columns) + 5, 0.0);
+  for (std::size_t i = 0; i < fluid_.size(); ++i)
+    local[static_cast<std::size_t>(mpcd::cell_coordinate(fluid_.x[0][i], 0.0, columns))] +=
+        W::fluid;
+  const colloids::ContactHistory *history = no_slip_ ? &no_slip_->contact_history() : nullptr;
+  const double substeps =
+      no_slip_ && no_slip_->springs() ? plan_.no_slip_params.spring.substeps : 0.0;
+  double *totals = &local[static_cast<std::size_t>(columns)];
+  totals[0] = work_.colloids;
+  totals[1] = work_.bounces;
+  totals[2] = work_.ghosts;
+  totals[3] = work_.contacts;
+  totals[4] = history ? static_cast<double>(history->size()) : 0.0;
+  std::vector<double> all(slabs_.rank() == 0 ? local.size() : 0);
+  MPI_Reduce(local.data(), all.data(), static_cast<int>(local.size()), MPI_DOUBLE, MPI_SUM, 0,
+             comm_);
+  // The colloids' columns and the contacts' (at their owner colloid), on rank 0.
+  std::vector<int> mine_cols;
+  for (std::size_t a = 0; a < colloids_.size(); ++a)
+    mine_cols.push_back(mpcd::cell_coordinate(colloids_.x[0][a], 0.0, columns));
+  const std::size_t colloid_count = mine_cols.size();
+  if (history)
+    for (std::size_t j = 0; j < history->size(); ++j) {
+      const auto it = std::lower_bound(colloids_.id.begin(), colloids_.id.end(), history->owner[j]);
+      if (it != colloids_.id.end() && *it == history->owner[j])
+        mine_cols.push_back(mine_cols[static_cast<std::size_t>(it - colloids_.id.begin())]);
+    }
+  // Tagged: colloids as column, contacts as -1 - column.
+  for (std::size_t j = colloid_count; j < mine_cols.size(); ++j)
+    mine_cols[j] = -1 - mine_cols[j];
+  const int count = static_cast<int>(mine_cols.size());
+  std::vector<int> counts(static_cast<std::size_t>(slabs_.ranks())), displs(counts.size());
+  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_);
+  std::vector<int> cols;
+  if (slabs_.rank() == 0) {
+    int n = 0;
+    for (std::size_t r = 0; r < counts.size(); ++r) {
+      displs[r] = n;
+      n += counts[r];
+    }
+    cols.resize(static_cast<std::size_t>(n));
+  }
+  MPI_Gatherv(mine_cols.data(), count, MPI_INT, cols.data(), counts.data(), displs.data(), MPI_INT,
+              0, comm_);
+  std::vector<int> first(static_cast<std::size_t>(slabs_.ranks()));
+  if (slabs_.rank() == 0) {
+    const double *t = &all[static_cast<std::size_t>(columns)];
+    const bool counted = t[0] > 0.0;
+    // (the defaults are the no-slip coupling's; MD colloids have neither)
+    const double bounces = counted ? t[1] / t[0] : no_slip_ ? W::bounces_per_colloid : 0.0;
+    const double ghosts = counted ? t[2] / t[0] : no_slip_ ? W::ghosts_per_colloid : 0.0;
+    double per_colloid = W::colloid + W::bounce * bounces + W::ghost * ghosts;
+    // Contacts where they are; before any is held (the start), a mean share per colloid.
+    if (substeps > 0.0 && t[4] == 0.0)
+      per_colloid += W::contact * (counted ? t[3] / t[0] : W::contact_updates_per_colloid);
+    std::vector<double> work(all.begin(), all.begin() + columns);
+    for (int c : cols) {
+      if (c >= 0)
+        work[static_cast<std::size_t>(c)] += per_colloid;
+      else
+        work[static_cast<std::size_t>(-1 - c)] += W::contact * substeps;
+    }
+    // What each rank counted corrects the estimate of its columns (the per-colloid means miss
+    // where the bounce-backs and ghost particles are).
+    if (window_work && window_steps > 0.0)
+      for (int r = 0; r < slabs_.ranks(); ++r) {
+        const int lo = slabs_.first_column_of(r);
+        const int hi = r + 1 < slabs_.ranks() ? slabs_.first_column_of(r + 1) : columns;
+        double estimate = 0.0;
+        for (int c = lo; c < hi; ++c)
+          estimate += work[static_cast<std::size_t>(c)];
+        const double counted = (*window_work)[static_cast<std::size_t>(r)] / window_steps;
+        if (estimate > 0.0 && counted > 0.0)
+          for (int c = lo; c < hi; ++c)
+            work[static_cast<std::size_t>(c)] *= counted / estimate;
+      }
+    first = balanced_first_columns(work, slabs_.ranks());
+  }
+  MPI_Bcast(first.data(), static_cast<int>(first.size()), MPI_INT, 0, comm_);
+  if (first == slabs_.first_columns())
+    return false;
+  set_slabs(first);
+  return true;
+}
+
+void MpcdSimulation::set_slabs(const std::vector<int> &first_columns) {
+  const std::array<double, 3> shift = grid_.shift;
+  slabs_ = parallel::Slabs(comm_, box_.cells[0], first_columns);
+  grid_ = mpcd::CellGrid(box_, slabs_.first_column(), slabs_.local_columns());
+  grid_.shift = shift; // the fluid lies in the slabs of the last step's shifted columns
+  migrate_to_owners();
+  restored_ = false;
+  coupling_->set_slabs(slabs_, colloids_);
 }
 
 coupling::FluidStream MpcdSimulation::stream_kernel() const {

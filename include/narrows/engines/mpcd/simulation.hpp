@@ -14,6 +14,7 @@
 #include "narrows/engines/mpcd/kernels/fluid.hpp"
 #include "narrows/engines/mpcd/kernels/thermostat.hpp"
 #include "narrows/engines/mpcd/plan.hpp"
+#include "narrows/engines/mpcd/work_balance.hpp"
 #include "narrows/parallel/exchange.hpp"
 #include "narrows/parallel/slabs.hpp"
 #include "narrows/scene/scene.hpp"
@@ -93,12 +94,32 @@ public:
   // Particles this rank sent to other ranks in the last step.
   std::size_t migrated_last_step() const { return strays_.index.size(); }
 
+  // Work balance (work_balance.hpp). The counts of this rank since the start (or the restart).
+  const WorkCounts &work() const { return work_; }
+  // Moves the slab boundaries so that the work estimated per cell column is even, and the
+  // fluid, the colloids and their contacts to their new owners (collective, between steps; the
+  // results stay bitwise the same). Returns whether they moved. With `window_work` (every
+  // rank's counted work over the last `window_steps` steps, the same on every rank) the
+  // estimate of each slab's columns is scaled to what its rank counted.
+  bool balance_work(const std::vector<double> *window_work = nullptr, double window_steps = 0.0);
+  // The slabs given by their first columns (collective, the same on every rank; between steps).
+  void set_slabs(const std::vector<int> &first_columns);
+  // With domain.balance_every > 0, each check of the counted work over the last
+  // balance_every steps: its max/mean over the ranks, and whether the slabs moved then.
+  struct BalanceCheck {
+    std::int64_t step;
+    double imbalance;
+    bool moved;
+  };
+  const std::vector<BalanceCheck> &balance_checks() const { return balance_checks_; }
+
 private:
   void step_stages(); // the step itself; advance() adds the step and rank to its errors
   void build_stages();
   coupling::FluidStream stream_kernel() const;
   void migrate_to_owners(parallel::Reach reach = parallel::Reach::neighbours);
   void migrate_strays_and_bin_arrivals();
+  void count_work();
 
   scene::Scene scene_;
   MPI_Comm comm_;
@@ -121,7 +142,10 @@ private:
   mpcd::LayerSums layer_sums_;
   std::vector<Stage> stages_;
   std::int64_t step_ = 0;
-  bool restored_ = false; // the fluid is a checkpoint's blocks, not yet on its slabs
+  bool restored_ = false;    // the fluid is a checkpoint's blocks, not yet on its slabs
+  WorkCounts work_, window_; // since the start, since the last balance check
+  std::uint64_t bounced_ = 0, contact_updates_ = 0; // the coupling's totals at the last step
+  std::vector<BalanceCheck> balance_checks_;
 };
 
 // The pipeline as `narrows check`/`info` print it: one numbered line per stage, in the order

@@ -10,6 +10,7 @@
 #include "narrows/engines/mpcd/kernels/streaming.hpp"
 
 #include <cmath>
+#include <memory>
 #include <sstream>
 
 namespace narrows::coupling {
@@ -140,6 +141,13 @@ void MdIntegrator::hand_over(Colloids &colloids) {
     migration_.set_neighbours(slabs_, ghosts_.largest_margin() + 2.0, "colloid");
     migrate_colloids(colloids, slabs_, migration_);
   }
+}
+
+void MdIntegrator::set_slabs(const parallel::Slabs &slabs, Colloids &colloids) {
+  slabs_ = slabs;
+  std::destroy_at(&ghosts_); // (nothing of it lasts between steps but the radii)
+  std::construct_at(&ghosts_, slabs_, box_);
+  migrate_colloids(colloids, slabs_, migration_);
 }
 
 PotentialEnergy MdIntegrator::potential_energy(const mpcd::Fluid &fluid, Colloids &colloids) {

@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <sstream>
 
 namespace narrows::coupling {
@@ -70,7 +71,7 @@ Stages NoSlipCoupling::after_stream(const StageContext &at) {
   return {{"bounce-back of fluid that entered a colloid (U + Omega x r at the surface, halved "
            "intervals; impulses to the colloids)",
            [this, &fluid = at.fluid, &colloids = at.colloids, stream = at.stream](std::uint64_t) {
-             bounce_back(fluid, colloids, stream);
+             bounced_ += bounce_back(fluid, colloids, stream).particles;
            }}};
 }
 
@@ -357,6 +358,20 @@ void NoSlipCoupling::hand_over(Colloids &c) {
     }
     migrate_colloids(c, slabs_, migration_);
   }
+}
+
+void NoSlipCoupling::set_slabs(const parallel::Slabs &slabs, Colloids &c) {
+  const ScopedSeconds timed(seconds_);
+  const ScopedSeconds stage(stage_seconds_[hand_over_stage]);
+  slabs_ = slabs;
+  // The ghosts' state lives for a step (nothing is kept between steps but the radii): made
+  // again for the new slabs.
+  std::destroy_at(&ghosts_);
+  std::construct_at(&ghosts_, slabs_, box_);
+  const ScopedSeconds talk(message_seconds_);
+  if (springs_) // each contact goes where its owner colloid goes (before the colloids leave)
+    migrate_contacts(history_, c, slabs_, contact_migration_);
+  migrate_colloids(c, slabs_, migration_);
 }
 
 } // namespace narrows::coupling

@@ -7,6 +7,7 @@
 #include "narrows/engines/mpcd/kernels/cell_grid.hpp"
 #include "narrows/engines/mpcd/kernels/collision.hpp"
 #include "narrows/engines/mpcd/kernels/fluid.hpp"
+#include "narrows/parallel/slabs.hpp"
 
 #include <cstdint>
 #include <functional>
@@ -54,6 +55,9 @@ public:
   virtual Stages after_bin(const StageContext &) { return {}; }
   // Right after the collision, before the thermostat and the sort.
   virtual Stages after_collide(const StageContext &) { return {}; }
+  // Between steps (no ghost rows): the slabs move (work balance, simulation.hpp); the colloids
+  // this rank owns, and what travels with them, go to their owners under `slabs` (collective).
+  virtual void set_slabs(const parallel::Slabs &, colloids::Colloids &) {}
 };
 
 // A fluid without colloids: the step has no coupling stages.

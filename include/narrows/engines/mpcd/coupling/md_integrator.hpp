@@ -51,6 +51,8 @@ public:
   void put_back_near_fluid(mpcd::Fluid &fluid) const;
   void check_paths(const colloids::Colloids &colloids) const;
   void hand_over(colloids::Colloids &colloids);
+  // The colloids to their owners under `slabs` (collective, between steps).
+  void set_slabs(const parallel::Slabs &slabs, colloids::Colloids &colloids) override;
 
   // The potential energy of fluid and colloids (those this rank owns, between steps), summed
   // over the ranks (collective).

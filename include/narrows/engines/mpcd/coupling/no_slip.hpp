@@ -107,6 +107,11 @@ public:
   void take_back_ghost_particles(mpcd::CellGrid &grid, const mpcd::CollisionScratch &collision,
                                  mpcd::Fluid &fluid, colloids::Colloids &c);
   void hand_over(colloids::Colloids &c);
+  // The colloids and the contact history they own to their owners under `slabs`; the ghost
+  // colloids start afresh on them (collective, between steps).
+  void set_slabs(const parallel::Slabs &slabs, colloids::Colloids &c) override;
+  // Fluid particles this rank bounced back since the start (a count of the work balance).
+  std::uint64_t bounced() const { return bounced_; }
 
   // Bytes this rank sent for colloids (ghosts, reverse sums, migration) since the start.
   std::uint64_t bytes_sent() const { return ghosts_.bytes_sent() + migration_.bytes_sent(); }
@@ -235,6 +240,7 @@ private:
   std::vector<double> weight_; // M g of each owned colloid, a force in the spring sub-steps
   double seconds_ = 0.0;
   double message_seconds_ = 0.0;
+  std::uint64_t bounced_ = 0;
   std::array<double, stage_count> stage_seconds_{};
 };
 
