@@ -73,6 +73,11 @@ public:
   // (invariant error) naming `what` (e.g. "fluid particle", "colloid ghost"). The same
   // `columns` on every rank.
   void set_neighbours(const Slabs &slabs, double columns, std::string what);
+  // Back to any rank (counts by MPI_Alltoall): for rows that may go anywhere (slabs moved).
+  void clear_neighbours() {
+    neighbours_.clear();
+    neighbours_set_ = false;
+  }
   const std::vector<int> &neighbours() const { return neighbours_; }
   bool has_neighbours() const { return neighbours_set_; }
 

@@ -377,7 +377,8 @@ void MpcdSimulation::set_slabs(const std::vector<int> &first_columns) {
   slabs_ = parallel::Slabs(comm_, box_.cells[0], first_columns);
   grid_ = mpcd::CellGrid(box_, slabs_.first_column(), slabs_.local_columns());
   grid_.shift = shift; // the fluid lies in the slabs of the last step's shifted columns
-  migrate_to_owners();
+  migrate_to_owners(parallel::Reach::anywhere); // (the old slabs' neighbours may not reach)
+  exchange_.set_neighbours(slabs_, fluid_migration_columns(plan_), "fluid particle");
   restored_ = false;
   coupling_->set_slabs(slabs_, colloids_);
 }

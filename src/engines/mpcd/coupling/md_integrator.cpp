@@ -147,6 +147,7 @@ void MdIntegrator::set_slabs(const parallel::Slabs &slabs, Colloids &colloids) {
   slabs_ = slabs;
   std::destroy_at(&ghosts_); // (nothing of it lasts between steps but the radii)
   std::construct_at(&ghosts_, slabs_, box_);
+  migration_.clear_neighbours(); // (any rank: the old slabs' neighbours may not reach)
   migrate_colloids(colloids, slabs_, migration_);
 }
 

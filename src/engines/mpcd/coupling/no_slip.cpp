@@ -369,6 +369,9 @@ void NoSlipCoupling::set_slabs(const parallel::Slabs &slabs, Colloids &c) {
   std::destroy_at(&ghosts_);
   std::construct_at(&ghosts_, slabs_, box_);
   const ScopedSeconds talk(message_seconds_);
+  // (to any rank: the old slabs' neighbours may not reach; the next hand-over sets them again)
+  contact_migration_.clear_neighbours();
+  migration_.clear_neighbours();
   if (springs_) // each contact goes where its owner colloid goes (before the colloids leave)
     migrate_contacts(history_, c, slabs_, contact_migration_);
   migrate_colloids(c, slabs_, migration_);
