@@ -60,8 +60,22 @@ void open_abort_line() {
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);
   if (ranks < 2 || abort_window != MPI_WIN_NULL)
     return;
-  MPI_Win_allocate(rank == 0 ? static_cast<MPI_Aint>(sizeof(int)) : 0, sizeof(int), MPI_INFO_NULL,
-                   MPI_COMM_WORLD, &abort_count, &abort_window);
+  // An MPI without one-sided communication must not end every run here: without the window
+  // each failing rank prints its line, as before.
+  MPI_Errhandler was;
+  MPI_Comm_get_errhandler(MPI_COMM_WORLD, &was);
+  MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
+  const int rc = MPI_Win_allocate(rank == 0 ? static_cast<MPI_Aint>(sizeof(int)) : 0, sizeof(int),
+                                  MPI_INFO_NULL, MPI_COMM_WORLD, &abort_count, &abort_window);
+  MPI_Comm_set_errhandler(MPI_COMM_WORLD, was);
+  MPI_Errhandler_free(&was);
+  int ok = rc == MPI_SUCCESS ? 1 : 0, all = 0;
+  MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  if (!all) { // (a window some ranks hold is left to MPI_Finalize)
+    abort_window = MPI_WIN_NULL;
+    abort_count = nullptr;
+    return;
+  }
   if (rank == 0) {
     MPI_Win_lock(MPI_LOCK_EXCLUSIVE, 0, 0, abort_window);
     *abort_count = 0;
