@@ -7,6 +7,7 @@
 #include "narrows/engines/lgca/driver.hpp"
 #include "narrows/engines/mpcd/bench.hpp"
 #include "narrows/engines/mpcd/driver.hpp"
+#include "narrows/run/collective.hpp"
 #include "narrows/run/drive.hpp"
 #include "narrows/run/shell.hpp"
 #include "narrows/run/stop_signals.hpp"
@@ -218,12 +219,15 @@ int main(int argc, char **argv) {
   // checkpoint, instead of killing it by the default action.
   std::optional<narrows::run::StopSignals> signals(std::in_place);
   // A rank that alone finds a broken invariant inside a step prints its one line and ends the
-  // run with MPI_Abort (the other ranks wait in the step's next message: mpcd/simulation.cpp).
+  // run with MPI_Abort (the other ranks wait in the step's next message: mpcd/simulation.cpp);
+  // when several find one in the same step, only the first to claim the line prints it
+  // (run::abort_with_line).
   // Open MPI 4.1 then adds its own MPI_ABORT notice, which mpirun without --quiet fails to unpack
   // ("Data unpack would read past end of buffer", issue 35 item 4); quiet processes send none.
   // Not overwritten if the user set it.
   setenv("OMPI_MCA_orte_execute_quiet", "1", 0);
   MPI_Init(&argc, &argv);
+  narrows::run::open_abort_line(); // one line when several ranks fail inside a step at once
   int code = 0;
   try {
     code = main_inner(argc, argv, signals);
@@ -236,6 +240,7 @@ int main(int argc, char **argv) {
       std::cerr << "narrows: internal error: " << one_line(e.what()) << std::endl;
     code = 1;
   }
+  narrows::run::close_abort_line();
   MPI_Finalize();
   return code;
 }

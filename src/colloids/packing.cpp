@@ -62,6 +62,11 @@ std::string number(double v) {
 
 } // namespace
 
+double packing_work(std::size_t n) {
+  const auto colloids = static_cast<double>(n);
+  return colloids * (1e4 + colloids);
+}
+
 double max_overlap(const Colloids &c, const mpcd::Box &box) {
   if (box.dim == 2)
     return box.walls_y ? deepest<2, true>(c, box) : deepest<2, false>(c, box);

@@ -200,6 +200,10 @@ void parse_packing(const Checker &c, const value *sec, const value &fraction, co
       out.count += k.count;
     }
   }
+  if (const value *v = find(sec, "packing_max_work"))
+    out.packing_max_work = c.number(*v, "colloids.packing_max_work",
+                                    "a number > 0 (colloid-steps the packing may take)",
+                                    [](double x) { return x > 0.0; });
   bool none = out.count < 1;
   for (const auto &k : out.kinds)
     none = none || k.count < 1;
@@ -334,6 +338,10 @@ std::optional<Colloids> parse_colloids(const Checker &c, const value *sec, const
     c.fail("colloids.packing_fraction",
            "colloids.packing_fraction = " + repr(*fraction) +
                " is the target of placement = \"packing\"; allowed only with it");
+  if (const value *v = find(sec, "packing_max_work"); v != nullptr && !packing)
+    c.fail("colloids.packing_max_work",
+           "colloids.packing_max_work = " + repr(*v) +
+               " bounds the work of placement = \"packing\"; allowed only with it");
   if (packing)
     parse_packing(c, sec, *fraction_or_missing(c, fraction, dims), domain, dims, walls, no_slip,
                   out);

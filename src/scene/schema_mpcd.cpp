@@ -171,7 +171,11 @@ const EngineSchema &mpcd_schema() {
           "",
           "target area (volume) fraction of the colloids in the box; it sets the number of "
           "colloids: one kind round(φ V / v(r)) (`count` and `radius_sd` refused), several kinds "
-          "their `count`s (read as the number ratio) times one common factor, each rounded"}}}},
+          "their `count`s (read as the number ratio) times one common factor, each rounded"},
+         {"packing_max_work", "number", "1e9", R"(> 0; only with `"packing"`)", "",
+          "refuse the scene (at `check` and `run`) when the estimated work of its packing, N (10⁴ "
+          "+ N) colloid-steps for N colloids, exceeds this; about 10⁷ colloid-steps take a second, "
+          "on every rank alike"}}}},
       {{"temperature", "`/observables/temperature/value [T]`",
         "kT of the fluid relative to the cell means", always},
        {"momentum", "`/observables/momentum/value [T][d]`", "total momentum, fluid + colloids",

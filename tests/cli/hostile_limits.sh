@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Issue 35 items 2-4 (all but restart checkpoints of colloids): each message the campaign found
 # misleading, rewritten to name the key and the range, is grepped here; work and memory are
-# bounded at check (continuum.max_work), a long profile is parsed in linear time, a continuum
+# bounded at check (continuum.max_work, colloids.packing_max_work), a long profile is parsed in linear time, a continuum
 # checkpoint edited out of its model's range is refused at the restart (not stopped later as "the
 # scheme is unstable"), and a SIGTERM in the first tenths of a second of a run stops it cleanly.
 set -u
@@ -42,6 +42,34 @@ refused "jamming on 16777216 points: over continuum.max_work" \
   "$narrows" check "$src/run/continuum_jamming_pulses.toml" --set continuum.cells=16777216
 refused "continuum.max_work = 0 is out of range" "continuum.max_work = 0 is out of range" \
   "$narrows" check "$tmp/burgers.toml" --set continuum.length=1.0 --set continuum.max_work=0
+
+# ---- packing work bound: the channel of Table 6.1 at l = 20000 (36578 disks) passed check after
+# 36-158 s, which packed it; now check refuses it at once (the estimate, before any packing),
+# and so does run, with nothing written (the timeouts end them should they pack). The limit is a
+# key the user can raise.
+t0=$(date +%s%N)
+refused "a 20000-long packed channel: over colloids.packing_max_work" \
+  "pulses_table6_1.toml: colloids.packing_max_work: packing 36578 colloids takes about 1.7e+09 colloid-steps (36578 colloids x about 4.66e+04 relaxation steps, 1e4 + 1 per colloid); allowed: at most colloids.packing_max_work = 1e+09 (raise colloids.packing_max_work to pack them" \
+  timeout 60 "$narrows" check "$src/run/pulses_table6_1.toml" --set 'domain.size=[20000.0,50.0]'
+took=$((($(date +%s%N) - t0) / 1000000))
+echo "20000-long packed channel: check refused it in $took ms"
+check "a 20000-long packed channel: refused within 2 s (took $took ms)" '[ "$took" -le 2000 ]'
+refused "a 20000-long packed channel: run refuses it too" "colloids.packing_max_work: packing 36578 colloids" \
+  timeout 60 "$narrows" run "$src/run/pulses_table6_1.toml" --set 'domain.size=[20000.0,50.0]' \
+  --out "$tmp/long"
+check "a 20000-long packed channel: nothing written" '[ ! -e "$tmp/long" ]'
+# The limit is the key's: the shipped 600-long channel (1098 disks, 1.2e7 colloid-steps) is
+# refused below its estimate and packed above it.
+refused "colloids.packing_max_work = 1e7 < 1.2e7" \
+  "colloids.packing_max_work: packing 1098 colloids takes about 1.22e+07 colloid-steps.* allowed: at most colloids.packing_max_work = 1e+07" \
+  "$narrows" check "$src/run/pulses_table6_1.toml" --set colloids.packing_max_work=1e7
+runs "colloids.packing_max_work = 2e7 packs 1098 disks" "$narrows" check \
+  "$src/run/pulses_table6_1.toml" --set colloids.packing_max_work=2e7 > /dev/null
+refused "colloids.packing_max_work = 0 is out of range" "colloids.packing_max_work = 0 is out of range" \
+  "$narrows" check "$src/run/pulses_table6_1.toml" --set colloids.packing_max_work=0
+refused "colloids.packing_max_work without packing" \
+  'colloids.packing_max_work = 1e+12 bounds the work of placement = "packing"; allowed only with it' \
+  "$narrows" check "$src/run/colloid_kinds_channel.toml" --set colloids.packing_max_work=1e12
 
 # ---- a huge jamming velocity: the step count was printed with 300 digits and blamed cells
 cat > "$tmp/jam.toml" << 'TOML'

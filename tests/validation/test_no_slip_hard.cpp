@@ -154,6 +154,52 @@ TEST(NoSlipHardCase, FluidLeftInsideAColloidIsAnInvariantError) {
   EXPECT_NO_THROW(coupling.bounce_back(f, c, [](mpcd::Fluid &, double) {}));
 }
 
+// A particle put back on a colloid's surface stays outside it far along a long channel: the gap
+// it is placed at was 1e-12 of the radius, below the spacing of doubles near x = 2e4 (3.6e-12),
+// so rounding put some on the surface of a colloid there back inside (a packed channel 20000
+// long stopped at step 0: "fluid particle ... is inside colloid ... after its bounce-back").
+// 2000 particles just inside a colloid of radius 1.6 at x = 19974.3, all round it, with spring
+// contacts (a particle bounced twice in a step stays on the surface) and a stream that leaves
+// them where they are (each level then projects the particle where it is, as in a tight pore).
+TEST(NoSlipSurface, FarAlongAChannelThePlacedParticlesStayOutside) {
+  const mpcd::Box box = mpcd::make_periodic_box(2, {20000, 20, 1});
+  const parallel::Slabs slabs(MPI_COMM_SELF, 20000);
+  coupling::NoSlipParams params;
+  params.dt = 0.05;
+  params.spring_contacts = true;
+  coupling::NoSlipCoupling coupling(params, box, slabs);
+  colloids::Colloids c;
+  c.dim = 2;
+  c.resize(1);
+  c.x[0] = {19974.3};
+  c.x[1] = {10.0};
+  c.radius = {1.6};
+  c.mass = {100.0};
+  c.id = {0};
+  mpcd::Fluid f;
+  f.dim = 2;
+  const std::size_t n = 2000;
+  f.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double angle = 2.0 * 3.14159265358979 * (static_cast<double>(i) + 0.5) / n;
+    f.x[0][i] = c.x[0][0] + (1.6 - 1e-6) * std::cos(angle);
+    f.x[1][i] = c.x[1][0] + (1.6 - 1e-6) * std::sin(angle);
+    f.v[0][i] = -std::cos(angle); // inwards
+    f.v[1][i] = -std::sin(angle);
+    f.id[i] = i;
+  }
+  coupling.move_colloids(f, c);
+  try {
+    coupling.bounce_back(f, c, [](mpcd::Fluid &, double) {});
+  } catch (const Error &e) {
+    ADD_FAILURE() << e.what();
+  }
+  std::size_t inside = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    inside += std::hypot(f.x[0][i] - c.x[0][0], f.x[1][i] - c.x[1][0]) <= 1.6;
+  EXPECT_EQ(inside, 0u);
+}
+
 // Polydisperse disks at area fraction 0.5 under a strong drive: 11 disks of radius 2-4 (mean
 // area 28.6) in a 36 x 18 channel, n = 3, MPC-AT+a, dt 0.05, g = 0.02 (the centre-line velocity of
 // the empty channel, g L^2 / (8 nu) with nu ~ 0.5, is ~1.6: Re = u 2a / nu ~ 10 on the colloid

@@ -52,6 +52,14 @@ struct PackingReport {
   double seconds = 0.0;
 };
 
+// The work of packing n colloids, estimated before it is made, in colloid-steps (each FIRE
+// relaxation step computes the spring forces on every colloid): n (1e4 + n), the relaxation
+// steps growing with the number of colloids (longer chains of contacts relax more slowly, and
+// more of the ~170 growth stages jam and are shaken). Calibrated on the dense channel of Kanehl
+// (thesis) Table 6.1 (phi = 0.75, 2w = 50; docs/scenes.md, "packing"): 1098 to 17558 disks took
+// 9280 to 31540 steps, about 1e7 colloid-steps a second; looser packings take fewer.
+double packing_work(std::size_t n);
+
 // Places the colloids of c (radius set, positions overwritten, velocities zeroed) as a packing
 // in `box` with draws keyed by (seed, id). With walls the centres start at least their radius
 // from the walls. input_error naming `key` if the overlaps cannot be brought below the

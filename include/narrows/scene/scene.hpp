@@ -115,6 +115,8 @@ struct Colloids {
   ColloidSprings spring;         // contacts = "spring"
   std::vector<std::array<double, 3>> positions; // placement "list"
   double packing_fraction = 0.0;                // placement "packing": the target fraction
+  // placement "packing": the largest estimated work (colloids::packing_work, colloid-steps)
+  double packing_max_work = 1e9;
   // Where each position was given, for messages: "colloids.positions[3]" or
   // "colloids.positions_file (path:line)"; empty: "colloids.positions[i]".
   std::vector<std::string> position_keys;

@@ -190,6 +190,20 @@ Colloids place_colloids(const scene::Colloids &spec, const mpcd::Box &box, doubl
   set_radii_and_masses(c, spec, density, seed);
   switch (spec.placement) {
   case scene::ColloidPlacement::packing: {
+    // Refused before it starts (check and run alike): a packing of many colloids takes minutes
+    // to hours, on every rank alike, before step 0.
+    const double work = colloids::packing_work(n);
+    if (!(work <= spec.packing_max_work)) {
+      char line[400];
+      std::snprintf(
+          line, sizeof line,
+          "colloids.packing_max_work: packing %zu colloids takes about %.3g colloid-steps "
+          "(%zu colloids x about %.3g relaxation steps, 1e4 + 1 per colloid); allowed: "
+          "at most colloids.packing_max_work = %.3g (raise colloids.packing_max_work to "
+          "pack them: about 1e7 colloid-steps take a second, on every rank alike)",
+          n, work, n, work / static_cast<double>(n), spec.packing_max_work);
+      throw input_error(line);
+    }
     colloids::PackingParams params;
     params.poll = poll;
     const PackingReport r = pack_colloids(

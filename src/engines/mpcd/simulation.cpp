@@ -12,6 +12,7 @@
 #include "narrows/engines/mpcd/kernels/thermostat.hpp"
 #include "narrows/engines/mpcd/walls/bounce_back.hpp"
 #include "narrows/engines/mpcd/walls/virtual_particles.hpp"
+#include "narrows/run/collective.hpp"
 #include "narrows/run/stop_signals.hpp"
 
 #include <algorithm>
@@ -238,11 +239,9 @@ void MpcdSimulation::advance() {
     MPI_Comm_size(comm_, &ranks);
     const std::string what = "invariant broken at step " + std::to_string(step_) + " on rank " +
                              std::to_string(rank) + ": " + e.what();
-    if (ranks > 1) { // only this rank knows: the others wait in the step's next message
-      std::fprintf(stderr, "narrows: %s\n", what.c_str());
-      std::fflush(stderr);
-      MPI_Abort(comm_, static_cast<int>(ExitCode::invariant));
-    }
+    if (ranks > 1) // only this rank knows: the others wait in the step's next message (one
+                   // line even when several ranks fail in the same step)
+      run::abort_with_line(comm_, what, static_cast<int>(ExitCode::invariant));
     throw invariant_error(what);
   }
   ++step_;

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <sstream>
 
@@ -21,8 +22,13 @@ namespace {
 constexpr int max_halvings = 20;
 
 // Placed this far outside the surface (relative to the radius), so that it is not found inside
-// again by rounding.
+// again by rounding; and at least `rounding_gap` times the box's longest edge, since the point is
+// stored as an absolute position: near x = 2e4 doubles are 3.6e-12 apart, more than 1e-12 of a
+// radius 1.6, and a particle put on the surface of a colloid there was found inside it again
+// (a packed channel 20000 long stopped at step 0). Boxes shorter than ~560 radii keep the relative
+// gap, bitwise as before.
 constexpr double surface_gap = 1e-12;
+constexpr double rounding_gap = 8.0 * std::numeric_limits<double>::epsilon();
 
 } // namespace
 
@@ -142,6 +148,8 @@ BounceStats NoSlipCoupling::bounce_back(mpcd::Fluid &fluid, Colloids &c,
     active_[j] = j;
   kicks_.clear();
   const double two_pi_over_ly = 2.0 * std::numbers::pi / box_.length[1];
+  const double absolute_gap =
+      rounding_gap * std::max({box_.length[0], box_.length[1], dim_ == 3 ? box_.length[2] : 0.0});
   double T = params_.dt;
   level_.dim = dim_;
   for (int depth = 1; !active_.empty(); ++depth) {
@@ -173,7 +181,8 @@ BounceStats NoSlipCoupling::bounce_back(mpcd::Fluid &fluid, Colloids &c,
         d[1] = d[2] = 0.0;
         len2 = 1.0;
       }
-      const double scale = c.radius[a] * (1.0 + surface_gap) / std::sqrt(len2);
+      const double scale =
+          std::max(c.radius[a] * (1.0 + surface_gap), c.radius[a] + absolute_gap) / std::sqrt(len2);
       double s[3] = {0.0, 0.0, 0.0}, u[3], dp[3];
       for (int k = 0; k < dim_; ++k)
         s[k] = d[k] * scale; // the surface point relative to the centre
