@@ -5,7 +5,7 @@
 # Usage: bash tools/scaling_model.sh [NARROWS] [DIR] [MODEL OPTIONS...]
 #   defaults: build/narrows, out/scaling_model; options go to scaling_model.py (e.g. --ranks)
 #
-# Runs run/pulses_table6_1.toml (l = 600 b) on 1 rank for 50 steps (the one-rank cost per fluid
+# Runs run/pulses_table6_1.toml (l = 600 b) on 1 rank for 200 steps (the one-rank cost per fluid
 # particle-step) and on 3 ranks for 20 and 70 steps with tools/mpi_calls.c preloaded, which
 # counts every MPI call and the bytes it sends; the difference of the two counts is per step.
 # Nothing is asserted: the network parameters are the model's (see scaling_model.py).
@@ -19,13 +19,13 @@ mpicc -shared -fPIC -O2 -o "$dir/mpi_calls.so" "$here/tools/mpi_calls.c"
 mpi=(mpirun --oversubscribe)
 [ "$(id -u)" -eq 0 ] && mpi+=(--allow-run-as-root)
 scene=$here/run/pulses_table6_1.toml
-"$narrows" run "$scene" --set run.steps=50 --set output.checkpoint_every=100000 \
+"$narrows" run "$scene" --set run.steps=200 --set output.every=100000 --set output.checkpoint_every=0 \
   --out "$dir/one" --overwrite >"$dir/one.log" 2>&1
 rate=$(sed -n 's/^Loop time .*(\([0-9.e+]*\) particle-steps\/s)$/\1/p' "$dir/one.log")
-# the spring contacts' seconds per colloid-step (the "contacts" stage, 1098 colloids, 50 steps)
+# the spring contacts' seconds per colloid-step (the "contacts" stage, 1098 colloids, 200 steps)
 contacts=$(sed -n 's/^no-slip coupling stages.* contacts \([0-9.e+-]*\),.*/\1/p' "$dir/one.log")
 colloids=$(sed -n 's/^packing: \([0-9]*\) colloids.*/\1/p' "$dir/one.log" | head -1)
-cost=$(/usr/bin/python3 -c "import sys; print(float(sys.argv[1]) / 50 / int(sys.argv[2]))" \
+cost=$(/usr/bin/python3 -c "import sys; print(float(sys.argv[1]) / 200 / int(sys.argv[2]))" \
   "$contacts" "$colloids")
 per_length=$(/usr/bin/python3 -c "import sys; print(int(sys.argv[1]) / 600)" "$colloids")
 for steps in 20 70; do
