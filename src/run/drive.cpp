@@ -22,6 +22,7 @@ void drive(Engine &engine, Shell &shell) {
   shell.start_loop(loop.first);
   while (engine.step() < span.end) {
     if (!engine.advance()) { // a signal interrupted the step: every rank stops here
+      forget_agreed_stop_signal();
       shell.stop_requested();
       break;
     }

@@ -23,7 +23,20 @@ StopSignals::~StopSignals() {
   sigaction(SIGUSR1, &old_usr1_, nullptr);
 }
 
+namespace {
+int agreed_stop = -1; // handed over by a step's collective, -1 if none since the last poll
+} // namespace
+
+void hand_agreed_stop_signal(int any) { agreed_stop = any; }
+
+void forget_agreed_stop_signal() { agreed_stop = -1; }
+
 int StopSignals::requested(MPI_Comm comm) const {
+  if (agreed_stop >= 0) { // (every rank handed the same value in the same step)
+    const int any = agreed_stop;
+    agreed_stop = -1;
+    return any;
+  }
   int local = stop_signal, any = 0;
   MPI_Allreduce(&local, &any, 1, MPI_INT, MPI_MAX, comm);
   return any;

@@ -50,8 +50,8 @@ check "halo exchanges per step <= 9 (got '$exchanges')" \
 alltoall=$(per_step alltoall)
 check "no MPI_Alltoall in a step (got '$alltoall')" '[ "$alltoall" = "0.0" ]'
 collectives=$(per_step allreduce)
-check "at most 2 MPI_Allreduce per step (got '$collectives')" \
-  '$py -c "import sys; sys.exit(not float(sys.argv[1]) <= 2)" "${collectives:-9}"'
+check "at most 1 MPI_Allreduce per step (got '$collectives')" \
+  '$py -c "import sys; sys.exit(not float(sys.argv[1]) <= 1)" "${collectives:-9}"'
 check "no MPI_Allgather in a step (got '$(per_step allgather)')" '[ "$(per_step allgather)" = "0.0" ]'
 
 # 1 rank and 8 ranks (oversubscribed) bitwise, contacts across slab edges.
