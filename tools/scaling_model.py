@@ -24,8 +24,8 @@ Model (stated, not measured here):
     collective): the copies of ghost colloids and their contacts, and the impulse sums and
     refreshes of the ghosts, reach every rank within the ghost shell (ceil(shell / slab) on each
     side), the migrations one on each side; the measured bytes over the bandwidth;
-  * MPI_Allreduce of a few numbers: recursive doubling, ceil(log2 P) rounds of alpha (Thakur,
-    Rabenseifner and Gropp (2005), short messages);
+  * MPI_Allreduce of a few numbers: recursive doubling, ceil(log2 P) rounds of alpha
+    (Thakur et al. (2005), short messages);
   * bytes per rank and step stay those measured on 3 ranks: they come from the ghost shell on
     both faces of a slab, whose size does not change with P.
 """
