@@ -21,9 +21,10 @@ Model (stated, not measured here):
   * a message costs alpha + bytes / bandwidth (alpha = 2 us, 10 GB/s: an InfiniBand cluster);
   * a halo exchange (parallel/exchange.cpp) is one round of point-to-point messages, one to
     each neighbouring rank that can hold rows (counts in the messages themselves; no
-    collective): the copies of ghost colloids and their contacts, and the impulse sums and
-    refreshes of the ghosts, reach every rank within the ghost shell (ceil(shell / slab) on each
-    side), the migrations one on each side; the measured bytes over the bandwidth;
+    collective): the copies of ghost colloids and of their contacts (--wide 2) reach every rank
+    within the ghost shell (ceil(shell / slab) on each side); the impulse sums, refreshes and
+    migrations one on each side (the shell is dropped after the spring sub-steps); the measured
+    bytes over the bandwidth;
   * MPI_Allreduce of a few numbers: recursive doubling, ceil(log2 P) rounds of alpha
     (Thakur et al. (2005), short messages);
   * bytes per rank and step stay those measured on 3 ranks: they come from the ghost shell on
