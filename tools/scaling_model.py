@@ -74,6 +74,10 @@ def main():
     p.add_argument("--path", type=float, default=0.26,
                    help="largest path of a colloid in a step, m (0.25 allowance + 3 v dt)")
     p.add_argument("--substeps", type=int, default=10, help="spring sub-steps (0: no shell)")
+    p.add_argument("--shell", type=float, default=None,
+                   help="ghost region beyond a slab, b (default: the spring shell from "
+                        "--substeps, --radius-max, --path; hard contacts: base + 4 contact "
+                        "distances)")
     p.add_argument("--wide", type=float, default=2,
                    help="exchanges per step that reach across the ghost shell")
     a = p.parse_args()
@@ -88,6 +92,8 @@ def main():
     contact = 2.0 * a.radius_max + 2.0 * a.path
     shell = ((a.substeps + 2) * contact if a.substeps > 0 else 0.0) + 1.0 + 2.0 * a.path + \
         2 ** (1 / 24) * 2.0 * a.radius_max + a.path
+    if a.shell is not None:
+        shell = a.shell
     print(f"halo exchanges per step: {exchanges:.3g}")
     print(f"measured per step (busiest rank of 3): {exchanges:.3g} halo exchanges "
           f"({alltoall:.3g} of them after an MPI_Alltoall of the counts), {messages:.1f} messages "
@@ -97,7 +103,7 @@ def main():
     print(f"model: alpha = {a.alpha * 1e6:.3g} us, bandwidth = {a.bandwidth / 1e9:.3g} GB/s, "
           f"{a.particles:.3g} fluid particles, {a.colloids_per_length:.3g} colloids per b, "
           f"ghost shell {shell:.3g} b on each side ({a.wide} of the exchanges reach across it)\n")
-    print("| ranks | slab (b) | neighbours each side | compute/step | of it the shell's springs "
+    print("| ranks | slab (b) | neighbours each side | compute/step | of it the ghosts' contacts "
           "| comm/step | efficiency |")
     print("|---|---|---|---|---|---|---|")
     lines = []

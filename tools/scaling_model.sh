@@ -18,16 +18,21 @@ mkdir -p "$dir"
 mpicc -shared -fPIC -O2 -o "$dir/mpi_calls.so" "$here/tools/mpi_calls.c"
 mpi=(mpirun --oversubscribe)
 [ "$(id -u)" -eq 0 ] && mpi+=(--allow-run-as-root)
-scene=$here/run/pulses_table6_1.toml
-"$narrows" run "$scene" --set run.steps=200 --set output.every=100000 --set output.checkpoint_every=0 \
+# SCENE, ONE_STEPS and LENGTH (the scene's channel length along x) may name another channel:
+#   SCENE=run/segregation_fig5_10_3d.toml LENGTH=40 ONE_STEPS=50 bash tools/scaling_model.sh \
+#     build/narrows out/model3d --substeps 0 --particles 1.28e6 --length 40 --ranks 4 8 13
+scene=${SCENE:-$here/run/pulses_table6_1.toml}
+steps1=${ONE_STEPS:-200}
+length=${LENGTH:-600}
+"$narrows" run "$scene" --set run.steps=$steps1 --set output.every=100000 --set output.checkpoint_every=0 \
   --out "$dir/one" --overwrite >"$dir/one.log" 2>&1
 rate=$(sed -n 's/^Loop time .*(\([0-9.e+]*\) particle-steps\/s)$/\1/p' "$dir/one.log")
-# the spring contacts' seconds per colloid-step (the "contacts" stage, 1098 colloids, 200 steps)
+# the contacts' seconds per colloid-step (the "contacts" stage over the colloids and steps)
 contacts=$(sed -n 's/^no-slip coupling stages.* contacts \([0-9.e+-]*\),.*/\1/p' "$dir/one.log")
 colloids=$(sed -n 's/^packing: \([0-9]*\) colloids.*/\1/p' "$dir/one.log" | head -1)
-cost=$(/usr/bin/python3 -c "import sys; print(float(sys.argv[1]) / 200 / int(sys.argv[2]))" \
-  "$contacts" "$colloids")
-per_length=$(/usr/bin/python3 -c "import sys; print(int(sys.argv[1]) / 600)" "$colloids")
+cost=$(/usr/bin/python3 -c "import sys; print(float(sys.argv[1]) / int(sys.argv[2]) / int(sys.argv[3]))" \
+  "$contacts" "$steps1" "$colloids")
+per_length=$(/usr/bin/python3 -c "import sys; print(int(sys.argv[1]) / float(sys.argv[2]))" "$colloids" "$length")
 for steps in 20 70; do
   rm -f "$dir/calls_$steps.txt"
   MPI_CALLS_OUT=$dir/calls_$steps.txt "${mpi[@]}" -n 3 -x LD_PRELOAD="$dir/mpi_calls.so" \
