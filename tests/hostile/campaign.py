@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The hostile-input campaign of issue 18 as a test.
+"""The hostile-input campaigns of issues 18 and 35 as a test.
 
 Mutates every scene in run/ (keys deleted, values retyped, zero, negative, 1e19, 1e300, NaN,
 inf, integers beyond int64, garbage text), feeds whole-file garbage (empty, binary, truncated,
@@ -17,8 +17,9 @@ do not touch, steps and times that disagree, an edited scene; densities outside 
 range), restarted on 1, 2 or 3 ranks, each to be refused with exit 2, one line, nothing in
 --out; extreme model values (colloids.spring.*, the keys of hard-contact and no-slip scenes,
 continuum.*: 0, -1, 1e300, 5e-324, nan, inf) through `check` and a short run; and SIGTERM early
-(0.3 s, while MPI starts) or late (inside the loop) into runs of every engine, no-slip, hard,
-spring and continuum scenes on 1-3 ranks, each to end with exit 0 within 20 s.
+(0-0.5 s after main() installed its handlers: in MPI_Init) or late (inside the loop) into runs of
+every engine, no-slip, hard, spring and continuum scenes on 1-3 ranks, each to end with exit 0
+within 20 s.
 
 Fails on: any exit other than 0, 2 or 3; death by a signal; a run over its budget (a SIGTERM is
 sent at the budget, and a run that has not ended a grace period later is a hang); a restart from
@@ -30,12 +31,12 @@ Usage: campaign.py NARROWS SOURCE_DIR [--full] [--seed N] [--jobs J] [--classes 
   quick (default): 60 of the ~6000 scene mutations, 6 short runs, 3 data bit flips per
   checkpoint and 4 in /colloid/* of the lgca colloid checkpoint; of issue 35's classes a
   hard-contact, a spring-contact, a Burgers and a segregation checkpoint with 2-3 edits each and
-  its untouched control, 4 extreme values, 2 signals (about 80 s on 2 cores; the ctest);
+  its untouched control, 4 extreme values, 2 signals (67 s on 2 busy cores; the ctest);
   --full: 1000 scene mutations, 120 short runs, 25 data bit flips per checkpoint (125 over the
   five: mpcd, mpcd with colloids, lgca, lgca with a colloid, kmc) and 100 in /colloid/*; every
   edit of issue 35's classes on checkpoints of 8 scenes each written on 1, 2 and 3 ranks (each
   edit restarted on 1, 2 and 3 ranks over the three; two thirds of the edits on each), 770
-  extreme values through check (and a short run of each accepted one), 90 signals. --seed
+  extreme values through check (and a short run of each accepted one), 120 signals. --seed
   picks another sample; --classes new runs issue 35's classes alone.
 Prints the counts: of issue 18's classes cases, refused, accepted, invariant stops, stopped at
 the budget, crashes, hangs, damaged restarts not refused; of each of issue 35's classes (and per

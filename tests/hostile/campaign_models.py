@@ -146,8 +146,9 @@ def signalled(cmd, ranks, delay, bound=20.0):
     loader runs, 0.06 s after exec and over 0.1 s on a loaded machine, and the default action
     kills: no program can help it). On N ranks the signal goes to each rank, as a batch system
     sends it (mpirun itself dies by a signal that comes before it has set up its handlers).
-    "accepted" if it ended with exit 0 within `bound` s of the signal, "crash" if a signal killed
-    it or it exited otherwise, "hang" past the bound."""
+    "accepted" if it ended with exit 0 within `bound` s of the signal, "invariant" if it stopped
+    with exit 3 (a broken invariant: one line, before or after the signal), "crash" if a signal
+    killed it or it exited otherwise, "hang" past the bound."""
     start = time.monotonic()
     p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
                          start_new_session=True)
@@ -171,7 +172,9 @@ def signalled(cmd, ranks, delay, bound=20.0):
         p.communicate()
         return "hang", None, time.monotonic() - start, []
     lines = [l for l in err.decode("utf-8", "replace").splitlines() if l.strip()]
-    outcome = "accepted" if p.returncode == 0 else "crash"
+    outcome = {0: "accepted", 3: "invariant"}.get(p.returncode, "crash")
+    if outcome == "invariant" and len(lines) != 1:
+        outcome = "crash"
     return outcome, p.returncode, time.monotonic() - start, lines
 
 
