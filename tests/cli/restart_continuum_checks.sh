@@ -55,6 +55,13 @@ case_ "segregation: a fraction < 0" s continuum_segregation_2d \
   set /continuum/fraction_0 3 -0.1
 case_ "segregation: a kind's amount changed" s continuum_segregation_2d \
   "/continuum/fraction_0 has the mean 0.250.*allowed: 0.25" set /continuum/fraction_0 3 0.3
+# The step and the time one state (time = step x time_step): /parameters/step edited alone was
+# restarted from (the campaign, tests/hostile/campaign_models.py, found it).
+case_ "burgers: /parameters/step edited" b continuum_burgers_riemann \
+  "/parameters/time = 20 but /parameters/step = 99 is t = 19.8.*; allowed: /parameters/time = /parameters/step x /continuum/time_step" \
+  set /parameters/step "" 99
+case_ "segregation: /parameters/step edited" s continuum_segregation_2d \
+  "/parameters/time = 1592.35.* but /parameters/step = 2001 is t = 1593.1" set /parameters/step "" 2001
 runs "burgers: untouched checkpoint restarts on 3 ranks" timeout 60 "${mpi[@]}" -n 3 "$narrows" \
   run "$src/run/continuum_burgers_riemann.toml" "${B[@]}" \
   --restart "$(ls "$tmp"/b/checkpoint-*.h5 | head -1)" --out "$tmp/b2" > /dev/null 2>&1

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The hostile-input campaign of issue 18 as a test.
+"""The hostile-input campaigns of issues 18 and 35 as a test.
 
 Mutates every scene in run/ (keys deleted, values retyped, zero, negative, 1e19, 1e300, NaN,
 inf, integers beyond int64, garbage text), feeds whole-file garbage (empty, binary, truncated,
@@ -8,23 +8,39 @@ on a sample of the accepted ones, and damages checkpoints of one scene per engin
 flips in dataset data and anywhere in the file, truncation, swapped engines) before
 `narrows run --restart`.
 
-Signals: a run of a scene per engine (and a packed channel) is sent SIGTERM early (0.3 s, while
-MPI starts) or late (inside the loop); it must end with exit 0 within 20 s (3 cases quick, 30
-full).
+The classes of issue 35 (tests/hostile/campaign_models.py): colloid checkpoints (no-slip
+colloids without contacts, with hard and with spring contacts) and continuum checkpoints
+(Burgers, TASEP, jamming, segregation) written on 1, 2 or 3 ranks and edited into impossible
+states (overlaps, radii, masses, positions outside the box or in a wall, speeds, NaN and inf in
+every field, non-unit quaternions, fields and rows deleted or added, contacts between bodies that
+do not touch, steps and times that disagree, an edited scene; densities outside the model's
+range), restarted on 1, 2 or 3 ranks, each to be refused with exit 2, one line, nothing in
+--out; extreme model values (colloids.spring.*, the keys of hard-contact and no-slip scenes,
+continuum.*: 0, -1, 1e300, 5e-324, nan, inf) through `check` and a short run; and SIGTERM early
+(0-0.5 s after main() installed its handlers: in MPI_Init) or late (inside the loop) into runs of
+every engine, no-slip, hard, spring and continuum scenes on 1-3 ranks, each to end with exit 0
+within 20 s.
 
 Fails on: any exit other than 0, 2 or 3; death by a signal; a run over its budget (a SIGTERM is
 sent at the budget, and a run that has not ended a grace period later is a hang); a restart from
-a checkpoint whose data were damaged that is not refused (exit 2).
+a checkpoint whose data were damaged that is not refused (exit 2); an impossible state restarted
+from (exit 0) or not refused before the first step (exit 3); a refusal of more than one line or
+with files in --out.
 
-Usage: campaign.py NARROWS SOURCE_DIR [--full] [--seed N] [--jobs J]
+Usage: campaign.py NARROWS SOURCE_DIR [--full] [--seed N] [--jobs J] [--classes all|old|new]
   quick (default): 60 of the ~6000 scene mutations, 6 short runs, 3 data bit flips per
-  checkpoint and 4 in /colloid/* of the lgca colloid checkpoint (about a minute on 2 cores;
-  the ctest);
+  checkpoint and 4 in /colloid/* of the lgca colloid checkpoint; of issue 35's classes a
+  hard-contact, a spring-contact, a Burgers and a segregation checkpoint with 2-3 edits each and
+  its untouched control, 4 extreme values, 2 signals (67 s on 2 busy cores; the ctest);
   --full: 1000 scene mutations, 120 short runs, 25 data bit flips per checkpoint (125 over the
-  five: mpcd, mpcd with colloids, lgca, lgca with a colloid, kmc) and 100 in /colloid/* (under
-  15 minutes here). --seed picks another sample.
-Prints the counts: cases, refused, accepted, invariant stops, stopped at the budget, crashes,
-hangs, damaged restarts not refused.
+  five: mpcd, mpcd with colloids, lgca, lgca with a colloid, kmc) and 100 in /colloid/*; every
+  edit of issue 35's classes on checkpoints of 8 scenes each written on 1, 2 and 3 ranks (each
+  edit restarted on 1, 2 and 3 ranks over the three; two thirds of the edits on each), 770
+  extreme values through check (and a short run of each accepted one), 120 signals. --seed
+  picks another sample; --classes new runs issue 35's classes alone.
+Prints the counts: of issue 18's classes cases, refused, accepted, invariant stops, stopped at
+the budget, crashes, hangs, damaged restarts not refused; of each of issue 35's classes (and per
+rank count) cases, refused, accepted, invariant stops, crashes, hangs, impossible accepted.
 """
 import argparse
 import concurrent.futures as cf
@@ -40,6 +56,8 @@ import time
 import tomllib
 
 import h5py
+
+import campaign_models
 
 VALUES = ["0", "-1", "1e19", "1e300", "-1e300", "1e-300", "nan", "inf", '"garbage"', "true",
           "[]", "[1e300, 1e300, 1e300]", "99999999999999999999", "{ a = 1 }"]
@@ -158,28 +176,6 @@ def run(cmd, budget, grace=15.0, cwd=None):
     return {0: "accepted", 2: "refused", 3: "invariant"}[code], code, seconds, tail
 
 
-def signalled(cmd, delay, bound=20.0):
-    """(outcome, exit code, seconds, stderr tail) of cmd sent SIGTERM `delay` s after its start:
-    "accepted" if it ended with exit 0 within `bound` s of the signal (a clean stop, or a run that
-    ended first), "crash" if a signal killed it or it exited otherwise, "hang" past the bound."""
-    start = time.monotonic()
-    p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                         start_new_session=True)
-    time.sleep(delay)
-    if p.poll() is None:
-        p.send_signal(signal.SIGTERM)
-    try:
-        _, err = p.communicate(timeout=bound)
-    except subprocess.TimeoutExpired:
-        os.killpg(p.pid, signal.SIGKILL)
-        p.communicate()
-        return "hang", None, time.monotonic() - start, ""
-    err = err.decode("utf-8", "replace").strip().splitlines()
-    tail = err[-1] if err else ""
-    outcome = "accepted" if p.returncode == 0 else "crash"
-    return outcome, p.returncode, time.monotonic() - start, tail
-
-
 def shorten(scene_name, mutated_key):
     """--set overrides that keep a run short, leaving the mutated key alone."""
     out = []
@@ -216,6 +212,135 @@ def data_ranges(path):
     return out
 
 
+def old_classes(a, narrows, rng, tally, tmp):
+    """Issue 18's classes: scene mutations and garbage through check and short runs, the
+    FIFO, damaged checkpoints."""
+    cases = scene_cases(a.src)
+    cases = rng.sample(cases, 1000 if a.full else 60)
+    cases += garbage_cases()
+
+    # ---- check on every case, a short run on a sample of the accepted ones ----
+    def one(i, name, text, scene):
+        path = os.path.join(tmp, f"case{i}.toml")
+        with open(path, "w", encoding="utf-8", errors="surrogateescape") as f:
+            f.write(text)
+        results = [("check " + name, *run([narrows, "check", path], 20.0))]
+        return path, results
+
+    accepted = []
+    with cf.ThreadPoolExecutor(a.jobs) as pool:
+        futures = [pool.submit(one, i, *c) for i, c in enumerate(cases)]
+        for fut, case in zip(futures, cases):
+            path, results = fut.result()
+            for name, outcome, code, seconds, tail in results:
+                tally.add(name, outcome, f"(exit {code}, {seconds:.1f} s) {tail}")
+                if outcome == "accepted" and case[2] is not None:
+                    accepted.append((case, path))
+    runs = rng.sample(accepted, min(120 if a.full else 6, len(accepted)))
+    budget = 30.0 if a.full else 15.0
+
+    def short_run(case, path):
+        name, _, scene = case
+        key = name.split(": ", 1)[1].split(" = ")[0]
+        out = tempfile.mkdtemp(prefix="run-", dir=tmp)
+        cmd = [narrows, "run", path, "--out", out] + shorten(scene, key)
+        return ("run " + name, *run(cmd, budget))
+
+    with cf.ThreadPoolExecutor(a.jobs) as pool:
+        for name, outcome, code, seconds, tail in pool.map(lambda c: short_run(*c), runs):
+            tally.add(name, outcome, f"(exit {code}, {seconds:.1f} s) {tail}")
+
+    # FIFO as the scene: refused, not a hang
+    fifo = os.path.join(tmp, "scene.fifo")
+    os.mkfifo(fifo)
+    tally.add("check FIFO", run([narrows, "check", fifo], 10.0)[0])
+
+    # ---- damaged checkpoints ----
+    flips = a.flips if a.flips is not None else (25 if a.full else 3)
+    engines = ["quickstart.toml", "colloids_conservation.toml", "lgca_shear_wave.toml",
+               "lgca_colloid_moving.toml", "kmc_family1_product.toml"]
+    # flips in the disc's state and averages of the lgca colloid checkpoint only (/colloid/*)
+    colloid_flips = a.colloid_flips if a.colloid_flips is not None else \
+        (100 if a.full else 4)
+    good = {}
+    short_scene = {}  # the scene of each checkpoint, shortened in its text
+    for scene in engines:
+        out = os.path.join(tmp, "ckpt-" + scene)
+        text = open(os.path.join(a.src, "run", scene), encoding="utf-8").read()
+        edits = shorten(scene, "")
+        for k in range(1, len(edits), 2):
+            key, value = edits[k].split("=")
+            section, name = key.rsplit(".", 1)
+            text = set_line(text, section, name, value) or text
+        short_scene[scene] = os.path.join(tmp, "short-" + scene)
+        with open(short_scene[scene], "w", encoding="utf-8") as f:
+            f.write(text)
+        outcome, code, _, tail = run([narrows, "run", short_scene[scene], "--out", out],
+                                     60.0)
+        ckpts = sorted(f for f in os.listdir(out) if f.startswith("checkpoint-")) \
+            if os.path.isdir(out) else []
+        if outcome != "accepted" or not ckpts:
+            tally.add("checkpoint of " + scene, "crash", f"(exit {code}) {tail}")
+            continue
+        good[scene] = os.path.join(out, ckpts[-1])
+
+    def restart(scene, ckpt, label, must_refuse):
+        out = tempfile.mkdtemp(prefix="restart-", dir=tmp)
+        src_scene = short_scene[scene]
+        # one step (kmc: two replicas) beyond the checkpoint, else "nothing to run" answers
+        # before the data are read
+        extra = ["--set", "run.steps=6"] if not scene.startswith("kmc") else \
+            ["--set", "kmc.replicas=4"]
+        outcome, code, seconds, tail = run([narrows, "run", src_scene, "--restart", ckpt,
+                                            "--out", out] + extra, budget)
+        shutil.rmtree(out, ignore_errors=True)
+        if must_refuse and outcome != "refused" and outcome not in ("crash", "hang"):
+            outcome = "damaged accepted"
+        if must_refuse is None and outcome != "accepted":  # the control: must continue
+            outcome = "crash"
+        return (f"restart {scene} from {label}", outcome, f"(exit {code}) {tail}")
+
+    jobs = []
+
+    def data_flip(scene, ckpt, ranges, label):
+        """A copy of ckpt with a bit of a dataset's stored data flipped: must be refused."""
+        name, off, length = rng.choice(ranges)
+        byte, bit = off + rng.randrange(length), rng.randrange(8)
+        bad = os.path.join(tmp, label + ".h5")
+        shutil.copy(ckpt, bad)
+        flip_bit(bad, byte, bit)
+        jobs.append((scene, bad, f"bit {bit} of byte {byte} ({name})", True))
+
+    for scene, ckpt in good.items():
+        jobs.append((scene, ckpt, "its undamaged checkpoint", None))
+    for n, (scene, ckpt) in enumerate(good.items()):
+        ranges = data_ranges(ckpt)
+        size = os.path.getsize(ckpt)
+        for k in range(flips):
+            data_flip(scene, ckpt, ranges, f"flip{n}-{k}")
+            # a bit anywhere (may be unused space): no crash, no hang
+            bad = os.path.join(tmp, f"any{n}-{k}.h5")
+            shutil.copy(ckpt, bad)
+            byte = rng.randrange(min(size, 1 << 16) if k % 2 else size)
+            flip_bit(bad, byte, rng.randrange(8))
+            jobs.append((scene, bad, f"a bit of byte {byte} anywhere", False))
+        colloid = [r for r in ranges if r[0].startswith("colloid/")]
+        for k in range(colloid_flips if colloid else 0):
+            data_flip(scene, ckpt, colloid, f"colloid{n}-{k}")
+        cut = os.path.join(tmp, f"cut{n}.h5")
+        with open(ckpt, "rb") as f, open(cut, "wb") as g:
+            g.write(f.read(size // 2))
+        jobs.append((scene, cut, "the first half", True))
+    # swapped engines: every checkpoint under every other engine's scene
+    for scene in good:
+        for other, ckpt in good.items():
+            if other != scene:
+                jobs.append((scene, ckpt, "a checkpoint of " + other, True))
+    with cf.ThreadPoolExecutor(a.jobs) as pool:
+        for name, outcome, detail in pool.map(lambda j: restart(*j), jobs):
+            tally.add(name, outcome, detail)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("narrows")
@@ -227,6 +352,8 @@ def main():
     ap.add_argument("--colloid-flips", type=int, default=None,
                     help="data bit flips in /colloid/* of the lgca colloid checkpoint")
     ap.add_argument("--verbose", action="store_true", help="print every case")
+    ap.add_argument("--classes", choices=["all", "old", "new"], default="all",
+                    help="old: issue 18's classes only; new: issue 35's only")
     a = ap.parse_args()
     narrows = os.path.abspath(a.narrows)
     rng = random.Random(a.seed)
@@ -238,168 +365,39 @@ def main():
     # OMPI_MCA_ess_singleton_isolated, would start faster but share one job id, and parallel
     # cases then collide in MPI-IO.)
     os.environ.setdefault("HWLOC_COMPONENTS", "-linuxio,-pci,-opencl,-cuda,-nvml,-gl")
+    # As the ctest sets them (tests/CMakeLists.txt, QUICK_MPI_START): without the SIGKILL grace
+    # mpirun returns 0.3 s after a refusal on N ranks instead of 2.4 s. (The signals class sends
+    # SIGTERM to the ranks, not to mpirun.)
+    os.environ.setdefault("OMPI_MCA_pml", "ob1")
+    os.environ.setdefault("OMPI_MCA_odls_base_sigkill_timeout", "0")
+    new = None
     try:
-        cases = scene_cases(a.src)
-        cases = rng.sample(cases, 1000 if a.full else 60)
-        cases += garbage_cases()
-
-        # ---- check on every case, a short run on a sample of the accepted ones ----
-        def one(i, name, text, scene):
-            path = os.path.join(tmp, f"case{i}.toml")
-            with open(path, "w", encoding="utf-8", errors="surrogateescape") as f:
-                f.write(text)
-            results = [("check " + name, *run([narrows, "check", path], 20.0))]
-            return path, results
-
-        accepted = []
-        with cf.ThreadPoolExecutor(a.jobs) as pool:
-            futures = [pool.submit(one, i, *c) for i, c in enumerate(cases)]
-            for fut, case in zip(futures, cases):
-                path, results = fut.result()
-                for name, outcome, code, seconds, tail in results:
-                    tally.add(name, outcome, f"(exit {code}, {seconds:.1f} s) {tail}")
-                    if outcome == "accepted" and case[2] is not None:
-                        accepted.append((case, path))
-        runs = rng.sample(accepted, min(120 if a.full else 6, len(accepted)))
-        budget = 30.0 if a.full else 15.0
-
-        def short_run(case, path):
-            name, _, scene = case
-            key = name.split(": ", 1)[1].split(" = ")[0]
-            out = tempfile.mkdtemp(prefix="run-", dir=tmp)
-            cmd = [narrows, "run", path, "--out", out] + shorten(scene, key)
-            return ("run " + name, *run(cmd, budget))
-
-        with cf.ThreadPoolExecutor(a.jobs) as pool:
-            for name, outcome, code, seconds, tail in pool.map(lambda c: short_run(*c), runs):
-                tally.add(name, outcome, f"(exit {code}, {seconds:.1f} s) {tail}")
-
-        # ---- stop signals, early (before the first step: while MPI starts, the scene is read,
-        # the state is built or colloids are packed) and late (inside the loop): every run ends
-        # with exit 0 within 20 s of a SIGTERM, never by the signal's default action (issue 35).
-        signal_scenes = ["quickstart.toml", "continuum_burgers_riemann.toml",
-                         "pulses_long_channel.toml", "lgca_shear_wave.toml",
-                         "kmc_family1_product.toml", "continuum_jamming_pulses.toml"]
-        # (the first 0.06 s after exec, more on a loaded machine, are the dynamic loader's,
-        # before main() can install handlers; 0.3 s falls in MPI_Init, which takes 0.8-1.7 s)
-        delays = [0.3, 0.5, 1.0, 2.0, 3.0]
-        signal_cases = [(sc, d) for sc in signal_scenes for d in delays]
-        signal_cases = rng.sample(signal_cases, len(signal_cases) if a.full else 3)
-
-        def stop(scene, delay):
-            out = tempfile.mkdtemp(prefix="sig-", dir=tmp)
-            cmd = [narrows, "run", os.path.join(a.src, "run", scene), "--out", out,
-                   "--overwrite"]
-            outcome, code, seconds, tail = signalled(cmd, delay)
-            shutil.rmtree(out, ignore_errors=True)
-            return (f"SIGTERM {delay} s into {scene}", outcome,
-                    f"(exit {code}, {seconds:.1f} s) {tail}")
-
-        with cf.ThreadPoolExecutor(a.jobs) as pool:
-            for name, outcome, detail in pool.map(lambda c: stop(*c), signal_cases):
-                tally.add(name, outcome, detail)
-
-        # FIFO as the scene: refused, not a hang
-        fifo = os.path.join(tmp, "scene.fifo")
-        os.mkfifo(fifo)
-        tally.add("check FIFO", run([narrows, "check", fifo], 10.0)[0])
-
-        # ---- damaged checkpoints ----
-        flips = a.flips if a.flips is not None else (25 if a.full else 3)
-        engines = ["quickstart.toml", "colloids_conservation.toml", "lgca_shear_wave.toml",
-                   "lgca_colloid_moving.toml", "kmc_family1_product.toml"]
-        # flips in the disc's state and averages of the lgca colloid checkpoint only (/colloid/*)
-        colloid_flips = a.colloid_flips if a.colloid_flips is not None else \
-            (100 if a.full else 4)
-        good = {}
-        short_scene = {}  # the scene of each checkpoint, shortened in its text
-        for scene in engines:
-            out = os.path.join(tmp, "ckpt-" + scene)
-            text = open(os.path.join(a.src, "run", scene), encoding="utf-8").read()
-            edits = shorten(scene, "")
-            for k in range(1, len(edits), 2):
-                key, value = edits[k].split("=")
-                section, name = key.rsplit(".", 1)
-                text = set_line(text, section, name, value) or text
-            short_scene[scene] = os.path.join(tmp, "short-" + scene)
-            with open(short_scene[scene], "w", encoding="utf-8") as f:
-                f.write(text)
-            outcome, code, _, tail = run([narrows, "run", short_scene[scene], "--out", out],
-                                         60.0)
-            ckpts = sorted(f for f in os.listdir(out) if f.startswith("checkpoint-")) \
-                if os.path.isdir(out) else []
-            if outcome != "accepted" or not ckpts:
-                tally.add("checkpoint of " + scene, "crash", f"(exit {code}) {tail}")
-                continue
-            good[scene] = os.path.join(out, ckpts[-1])
-
-        def restart(scene, ckpt, label, must_refuse):
-            out = tempfile.mkdtemp(prefix="restart-", dir=tmp)
-            src_scene = short_scene[scene]
-            # one step (kmc: two replicas) beyond the checkpoint, else "nothing to run" answers
-            # before the data are read
-            extra = ["--set", "run.steps=6"] if not scene.startswith("kmc") else \
-                ["--set", "kmc.replicas=4"]
-            outcome, code, seconds, tail = run([narrows, "run", src_scene, "--restart", ckpt,
-                                                "--out", out] + extra, budget)
-            shutil.rmtree(out, ignore_errors=True)
-            if must_refuse and outcome != "refused" and outcome not in ("crash", "hang"):
-                outcome = "damaged accepted"
-            if must_refuse is None and outcome != "accepted":  # the control: must continue
-                outcome = "crash"
-            return (f"restart {scene} from {label}", outcome, f"(exit {code}) {tail}")
-
-        jobs = []
-
-        def data_flip(scene, ckpt, ranges, label):
-            """A copy of ckpt with a bit of a dataset's stored data flipped: must be refused."""
-            name, off, length = rng.choice(ranges)
-            byte, bit = off + rng.randrange(length), rng.randrange(8)
-            bad = os.path.join(tmp, label + ".h5")
-            shutil.copy(ckpt, bad)
-            flip_bit(bad, byte, bit)
-            jobs.append((scene, bad, f"bit {bit} of byte {byte} ({name})", True))
-
-        for scene, ckpt in good.items():
-            jobs.append((scene, ckpt, "its undamaged checkpoint", None))
-        for n, (scene, ckpt) in enumerate(good.items()):
-            ranges = data_ranges(ckpt)
-            size = os.path.getsize(ckpt)
-            for k in range(flips):
-                data_flip(scene, ckpt, ranges, f"flip{n}-{k}")
-                # a bit anywhere (may be unused space): no crash, no hang
-                bad = os.path.join(tmp, f"any{n}-{k}.h5")
-                shutil.copy(ckpt, bad)
-                byte = rng.randrange(min(size, 1 << 16) if k % 2 else size)
-                flip_bit(bad, byte, rng.randrange(8))
-                jobs.append((scene, bad, f"a bit of byte {byte} anywhere", False))
-            colloid = [r for r in ranges if r[0].startswith("colloid/")]
-            for k in range(colloid_flips if colloid else 0):
-                data_flip(scene, ckpt, colloid, f"colloid{n}-{k}")
-            cut = os.path.join(tmp, f"cut{n}.h5")
-            with open(ckpt, "rb") as f, open(cut, "wb") as g:
-                g.write(f.read(size // 2))
-            jobs.append((scene, cut, "the first half", True))
-        # swapped engines: every checkpoint under every other engine's scene
-        for scene in good:
-            for other, ckpt in good.items():
-                if other != scene:
-                    jobs.append((scene, ckpt, "a checkpoint of " + other, True))
-        with cf.ThreadPoolExecutor(a.jobs) as pool:
-            for name, outcome, detail in pool.map(lambda j: restart(*j), jobs):
-                tally.add(name, outcome, detail)
+        if a.classes != "new":
+            old_classes(a, narrows, rng, tally, tmp)
+        if a.classes != "old":
+            with cf.ThreadPoolExecutor(a.jobs) as pool:
+                new = campaign_models.campaign(
+                    narrows, a.src, tmp, rng, a.full, a.jobs, a.verbose,
+                    lambda fn, items: pool.map(fn, items))
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
 
     c = tally.counts
-    print(f"campaign ({'full' if a.full else 'quick'}): {c['cases']} cases, {c['refused']} refused, "
-          f"{c['accepted']} accepted, {c['invariant']} invariant stops, {c['stopped']} stopped "
-          f"at the budget, {c['crash']} crashes, {c['hang']} hangs, {c['damaged accepted']} "
-          f"damaged checkpoints not refused")
-    for f in tally.failures:
+    if a.classes != "new":
+        print(f"campaign ({'full' if a.full else 'quick'}), issue 18's classes: {c['cases']} cases, "
+              f"{c['refused']} refused, {c['accepted']} accepted, {c['invariant']} invariant "
+              f"stops, {c['stopped']} stopped at the budget, {c['crash']} crashes, {c['hang']} "
+              f"hangs, {c['damaged accepted']} damaged checkpoints not refused")
+    failures = list(tally.failures)
+    if new is not None:
+        print(f"campaign ({'full' if a.full else 'quick'}), issue 35's classes: {new.total()} "
+              f"cases")
+        for line in new.report():
+            print(line)
+        failures += new.failures
+    for f in failures:
         print("FAIL:", f)
-    return 1 if tally.failures else 0
-
+    return 1 if failures else 0
 
 if __name__ == "__main__":
     sys.exit(main())

@@ -75,8 +75,9 @@ def rewrite(f, name, data):
         ds.attrs[k] = v
 
 
-def main():
-    src, dst, args = sys.argv[1], sys.argv[2], sys.argv[3:]
+def edit(src, dst, args):
+    """Copies src to dst (unless they are the same) and applies the edits `args` (the command
+    line's EDIT words) to dst; SystemExit on a bad edit."""
     if src != dst:
         shutil.copy(src, dst)
     touched, keep_old, strip = set(), set(), False
@@ -140,6 +141,10 @@ def main():
             s = rows_checksum(a.reshape(a.shape[0], -1)) if is_rows(name) else \
                 bytes_hash(raw_bytes(ds))
             ds.attrs["checksum"] = np.array([s], dtype=np.uint64)
+
+
+def main():
+    edit(sys.argv[1], sys.argv[2], sys.argv[3:])
 
 
 if __name__ == "__main__":

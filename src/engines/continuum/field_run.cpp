@@ -70,6 +70,14 @@ public:
         throw input_error(file + ": /continuum/time_step = " + format("%.17g", dt[0]) +
                           " but this scene's time step is " + format("%.17g", model.dt) +
                           "; allowed: the checkpoint of this scene");
+      // The time is the step's (time_of writes it so): a step edited alone is refused.
+      const io::CheckpointInfo &info = shell.restart_info();
+      if (info.time != time_of(info.step))
+        throw input_error(file + ": /parameters/time = " + format("%.17g", info.time) +
+                          " but /parameters/step = " + std::to_string(info.step) +
+                          format(" is t = %.17g", time_of(info.step)) +
+                          "; allowed: /parameters/time = /parameters/step x "
+                          "/continuum/time_step (one state)");
       for (auto &[name, field] : model.fields) {
         *field = io::read_checkpoint_array(file, "continuum/" + name, n, comm_);
         for (std::size_t i = 0; i < n; ++i)
