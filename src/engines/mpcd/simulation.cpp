@@ -111,9 +111,10 @@ MpcdSimulation::MpcdSimulation(const scene::Scene &scene, MPI_Comm comm, bool al
       exchange_(comm), plan_(make_plan(scene, box_, slabs_.ranks())) {
   if (plan_.slabs)
     exchange_.set_neighbours(slabs_, fluid_migration_columns(plan_), "fluid particle");
-  if (plan_.no_slip)
+  if (plan_.no_slip) {
     coupling_ = &no_slip_.emplace(plan_.no_slip_params, box_, slabs_);
-  else if (plan_.colloids)
+    no_slip_->set_stop_signal_hooks({run::stop_signal_received, run::hand_agreed_stop_signal});
+  } else if (plan_.colloids)
     coupling_ = &md_.emplace(plan_.md, plan_.forces, box_, slabs_);
   build_stages();
   if (allocate) {

@@ -10,7 +10,6 @@
 #include "narrows/core/timer.hpp"
 #include "narrows/engines/mpcd/coupling/near_fluid.hpp"
 #include "narrows/engines/mpcd/kernels/streaming.hpp"
-#include "narrows/run/stop_signals.hpp"
 
 #include <Eigen/Dense>
 
@@ -135,12 +134,14 @@ void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c, double
   const double reach = ghosts_.active() ? fluid_reach(fluid, dt, accel, fluid_v2_max) : 0.0;
   // The step's one collective: the fastest colloid and the fluid's largest reach of all ranks,
   // and a stop signal any rank received (the run loop's poll then needs none of its own).
-  double own[3] = {fastest, reach, static_cast<double>(run::stop_signal_received())};
+  const double signal = stop_signal_.received ? stop_signal_.received() : 0.0;
+  double own[3] = {fastest, reach, signal};
   double all[3] = {own[0], own[1], own[2]};
   if (ghosts_.active()) {
     const ScopedSeconds talk(message_seconds_);
     MPI_Allreduce(own, all, 3, MPI_DOUBLE, MPI_MAX, slabs_.comm());
-    run::hand_agreed_stop_signal(static_cast<int>(all[2]));
+    if (stop_signal_.agreed)
+      stop_signal_.agreed(static_cast<int>(all[2]));
   }
   const double v_max = all[0];
   const auto path = [&](double speed) {

@@ -65,6 +65,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -92,6 +93,14 @@ struct BounceStats {
 
 class NoSlipCoupling final : public Coupling {
 public:
+  // The stop signal rides on the step's one collective: `received` gives this rank's (0 if
+  // none), `agreed` takes the maximum over the ranks (the run loop's poll; set by the engine).
+  struct StopSignalHooks {
+    std::function<int()> received;
+    std::function<void(int)> agreed;
+  };
+  void set_stop_signal_hooks(StopSignalHooks hooks) { stop_signal_ = std::move(hooks); }
+
   NoSlipCoupling(const NoSlipParams &params, const mpcd::Box &box, const parallel::Slabs &slabs);
 
   Stages before_stream(const StageContext &at) override;
@@ -236,6 +245,7 @@ private:
   colloids::HardSphereStats contacts_;
   std::optional<colloids::SpringContacts> springs_;
   colloids::ContactHistory history_;
+  StopSignalHooks stop_signal_;
   parallel::Exchange contact_migration_;
   std::vector<double> weight_; // M g of each owned colloid, a force in the spring sub-steps
   double seconds_ = 0.0;
