@@ -149,31 +149,9 @@ class Tally:
 
 def run(cmd, budget, grace=15.0, cwd=None):
     """(outcome, exit code, seconds, stderr tail): outcome refused/accepted/invariant/stopped/
-    crash/hang. SIGTERM at the budget; SIGKILL (a hang) after the grace period."""
-    start = time.monotonic()
-    p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, cwd=cwd,
-                         start_new_session=True)
-    stopped = False
-    try:
-        _, err = p.communicate(timeout=budget)
-    except subprocess.TimeoutExpired:
-        stopped = True
-        os.killpg(p.pid, signal.SIGTERM)
-        try:
-            _, err = p.communicate(timeout=grace)
-        except subprocess.TimeoutExpired:
-            os.killpg(p.pid, signal.SIGKILL)
-            p.communicate()
-            return "hang", None, time.monotonic() - start, ""
-    seconds = time.monotonic() - start
-    err = err.decode("utf-8", "replace").strip().splitlines()
-    tail = err[-1] if err else ""
-    code = p.returncode
-    if code < 0 or code not in (0, 2, 3):
-        return "crash", code, seconds, tail
-    if stopped:
-        return "stopped", code, seconds, tail
-    return {0: "accepted", 2: "refused", 3: "invariant"}[code], code, seconds, tail
+    crash/hang (campaign_models.execute, with the last stderr line only)."""
+    outcome, code, seconds, lines = campaign_models.execute(cmd, budget, grace, cwd)
+    return outcome, code, seconds, lines[-1] if lines else ""
 
 
 def shorten(scene_name, mutated_key):

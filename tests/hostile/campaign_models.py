@@ -78,11 +78,11 @@ def launch(narrows, ranks, args):
     return cmd + [narrows] + args
 
 
-def execute(cmd, budget, grace=15.0):
+def execute(cmd, budget, grace=15.0, cwd=None):
     """(outcome, exit code, seconds, stderr lines): outcome refused/accepted/invariant/crash/
     hang/stopped; SIGTERM at the budget, SIGKILL (a hang) after the grace period."""
     start = time.monotonic()
-    p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+    p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, cwd=cwd,
                          start_new_session=True)
     stopped = False
     try:
