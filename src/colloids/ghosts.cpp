@@ -115,7 +115,9 @@ void ColloidGhosts::drop_widening(Colloids &c, std::vector<double> &margin,
     return r + 1 < ranks ? slabs_.first_column_of(r + 1) : slabs_.columns();
   };
   // The owners' side: the copies that rank r's unwidened region needs (as add() chose them).
-  std::vector<int> to(ranks, 0), from(ranks, 0);
+  std::vector<int> &to = kept_to_, &from = kept_from_; // (members: no allocation per step)
+  to.assign(ranks, 0);
+  from.assign(ranks, 0);
   std::size_t kept = 0;
   for (std::size_t j = 0; j < list_.index.size(); ++j) {
     const std::size_t a = list_.index[j];
@@ -130,7 +132,8 @@ void ColloidGhosts::drop_widening(Colloids &c, std::vector<double> &margin,
   list_.dest.resize(kept);
   // This rank's side: its ghosts that its unwidened region needs (the same test, same bits).
   const double lo = slabs_.first_column_of(me) - e, hi = end_of(me) + e;
-  std::vector<bool> keep(c.size(), true);
+  std::vector<bool> &keep = keep_;
+  keep.assign(c.size(), true);
   kept = 0;
   for (std::size_t g = 0; g < halo_.size(); ++g) {
     const std::size_t a = owned_ + g;

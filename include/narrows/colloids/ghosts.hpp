@@ -111,6 +111,8 @@ private:
   double more_ = 0.0;           // the widening of the last add
   double reach_columns_ = 0.0;  // the neighbours' reach of the last add
   parallel::CopyList contact_list_;
+  std::vector<int> kept_to_, kept_from_; // (drop_widening's scratch)
+  std::vector<bool> keep_;
   parallel::Exchange contact_exchange_;
   parallel::CopyList list_; // owned rows and the ranks they were copied to
   parallel::Halo halo_;     // where each ghost row came from
