@@ -438,15 +438,17 @@ void NoSlipCoupling::ghost_responses(const mpcd::CellGrid &grid,
   // Per group and degree of freedom i of dX, what the fluid's shift needs (du, dw and the
   // momentum rows of column i of G): a few cache lines a group, not GhostResponse's ten.
   const std::size_t per = static_cast<std::size_t>(dof_) * (6 + dim_);
-  group_fluid_.assign(groups * per, 0.0);
+  group_fluid_.resize(groups * per); // (each group's entries written below: no fill)
   for (std::size_t q = 0; q < groups; ++q) {
     const mpcd::ParticleGroup &g = grid.groups[q];
     const mpcd::GroupChange &d = collision.group_change[q];
     const double *corner = group_corner_[q].data();
     const auto slot = static_cast<std::size_t>(cell_slot_[g.cell]);
     const double N = slot_total_[slot];
-    if (g.n == 0)
+    if (g.n == 0) {
+      std::fill_n(&group_fluid_[q * per], per, 0.0);
       continue;
+    }
     GhostResponse out;
     const bool dry = slot_fluid_[slot][0] == 0.0; // only ghosts (and virtual particles) here
     // Moments about the centre: m1 = n c + sum r, m2 = n c c^T + c (sum r)^T + (sum r) c^T +

@@ -250,7 +250,7 @@ void at_a_cells(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, std
   });
   add_group_sums<D, SS, true>(g, s);
 
-  s.cell.assign(nc * PS, 0.0);
+  s.cell.resize(nc * PS); // (an empty cell's record is never read: no fill)
   for (std::size_t c = 0; c < nc; ++c) {
     const std::int64_t *sum = &s.cell_fixed[c * SS];
     double *par = &s.cell[c * PS];
