@@ -145,11 +145,13 @@ void NoSlipCoupling::add_ghost_particles(mpcd::CellGrid &grid, const Colloids &c
           }
           if (near2 >= R2 || far2 <= R2)
             continue;
-          const std::size_t cell =
-              ix + static_cast<std::size_t>(nx) * (row + static_cast<std::size_t>(ny) * layer);
+          const std::size_t above = row + static_cast<std::size_t>(ny) * layer;
+          const std::size_t cell = ix + static_cast<std::size_t>(nx) * above;
+          // (grid.global_id(cell), without its division)
+          const std::uint64_t global = column + static_cast<std::uint64_t>(NX) * above;
           cut_.push_back({static_cast<std::uint32_t>(a),
                           static_cast<std::uint32_t>(cell),
-                          ghost_key(c.id[a], grid.global_id(cell), 0),
+                          ghost_key(c.id[a], global, 0),
                           {corner[0], corner[1], corner[2]}});
         }
       }
