@@ -5,7 +5,6 @@
 #   bash tools/compare_builds.sh BEFORE_BINARY AFTER_BINARY [OUTDIR]   # OUTDIR: /tmp/compare_builds
 #   SCENES='run/sed*.toml' RANKS='1 3' bash tools/compare_builds.sh ...  # (these are the defaults:
 #                                                                        #  run/*.toml and "1 3")
-#   PIPELINE_CHANGED=1 ...: the logs' pipeline lines are not compared (a change of the stages)
 # Both binaries run the same scene files (from this checkout's run/) with the same --set
 # overrides (SHORTEN below), into OUTDIR/before/SCENE/nR and OUTDIR/after/SCENE/nR (stdout,
 # stderr and exit code next to them as nR.stdout, nR.stderr, nR.rc). Each pair of folders is
@@ -210,7 +209,7 @@ for scene in "${scenes[@]}"; do
       continue
     fi
     if [[ "$rca" -eq 0 && "$rcb" -eq 0 ]]; then
-      result=$(/usr/bin/python3 tools/compare_outputs.py "$a" "$b" ${PIPELINE_CHANGED:+--pipeline-changed})
+      result=$(/usr/bin/python3 tools/compare_outputs.py "$a" "$b")
       status=$?
       if [[ $status -eq 0 ]]; then
         ea=$(narrows_stderr "$a.stderr") eb=$(narrows_stderr "$b.stderr")

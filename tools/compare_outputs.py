@@ -1,17 +1,13 @@
 #!/usr/bin/python3
 """Bitwise comparison of two narrows output folders (the harness tools/compare_builds.sh runs it).
 
-    /usr/bin/python3 tools/compare_outputs.py DIR_A DIR_B [--all] [--pipeline-changed]
+    /usr/bin/python3 tools/compare_outputs.py DIR_A DIR_B [--all]
 
 Every file in either folder must be in both. HDF5 files (*.h5): the same objects (groups,
 datasets, named types), every dataset of the same shape, dtype and bytes, every attribute of
 the same type, shape and bytes. Logs (log.txt, log-<step>.txt): the same lines after the
 timing lines are dropped or have their numbers masked (TIMING_RULES below). Any other file
 (trajectory.xdmf, ...): the same bytes.
-
-With --pipeline-changed the log lines of the step's pipeline (`  N. stage ...` and `then every
-...`) are dropped too: for a change that splits, joins or renames stages and must leave every
-other line and every output bitwise the same (compare_builds.sh: PIPELINE_CHANGED=1).
 
 Prints `same` (exit 0) or `DIFFERENT: <file> <dataset or attribute> <first differing index>`
 (exit 1), followed by up to 10 further differences as indented lines (all of them with --all).
@@ -77,19 +73,11 @@ TIMING_RULES = [
 MAX_SHOWN = 10
 
 
-# The step's pipeline in a log (dropped with --pipeline-changed): its numbered stages and the
-# line of what runs every N steps.
-PIPELINE_LINE = re.compile(r"^  (\d+\. |then every )")
-pipeline_changed = False
-
-
 def filtered_log(path):
     kept = []
     with open(path, encoding="utf-8", errors="surrogateescape") as f:
         for number, line in enumerate(f, 1):
             line = line.rstrip("\n")
-            if pipeline_changed and PIPELINE_LINE.match(line):
-                continue
             for pattern, replacement in TIMING_RULES:
                 if replacement is None:
                     if pattern.search(line):
@@ -233,9 +221,7 @@ def compare_dirs(dir_a, dir_b):
 
 
 def main(argv):
-    global pipeline_changed
-    pipeline_changed = "--pipeline-changed" in argv
-    args = [a for a in argv[1:] if a not in ("--all", "--pipeline-changed")]
+    args = [a for a in argv[1:] if a != "--all"]
     if len(args) != 2 or not all(os.path.isdir(a) for a in args):
         print(__doc__.strip().splitlines()[2].strip(), file=sys.stderr)
         return 2

@@ -463,10 +463,6 @@ void MpcdSimulation::build_stages() {
                                                    plan_.virtual_at_noise, plan_.virtual_mirror);
                     }});
   const std::string kT = format_number(p.kT);
-  // MPC-AT+a with coupling stages after it: in two passes, those stages between them (the
-  // implicit no-slip coupling's motion of the fluid in cut cells rides in the particle pass).
-  const bool two_passes =
-      p.collision == scene::Collision::at_a && !coupling_->after_collide(at).empty();
   switch (p.collision) { // each resets v2_max first: only MPC-AT+a finds it
   case scene::Collision::srd:
   case scene::Collision::random_permute: // SRD, then the velocities are permuted
@@ -485,16 +481,6 @@ void MpcdSimulation::build_stages() {
                     }});
     break;
   case scene::Collision::at_a:
-    if (two_passes) {
-      list.push_back({"collide MPC-AT+a (kT " + kT +
-                          ", angular momentum): the cells' sums and the ghost groups' change",
-                      [this](std::uint64_t step) {
-                        collision_scratch_.v2_max = -1.0;
-                        mpcd::collide_at_a_cells(fluid_, grid_, collision_scratch_, plan_.kT,
-                                                 plan_.seed, step);
-                      }});
-      break;
-    }
     list.push_back(
         {"collide MPC-AT+a (kT " + kT + ", angular momentum)", [this](std::uint64_t step) {
            collision_scratch_.v2_max = -1.0;
@@ -509,12 +495,6 @@ void MpcdSimulation::build_stages() {
                       mpcd::permute_velocities(fluid_, collision_scratch_, plan_.seed, step);
                     }});
   add(coupling_->after_collide(at));
-  if (two_passes)
-    list.push_back({"MPC-AT+a: the particles' new velocities (and the coupling's motion of the "
-                    "fluid in cut cells)",
-                    [this](std::uint64_t) {
-                      mpcd::collide_at_a_particles(fluid_, grid_, collision_scratch_);
-                    }});
   // The thermostats change the velocities after the collision, so its v2_max no longer holds.
   if (p.thermostat == MpcdPlan::Thermostat::layers)
     list.push_back({"thermostat: rescale velocities relative to the cell means per layer of "

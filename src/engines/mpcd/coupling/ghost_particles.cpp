@@ -322,7 +322,7 @@ void NoSlipCoupling::add_ghost_particles(mpcd::CellGrid &grid, const Colloids &c
 }
 
 void NoSlipCoupling::take_back_ghost_particles(mpcd::CellGrid &grid,
-                                               mpcd::CollisionScratch &collision,
+                                               const mpcd::CollisionScratch &collision,
                                                mpcd::Fluid &fluid, Colloids &c) {
   const ScopedSeconds timed(seconds_);
   const std::size_t groups = grid.groups.size();
@@ -368,9 +368,6 @@ void NoSlipCoupling::ghost_responses(const mpcd::CellGrid &grid,
                                      const mpcd::CollisionScratch &collision,
                                      const mpcd::Fluid &fluid) {
   const std::size_t groups = grid.groups.size();
-  for (const std::uint32_t cell : slot_cells_) // the last step's slots (the collision's
-    if (cell < cell_slot_.size())              // particle pass may have read them since)
-      cell_slot_[cell] = -1;
   cell_slot_.resize(grid.size(), -1);
   slot_cells_.clear();
   slot_fluid_.clear();
@@ -506,10 +503,9 @@ void NoSlipCoupling::ghost_responses(const mpcd::CellGrid &grid,
 // there, Q du + dw x (r - rc) at the colloid's dX/2; and, spread evenly, whatever momentum the
 // colloids' G dX/2 has beyond that (other colloids' ghosts and a wall's virtual particles in
 // the cell take a share of the response that is not followed), so that momentum is conserved
-// exactly. When the collision's particle pass is still to come (MPC-AT+a in two passes), it
-// adds this motion to the new velocities: no pass over the fluid here.
-void NoSlipCoupling::shift_cut_cells(const mpcd::CellGrid &grid, mpcd::CollisionScratch &collision,
-                                     mpcd::Fluid &fluid) {
+// exactly.
+void NoSlipCoupling::shift_cut_cells(const mpcd::CellGrid &grid,
+                                     const mpcd::CollisionScratch &collision, mpcd::Fluid &fluid) {
   const std::size_t slots = slot_cells_.size();
   slot_rc_.assign(slots, {0.0, 0.0, 0.0});
   // Summed over the groups of a cell in fixed point (their order depends on the colloid rows').
@@ -564,11 +560,6 @@ void NoSlipCoupling::shift_cut_cells(const mpcd::CellGrid &grid, mpcd::Collision
       m[3 + a] = w[a];
     }
   }
-  if (collision.particles_pending) {
-    collision.motion_slot = cell_slot_.data();
-    collision.motion = slot_motion_.data();
-    return;
-  }
   const std::size_t n = fluid.size();
   const double sx = grid.shift[0], sy = grid.shift[1], sz = grid.shift[2];
   if (dim_ == 2) {
@@ -597,6 +588,8 @@ void NoSlipCoupling::shift_cut_cells(const mpcd::CellGrid &grid, mpcd::Collision
         fluid.v[a][i] += m[a] + wr[a];
     }
   }
+  for (const std::uint32_t cell : slot_cells_)
+    cell_slot_[cell] = -1;
 }
 
 } // namespace narrows::coupling

@@ -10,7 +10,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <stdexcept>
 
 namespace narrows::mpcd {
 
@@ -215,8 +214,8 @@ Eigen::Matrix3d pseudo_inverse(const Eigen::Matrix3d &I) {
 }
 
 template <int D>
-void at_a_cells(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, std::uint64_t seed,
-                std::uint64_t step) {
+void at_a_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, std::uint64_t seed,
+                 std::uint64_t step) {
   constexpr int SS = sum_stride<D>, PS = par_stride<D>, NL = D == 2 ? 1 : 3;
   constexpr int NM = D == 2 ? 1 : 6; // entries of r r^T summed
   const std::size_t nc = g.size(), n = f.size();
@@ -357,35 +356,13 @@ void at_a_cells(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, std
     }
   }
 
-  s.position_stride = SS;
-  s.position_offset = D;
-  s.particles_pending = true;
-  // GCC 12 (-march=native, AVX-512) vectorises the 2D cell loop above with ymm registers and
-  // leaves them dirty on return (no vzeroupper, unlike every other kernel). Each later call
-  // into libm's SSE-encoded code (the log of the next step's noise, the sines of a sine
-  // force) then paid a state-transition penalty: log took ~220 ns instead of ~15 ns, half of
-  // an AT+a run's time. Clearing the upper halves changes no value (they are dead here).
-#if defined(__AVX__)
-  __builtin_ia32_vzeroupper();
-#endif
-}
-
-// Each particle's new velocity v' = xi + delta + omega x (r - rc), and with `moved` the cell's
-// rigid motion c + w x r (r from the corner) of scratch.motion added to it, as a pass of its
-// own over the fluid would add it (the same bits). v2_max is that of v' before the motion.
-template <int D, bool moved> void at_a_particles(Fluid &f, const CellGrid &g, CollisionScratch &s) {
-  constexpr int PS = par_stride<D>;
-  const std::size_t n = f.size();
-  const std::int32_t *slot_of = s.motion_slot;
   double v2_max = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     prefetch_record(s.cell, f.cell.data(), i, n, PS);
     const double *par = &s.cell[static_cast<std::size_t>(f.cell[i]) * PS];
-    double q[3], r[3];
-    for (int k = 0; k < D; ++k) {
-      q[k] = in_cell(f.x[k][i], g.shift[k]);
-      r[k] = q[k] - par[D + k];
-    }
+    double r[3];
+    for (int k = 0; k < D; ++k)
+      r[k] = in_cell(f.x[k][i], g.shift[k]) - par[D + k];
     double v[3];
     if constexpr (D == 2) {
       v[0] = s.noise[0][i] + par[0] - par[4] * r[1];
@@ -397,33 +374,22 @@ template <int D, bool moved> void at_a_particles(Fluid &f, const CellGrid &g, Co
         v[k] = s.noise[k][i] + par[k] + wr[k];
     }
     double v2 = 0.0;
-    for (int k = 0; k < D; ++k)
-      v2 += v[k] * v[k];
-    v2_max = std::max(v2_max, v2);
-    if constexpr (moved) {
-      const std::int32_t slot = slot_of[f.cell[i]];
-      if (slot >= 0) {
-        const double *m = s.motion[static_cast<std::size_t>(slot)].data();
-        if constexpr (D == 2) {
-          v[0] += m[0] - m[5] * q[1];
-          v[1] += m[1] + m[5] * q[0];
-        } else {
-          double wr[3];
-          cross<3>(m + 3, q, wr);
-          for (int k = 0; k < 3; ++k)
-            v[k] += m[k] + wr[k];
-        }
-      }
-    }
-    for (int k = 0; k < D; ++k)
+    for (int k = 0; k < D; ++k) {
       f.v[k][i] = v[k];
+      v2 += v[k] * v[k];
+    }
+    v2_max = std::max(v2_max, v2);
   }
   s.v2_max = v2_max;
-  s.particles_pending = false;
-  s.motion_slot = nullptr;
-  s.motion = nullptr;
+  s.position_stride = SS;
+  s.position_offset = D;
+  // GCC 12 (-march=native, AVX-512) vectorises the 2D cell loop above with ymm registers and
+  // leaves them dirty on return (no vzeroupper, unlike every other kernel). Each later call
+  // into libm's SSE-encoded code (the log of the next step's noise, the sines of a sine
+  // force) then paid a state-transition penalty: log took ~220 ns instead of ~15 ns, half of
+  // an AT+a run's time. Clearing the upper halves changes no value (they are dead here).
 #if defined(__AVX__)
-  __builtin_ia32_vzeroupper(); // (as at the end of at_a_cells)
+  __builtin_ia32_vzeroupper();
 #endif
 }
 
@@ -438,30 +404,12 @@ void collide_at(Fluid &fluid, const CellGrid &grid, CollisionScratch &scratch, d
     at_kernel<2>(fluid, grid, scratch, kT, seed, step);
 }
 
-void collide_at_a_cells(Fluid &fluid, const CellGrid &grid, CollisionScratch &scratch, double kT,
-                        std::uint64_t seed, std::uint64_t step) {
-  if (grid.dim == 3)
-    at_a_cells<3>(fluid, grid, scratch, kT, seed, step);
-  else
-    at_a_cells<2>(fluid, grid, scratch, kT, seed, step);
-}
-
-void collide_at_a_particles(Fluid &fluid, const CellGrid &grid, CollisionScratch &scratch) {
-  if (!scratch.particles_pending)
-    throw std::logic_error("collide_at_a_particles: no cell pass before it");
-  const bool moved = scratch.motion_slot != nullptr;
-  if (grid.dim == 3)
-    moved ? at_a_particles<3, true>(fluid, grid, scratch)
-          : at_a_particles<3, false>(fluid, grid, scratch);
-  else
-    moved ? at_a_particles<2, true>(fluid, grid, scratch)
-          : at_a_particles<2, false>(fluid, grid, scratch);
-}
-
 void collide_at_a(Fluid &fluid, const CellGrid &grid, CollisionScratch &scratch, double kT,
                   std::uint64_t seed, std::uint64_t step) {
-  collide_at_a_cells(fluid, grid, scratch, kT, seed, step);
-  collide_at_a_particles(fluid, grid, scratch);
+  if (grid.dim == 3)
+    at_a_kernel<3>(fluid, grid, scratch, kT, seed, step);
+  else
+    at_a_kernel<2>(fluid, grid, scratch, kT, seed, step);
 }
 
 } // namespace narrows::mpcd

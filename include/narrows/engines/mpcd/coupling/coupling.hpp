@@ -34,9 +34,8 @@ struct StageContext {
   mpcd::Fluid &fluid;
   colloids::Colloids &colloids;
   mpcd::CellGrid &grid;
-  // The last collision's scratch: its v2_max, and the ghost particles' share of the sums; a
-  // stage after an MPC-AT+a cell pass may give its particle pass a motion per cell (collision.hpp).
-  mpcd::CollisionScratch &collision;
+  // The last collision's scratch: its v2_max, and the ghost particles' share of the sums.
+  const mpcd::CollisionScratch &collision;
   FluidStream stream;
   std::string stream_name;   // the streaming stage's line
   std::string colloids_name; // the colloids, their sizes and forces as the scene gives them

@@ -113,7 +113,7 @@ public:
   void move_colloids(const mpcd::Fluid &fluid, colloids::Colloids &c, double fluid_v2_max = -1.0);
   BounceStats bounce_back(mpcd::Fluid &fluid, colloids::Colloids &c, const FluidStream &stream);
   void add_ghost_particles(mpcd::CellGrid &grid, const colloids::Colloids &c, std::uint64_t step);
-  void take_back_ghost_particles(mpcd::CellGrid &grid, mpcd::CollisionScratch &collision,
+  void take_back_ghost_particles(mpcd::CellGrid &grid, const mpcd::CollisionScratch &collision,
                                  mpcd::Fluid &fluid, colloids::Colloids &c);
   void hand_over(colloids::Colloids &c);
   // The colloids and the contact history they own to their owners under `slabs`; the ghost
@@ -178,7 +178,7 @@ private:
   // response per unit dX (ghost_particles.cpp); after the solve, the cut cells' fluid shifted.
   void ghost_responses(const mpcd::CellGrid &grid, const mpcd::CollisionScratch &collision,
                        const mpcd::Fluid &fluid);
-  void shift_cut_cells(const mpcd::CellGrid &grid, mpcd::CollisionScratch &collision,
+  void shift_cut_cells(const mpcd::CellGrid &grid, const mpcd::CollisionScratch &collision,
                        mpcd::Fluid &fluid);
   // Adds G (dof x dof) to row a's.
   void add_G(std::size_t a, const double (&G)[6][6]);

@@ -5,7 +5,6 @@
 #include "narrows/engines/mpcd/kernels/cell_grid.hpp"
 #include "narrows/engines/mpcd/kernels/fluid.hpp"
 
-#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -24,13 +23,6 @@ struct CollisionScratch {
   // position_stride, the cell's summed in-cell offsets (fixed point; fluid and groups), which
   // the no-slip coupling reads instead of summing its cut cells' fluid again. 0: not kept.
   int position_stride = 0, position_offset = 0;
-  // Between collide_at_a_cells and collide_at_a_particles (pending): a stage there (the
-  // implicit no-slip coupling) may give the particle pass a rigid motion per cell to add to the
-  // new velocities of that cell's particles, v += c + w x r with r from the cell's corner:
-  // motion_slot[cell] >= 0 picks the row (c, w) of `motion`. The particle pass forgets both.
-  bool particles_pending = false;
-  const std::int32_t *motion_slot = nullptr;
-  const std::array<double, 6> *motion = nullptr;
 };
 
 // Every rule below (not the random solvents' own steps) also collides the particle groups of
@@ -53,12 +45,6 @@ void collide_at(Fluid &fluid, const CellGrid &grid, CollisionScratch &scratch, d
 // in 3D, collinear) use the pseudo-inverse, which is exact there.
 void collide_at_a(Fluid &fluid, const CellGrid &grid, CollisionScratch &scratch, double kT,
                   std::uint64_t seed, std::uint64_t step);
-// The same in two passes, for a stage between them: the cells' sums, parameters and the groups'
-// changes (sets scratch.particles_pending), then the particles' new velocities (with
-// scratch.motion added where set). collide_at_a is the one followed by the other.
-void collide_at_a_cells(Fluid &fluid, const CellGrid &grid, CollisionScratch &scratch, double kT,
-                        std::uint64_t seed, std::uint64_t step);
-void collide_at_a_particles(Fluid &fluid, const CellGrid &grid, CollisionScratch &scratch);
 
 // Random solvent (a): after the collision, a random permutation of all fluid velocities.
 // Conserves total momentum and energy, destroys local momentum conservation.
