@@ -281,11 +281,7 @@ void NoSlipCoupling::add_ghost_particles(mpcd::CellGrid &grid, const Colloids &c
         group_normals_[(b0 + j) * 4 + k] = z[k][j];
   }
   const double sigma = std::sqrt(params_.kT);
-  constexpr std::size_t ahead = 8; // the cell sums of a later group fetched early (a cut cell's
-                                   // record is anywhere in the grid)
   for (std::size_t q = 0; q < groups; ++q) {
-    if (q + ahead < groups)
-      __builtin_prefetch(&grid.sums[grid.groups[q + ahead].cell], 1);
     mpcd::ParticleGroup &g = grid.groups[q];
     const std::size_t a = group_row_[q];
     const double *corner = group_corner_[q].data();
