@@ -5,11 +5,11 @@
 # have no messages to wait for).
 #
 # Usage: bash tools/scaling_pair.sh [NARROWS] [REPEATS] [STEPS]   (defaults: build/narrows, 3, 200)
-# Prints per repeat, then the ranges:
-#   one rank (l = 600 b), two ranks (l = 600 b), two ranks (l = 1200 b), and two one-rank runs
-#   side by side (l = 600 b each), in fluid particle-steps/s;
-#   strong = two ranks (600) / one rank; weak = two ranks (1200) / (2 x one rank);
-#   side by side = (sum of the two one-rank runs) / (2 x one rank): the machine's own weak bound;
+# Prints per repeat, then the ranges, in fluid particle-steps/s: one rank alone on core 0 and on
+# core 1 (the cores of a VM need not be alike: the mean of the two is the one-rank rate), two
+# ranks (l = 600 b and l = 1200 b), and two one-rank runs side by side (l = 600 b each);
+#   strong = two ranks (600) / the one-rank rate; weak = two ranks (1200) / (core 0 + core 1);
+#   side by side = (the two side by side) / (core 0 + core 1): the machine's own weak bound;
 #   weak / side by side: what the code's messages, ghost work and waiting cost.
 # Needs 2 cores. Nothing is asserted: a measurement, best on a quiet machine.
 set -euo pipefail
@@ -35,7 +35,8 @@ run() { # LOG COMMAND...: the run must succeed and print its rate
 }
 results=()
 for r in $(seq "$repeats"); do
-  run "$dir/one.log" taskset -c 0 "$narrows" run "$scene" "${common[@]}" --out "$dir/one"
+  run "$dir/one0.log" taskset -c 0 "$narrows" run "$scene" "${common[@]}" --out "$dir/one0"
+  run "$dir/one1.log" taskset -c 1 "$narrows" run "$scene" "${common[@]}" --out "$dir/one1"
   taskset -c 0 "$narrows" run "$scene" "${common[@]}" --out "$dir/a" >"$dir/a.log" 2>&1 &
   first=$!
   run "$dir/b.log" taskset -c 1 "$narrows" run "$scene" "${common[@]}" --out "$dir/b"
@@ -43,14 +44,15 @@ for r in $(seq "$repeats"); do
   run "$dir/strong.log" "${mpi[@]}" -n 2 "$narrows" run "$scene" "${common[@]}" --out "$dir/strong"
   run "$dir/weak.log" "${mpi[@]}" -n 2 "$narrows" run "$scene" "${common[@]}" \
     --set "domain.size=[1200.0, 50.0]" --out "$dir/weak"
-  line="$(rate "$dir/one.log") $(rate "$dir/strong.log") $(rate "$dir/weak.log") $(rate "$dir/a.log") $(rate "$dir/b.log")"
+  line="$(rate "$dir/one0.log") $(rate "$dir/one1.log") $(rate "$dir/strong.log") $(rate "$dir/weak.log") $(rate "$dir/a.log") $(rate "$dir/b.log")"
   results+=("$line")
   /usr/bin/python3 - "$r" $line <<'PY'
 import sys
-r, one, strong, weak, a, b = sys.argv[1], *map(float, sys.argv[2:])
-print(f"repeat {r}: one rank {one:.3e}, two ranks {strong:.3e} (l = 600 b), {weak:.3e} (l = 1200 b), "
-      f"side by side {a:.3e} + {b:.3e}: strong {strong / one:.2f}x, weak {weak / (2 * one):.2f}, "
-      f"side by side {(a + b) / (2 * one):.2f}, weak / side by side {weak / (a + b):.2f}")
+r, o0, o1, strong, weak, a, b = sys.argv[1], *map(float, sys.argv[2:])
+print(f"repeat {r}: one rank {o0:.3e} (core 0), {o1:.3e} (core 1); two ranks {strong:.3e} "
+      f"(l = 600 b), {weak:.3e} (l = 1200 b); side by side {a:.3e} + {b:.3e}: "
+      f"strong {2 * strong / (o0 + o1):.2f}x, weak {weak / (o0 + o1):.2f}, side by side "
+      f"{(a + b) / (o0 + o1):.2f}, weak / side by side {weak / (a + b):.2f}")
 PY
 done
 /usr/bin/python3 - "${results[@]}" <<'PY'
@@ -58,9 +60,10 @@ import sys
 rows = [list(map(float, s.split())) for s in sys.argv[1:]]
 def span(values):
     return f"{min(values):.2f}-{max(values):.2f}"
-print(f"strong scaling 1 -> 2 ranks: {span([s / o for o, s, w, a, b in rows])}x")
-print(f"weak scaling (l and ranks doubled): {span([w / (2 * o) for o, s, w, a, b in rows])}")
+print(f"strong scaling 1 -> 2 ranks: {span([2 * s / (o0 + o1) for o0, o1, s, w, a, b in rows])}x")
+print(f"weak scaling (l and ranks doubled): {span([w / (o0 + o1) for o0, o1, s, w, a, b in rows])}")
 print(f"two one-rank runs side by side (the machine's bound on weak scaling): "
-      f"{span([(a + b) / (2 * o) for o, s, w, a, b in rows])}")
-print(f"weak scaling / side by side (the code's own cost): {span([w / (a + b) for o, s, w, a, b in rows])}")
+      f"{span([(a + b) / (o0 + o1) for o0, o1, s, w, a, b in rows])}")
+print(f"weak scaling / side by side (the code's own cost): "
+      f"{span([w / (a + b) for o0, o1, s, w, a, b in rows])}")
 PY
