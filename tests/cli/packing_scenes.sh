@@ -83,6 +83,39 @@ print("phi %.4f deepest overlap %.2e of the small radius, %d fluid particles" % 
 PY
 check "the packing: counts, fraction, overlaps < 1 %, no fluid inside" '$py "$tmp/packed.py" "$tmp/one/trajectory.h5" > /dev/null'
 
+# Rough hard spheres packed (run/segregation_fig5_6_2d.toml, Kanehl (thesis) fig 5.6: 398 disks
+# at phi = 0.5 in the 200 x 80 channel): the packing leaves every surface apart (>= 1 % of the
+# small radius from the others, >= 0.4 % from the walls), and the run goes on 2 and 3 ranks,
+# bitwise as on 1. (Packed touching, a chain of collisions crossed the ghost colloids of a rank
+# in the first step: on 2 or more ranks the run stopped at step 1, exit 3.)
+hard=$src/run/segregation_fig5_6_2d.toml
+short=(--set run.steps=4 --set output.every=4 --set output.checkpoint_every=0
+  --set output.trajectory_every=4 --set output.kde_window=0 --set 'output.observables=["temperature"]')
+runs --err "$tmp/herr1" "hard packing, 1 rank" "$narrows" run "$hard" "${short[@]}" --out "$tmp/h1" > /dev/null
+for n in 2 3; do
+  runs --err "$tmp/herr$n" "hard packing, $n ranks" "${mpi[@]}" -n $n "$narrows" run "$hard" \
+    "${short[@]}" --out "$tmp/h$n" > /dev/null
+done
+cat > "$tmp/apart.py" <<'PY'
+import sys, h5py, numpy as np
+f = h5py.File(sys.argv[1], "r")
+c = f["/particles/colloids"] # frame 0 of the trajectory: the packing as made
+x, r = c["position/value"][0], c["radius"][:]
+L, W = 200.0, 80.0
+d = x[:, None, :] - x[None, :, :]
+d[..., 0] -= L * np.round(d[..., 0] / L)
+gap = np.hypot(d[..., 0], d[..., 1]) - (r[:, None] + r[None, :])
+np.fill_diagonal(gap, np.inf)
+walls = np.minimum(x[:, 1] - r, W - x[:, 1] - r)
+assert len(r) == 398 and gap.min() >= 0.01 * 2.0 and walls.min() >= 0.004 * 2.0, (gap.min(), walls.min())
+PY
+check "hard packing: surfaces apart" '$py "$tmp/apart.py" "$tmp/h1/trajectory.h5"'
+$py "$tmp/state.py" "$tmp/h1/checkpoint-0000000004.h5" > "$tmp/h1.bin"
+for n in 2 3; do
+  $py "$tmp/state.py" "$tmp/h$n/checkpoint-0000000004.h5" > "$tmp/h$n.bin"
+  check "hard packing: $n ranks bitwise equal to 1 rank" '[ -s "$tmp/h1.bin" ] && cmp -s "$tmp/h1.bin" "$tmp/h$n.bin"'
+done
+
 bad() { sed "$1" "$tmp/s.toml" > "$tmp/bad.toml"; }
 bad 's/packing_fraction = 0.78/packing_fraction = 0.9/'
 refused "a fraction beyond random close packing" 'colloids.packing_fraction.*at most 0.84' "$narrows" check "$tmp/bad.toml"

@@ -25,6 +25,9 @@ using colloids::position;
 using colloids::repulsive_cutoff;
 using colloids::wall_cutoff;
 
+// The packing of rough hard spheres: radii larger by this fraction while it is made.
+constexpr double hard_packing_gap = 0.01;
+
 namespace {
 
 std::string number(double v) {
@@ -206,8 +209,24 @@ Colloids place_colloids(const scene::Colloids &spec, const mpcd::Box &box, doubl
     }
     colloids::PackingParams params;
     params.poll = poll;
-    const PackingReport r = pack_colloids(
+    // Rough hard spheres are packed at radii larger by hard_packing_gap, then given back their
+    // own: with the packing's own overlaps (up to its tolerance, 0.5 % of the smallest radius)
+    // every surface starts at least 1.5 % of the smallest radius from the others and 0.5 % from
+    // the walls. Touching or overlapping hard spheres would collide at once, and a cluster of
+    // them passes a chain of impulses along itself within the first step, further than the
+    // ghost colloids of a rank reach on two or more ranks (the run stopped there).
+    const bool hard = spec.contacts == scene::ColloidContacts::hard;
+    const std::vector<double> radii(c.radius.begin(), c.radius.end());
+    if (hard)
+      for (double &r : c.radius)
+        r *= 1.0 + hard_packing_gap;
+    PackingReport r = pack_colloids(
         c, box, seed, "colloids.packing_fraction = " + number(spec.packing_fraction), params);
+    if (hard) {
+      std::copy(radii.begin(), radii.end(), c.radius.begin());
+      r.fraction /= std::pow(1.0 + hard_packing_gap, box.dim);
+      r.max_overlap = colloids::max_overlap(c, box) / *std::min_element(radii.begin(), radii.end());
+    }
     if (report)
       *report = r;
     break;
