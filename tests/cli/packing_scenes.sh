@@ -55,22 +55,31 @@ PY
 $py "$tmp/state.py" "$tmp/one/checkpoint-0000000020.h5" > "$tmp/one.bin"
 $py "$tmp/state.py" "$tmp/two/checkpoint-0000000020.h5" > "$tmp/two.bin"
 check "2 ranks bitwise equal to 1 rank" '[ -s "$tmp/one.bin" ] && cmp -s "$tmp/one.bin" "$tmp/two.bin"'
+# The packing as made (frame 0 of a trajectory) in a walled channel L x W, periodic in x: the
+# positions, radii, the file, the smallest gap between two surfaces and between a surface and a wall.
+cat > "$tmp/gaps.py" <<'PY'
+import h5py, numpy as np
+def packing(path, L, W):
+    f = h5py.File(path, "r")
+    c = f["/particles/colloids"]
+    x, r = c["position/value"][0], c["radius"][:]
+    d = x[:, None, :] - x[None, :, :]
+    d[..., 0] -= L * np.round(d[..., 0] / L)
+    gap = np.hypot(d[..., 0], d[..., 1]) - (r[:, None] + r[None, :])
+    np.fill_diagonal(gap, np.inf)
+    walls = np.minimum(x[:, 1] - r, W - x[:, 1] - r)
+    return x, r, f, gap.min(), walls.min()
+PY
 cat > "$tmp/packed.py" <<'PY'
-import sys, h5py, numpy as np
-f = h5py.File(sys.argv[1], "r")
-c = f["/particles/colloids"] # frame 0 of the trajectory: the packing as made
-x, r = c["position/value"][0], c["radius"][:]
+import sys, numpy as np
+from gaps import packing
 L, W = 40.0, 20.0
+x, r, f, gap, walls = packing(sys.argv[1], L, W)
 small, large = np.sum(r == 1.5), np.sum(r == 2.1)
 assert small == 30 and large == 30, (small, large) # 0.78 L W / (pi (1.5^2 + 2.1^2)) = 29.8 each
 phi = np.pi * np.sum(r * r) / (L * W)
 assert abs(phi - 0.78) < 0.011, phi # within half a pair's area of the target
-d = x[:, None, :] - x[None, :, :]
-d[..., 0] -= L * np.round(d[..., 0] / L)
-gap = np.hypot(d[..., 0], d[..., 1]) - (r[:, None] + r[None, :])
-np.fill_diagonal(gap, np.inf)
-walls = np.minimum(x[:, 1] - r, W - x[:, 1] - r)
-deepest = max(-gap.min(), -walls.min(), 0.0)
+deepest = max(-gap, -walls, 0.0)
 assert deepest < 0.01 * 1.5, deepest
 p = f["/particles/fluid/position/value"][0]
 inside = 0
@@ -97,17 +106,10 @@ for n in 2 3; do
     "${short[@]}" --out "$tmp/h$n" > /dev/null
 done
 cat > "$tmp/apart.py" <<'PY'
-import sys, h5py, numpy as np
-f = h5py.File(sys.argv[1], "r")
-c = f["/particles/colloids"] # frame 0 of the trajectory: the packing as made
-x, r = c["position/value"][0], c["radius"][:]
-L, W = 200.0, 80.0
-d = x[:, None, :] - x[None, :, :]
-d[..., 0] -= L * np.round(d[..., 0] / L)
-gap = np.hypot(d[..., 0], d[..., 1]) - (r[:, None] + r[None, :])
-np.fill_diagonal(gap, np.inf)
-walls = np.minimum(x[:, 1] - r, W - x[:, 1] - r)
-assert len(r) == 398 and gap.min() >= 0.01 * 2.0 and walls.min() >= 0.004 * 2.0, (gap.min(), walls.min())
+import sys
+from gaps import packing
+x, r, f, gap, walls = packing(sys.argv[1], 200.0, 80.0)
+assert len(r) == 398 and gap >= 0.01 * 2.0 and walls >= 0.004 * 2.0, (gap, walls)
 PY
 check "hard packing: surfaces apart" '$py "$tmp/apart.py" "$tmp/h1/trajectory.h5"'
 $py "$tmp/state.py" "$tmp/h1/checkpoint-0000000004.h5" > "$tmp/h1.bin"
