@@ -242,7 +242,8 @@ void NoSlipCoupling::add_ghost_particles(mpcd::CellGrid &grid, const Colloids &c
       if (kept[j] == 0.0)
         continue;
       const CutCell &cut = cut_[c0 + j];
-      mpcd::ParticleGroup g;
+      // Made in place: a group built on the stack and copied in stalled on its own stores.
+      mpcd::ParticleGroup &g = grid.groups.emplace_back();
       g.cell = cut.cell;
       g.n = static_cast<std::uint32_t>(kept[j]);
       const int upper[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
@@ -251,7 +252,6 @@ void NoSlipCoupling::add_ghost_particles(mpcd::CellGrid &grid, const Colloids &c
         for (int l = 0; l < dim_; ++l)
           g.rr[3 * k + l] = s2[upper[k][l]][j];
       }
-      grid.groups.push_back(g);
       group_row_.push_back(cut.row);
       group_corner_.push_back(cut.corner);
       group_key_.push_back(cut.key);
@@ -266,14 +266,20 @@ void NoSlipCoupling::add_ghost_particles(mpcd::CellGrid &grid, const Colloids &c
   group_normals_.resize(keys * 4);
   std::uint64_t ids[rng::batch];
   double z[4][rng::batch];
+  std::size_t group = 0, block = 0; // of key b0 + j (counted on: a division per key cost more)
   for (std::size_t b0 = 0; b0 < keys; b0 += rng::batch) {
     const std::size_t m = std::min(rng::batch, keys - b0);
     for (std::size_t j = 0; j < rng::batch; ++j) {
-      const std::size_t key = b0 + j, block = key % per_group;
-      ids[j] =
-          j >= m ? 0
-                 : group_key_[key / per_group] +
-                       (block < static_cast<std::size_t>(per_set) ? block : 128 + block - per_set);
+      if (j >= m) {
+        ids[j] = 0;
+        continue;
+      }
+      ids[j] = group_key_[group] +
+               (block < static_cast<std::size_t>(per_set) ? block : 128 + block - per_set);
+      if (++block == static_cast<std::size_t>(per_group)) {
+        block = 0;
+        ++group;
+      }
     }
     rng::gaussian_batch(params_.seed, rng::Purpose::ghost_velocity, step, ids, 4, z);
     for (std::size_t j = 0; j < m; ++j)
