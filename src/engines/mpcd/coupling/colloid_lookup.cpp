@@ -62,20 +62,28 @@ void ColloidLookup::build(const Colloids &c, const mpcd::Box &box, int first_col
       return q * q;
     };
     const double reach2 = r2 * (1.0 + 1e-9);
+    // Rows (y) outside, columns (x) inside: a row's cells lie next to each other in head_ and
+    // listed_. (A cell's list holds the same rows in the same order whatever the order within
+    // one colloid: they come from the colloids in row order.)
+    column_gap2_.clear();
+    column_index_.clear();
     for (int i = from[0]; i <= to[0]; ++i) {
-      const int col = wrap_index(i, L);
-      const int ix = wrap_index(col - lo_, L);
-      if (ix >= nx_)
-        continue;
-      const double di = gap2(0, i);
+      const int ix = wrap_index(wrap_index(i, L) - lo_, L);
+      column_gap2_.push_back(gap2(0, i));
+      column_index_.push_back(ix < nx_ ? ix : -1);
+    }
+    const std::size_t columns_here = column_index_.size();
+    for (int l = from[2]; l <= to[2]; ++l) {
+      const double dl = dim == 3 ? gap2(2, l) : 0.0;
+      const int iz = wrap_index(l, nz_);
       for (int j = from[1]; j <= to[1]; ++j) {
-        const int iy = wrap_index(j, ny_);
-        const double dj = di + gap2(1, j);
-        for (int l = from[2]; l <= to[2]; ++l) {
-          if (dj + (dim == 3 ? gap2(2, l) : 0.0) >= reach2)
+        const double dj = gap2(1, j);
+        const std::size_t row = static_cast<std::size_t>(nx_) * (wrap_index(j, ny_) + ny_ * iz);
+        for (std::size_t q = 0; q < columns_here; ++q) {
+          // (the x, y, z terms added in that order, as the test was made before)
+          if (column_index_[q] < 0 || (column_gap2_[q] + dj) + dl >= reach2)
             continue;
-          const int iz = wrap_index(l, nz_);
-          const std::size_t cell = ix + static_cast<std::size_t>(nx_) * (iy + ny_ * iz);
+          const std::size_t cell = row + static_cast<std::size_t>(column_index_[q]);
           entries_.push_back({static_cast<int>(a), head_[cell]});
           head_[cell] = static_cast<int>(entries_.size() - 1);
           listed_[cell] = 1;

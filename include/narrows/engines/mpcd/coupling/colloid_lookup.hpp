@@ -72,7 +72,9 @@ private:
   std::vector<int> head_;
   std::vector<std::uint8_t> listed_; // head_ >= 0, a quarter of the bytes for the first pass
   std::vector<Entry> entries_;
-  std::vector<Disc> discs_; // per row of c
+  std::vector<Disc> discs_;         // per row of c
+  std::vector<double> column_gap2_; // build(): per column of one colloid, its squared x gap
+  std::vector<int> column_index_;   // and its column in the region (-1: outside)
 };
 
 } // namespace narrows::coupling
