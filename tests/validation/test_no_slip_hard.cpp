@@ -59,13 +59,25 @@ void sample(const mpcd::MpcdSimulation &sim, Worst &w) {
           std::min(w.pair_gap, std::hypot(dx, c.x[1][a] - c.x[1][b]) - c.radius[a] - c.radius[b]);
     }
   }
+  // The closest fluid particle to any colloid, in radii: the smallest squared distance over
+  // squared radius, one root at the end (a plain loop over the fluid per colloid, which the
+  // compiler vectorises; hypot per pair took a sixth of this test's time).
   const auto &f = sim.fluid();
-  for (std::size_t i = 0; i < f.size(); ++i)
-    for (std::size_t a = 0; a < c.size(); ++a) {
-      double dx = f.x[0][i] - c.x[0][a];
+  const std::size_t n = f.size();
+  const double *fx = f.x[0].data(), *fy = f.x[1].data();
+  double closest2 = w.inside * w.inside;
+  for (std::size_t a = 0; a < c.size(); ++a) {
+    const double X = c.x[0][a], Y = c.x[1][a], inv_r2 = 1.0 / (c.radius[a] * c.radius[a]);
+    double m = closest2;
+    for (std::size_t i = 0; i < n; ++i) {
+      double dx = fx[i] - X;
       dx -= L * std::round(dx / L);
-      w.inside = std::min(w.inside, std::hypot(dx, f.x[1][i] - c.x[1][a]) / c.radius[a]);
+      const double dy = fy[i] - Y;
+      m = std::min(m, (dx * dx + dy * dy) * inv_r2);
     }
+    closest2 = m;
+  }
+  w.inside = std::sqrt(closest2);
 }
 
 Worst long_run(const scene::Scene &s, const char *name, int steps) {
