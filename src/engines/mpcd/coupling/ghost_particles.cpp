@@ -442,8 +442,13 @@ void NoSlipCoupling::ghost_responses(const mpcd::CellGrid &grid,
       slot_total_[static_cast<std::size_t>(cell_slot_[v.cell])] += v.count;
   // Per group and degree of freedom i of dX, what the fluid's shift needs (du, dw and the
   // momentum rows of column i of G): a few cache lines a group, not GhostResponse's ten.
-  const std::size_t per = static_cast<std::size_t>(dof_) * (6 + dim_);
+  // In the plane only du_x, du_y, dw_z, G_x and G_y of each dof are not zero: 5 a dof.
+  const std::size_t per = static_cast<std::size_t>(dof_) * (dim_ == 2 ? 5 : 6 + dim_);
   group_fluid_.resize(groups * per); // (each group's entries written below: no fill)
+  if (dim_ == 2) {
+    planar_responses(grid, collision);
+    return;
+  }
   for (std::size_t q = 0; q < groups; ++q) {
     const mpcd::ParticleGroup &g = grid.groups[q];
     const mpcd::GroupChange &d = collision.group_change[q];
@@ -501,6 +506,61 @@ void NoSlipCoupling::ghost_responses(const mpcd::CellGrid &grid,
   }
 }
 
+// ghost_responses in the plane: the same numbers from the moments the planar response reads,
+// and the five non-zero entries of each dof into group_fluid_.
+void NoSlipCoupling::planar_responses(const mpcd::CellGrid &grid,
+                                      const mpcd::CollisionScratch &collision) {
+  const std::size_t groups = grid.groups.size();
+  for (std::size_t q = 0; q < groups; ++q) {
+    const mpcd::ParticleGroup &g = grid.groups[q];
+    const mpcd::GroupChange &d = collision.group_change[q];
+    const double *corner = group_corner_[q].data();
+    const auto slot = static_cast<std::size_t>(cell_slot_[g.cell]);
+    double *f = &group_fluid_[q * 15];
+    if (g.n == 0) {
+      std::fill_n(f, 15, 0.0);
+      continue;
+    }
+    // (as GhostMoments is filled in ghost_responses: the same expressions)
+    PlanarMoments m;
+    m.m0 = g.n;
+    m.N = slot_total_[slot];
+    m.spin = d.spin[8];
+    const double cx = corner[0], cy = corner[1];
+    m.m1x = std::fma(m.m0, cx, g.r[0]); // (fused there, and here however the products are shared)
+    m.m1y = std::fma(m.m0, cy, g.r[1]);
+    m.rcx = cx + d.rc[0];
+    m.rcy = cy + d.rc[1];
+    m.m2xx = m.m0 * cx * cx + cx * g.r[0] + g.r[0] * cx + g.rr[0];
+    m.m2xy = m.m0 * cx * cy + cx * g.r[1] + g.r[0] * cy + g.rr[1];
+    m.m2yy = m.m0 * cy * cy + cy * g.r[1] + g.r[1] * cy + g.rr[4];
+    m.Qxx = d.response[0];
+    m.Qxy = d.response[1];
+    m.Qyx = d.response[3];
+    m.Qyy = d.response[4];
+    PlanarResponse out;
+    planar_response(m, out);
+    if (slot_fluid_[slot][0] == 0.0) { // dry: as in ghost_responses
+      for (int k = 0; k < 2; ++k)
+        for (int i = 0; i < 3; ++i)
+          out.G[k][i] = 0.0;
+      for (int i = 0; i < 3; ++i)
+        out.du[i][0] = out.du[i][1] = out.dw[i] = 0.0;
+    }
+    std::int64_t *G = &impulse_[group_row_[q] * static_cast<std::size_t>(stride_) + 3];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        G[i * 3 + j] += fixed::from_double(out.G[i][j]);
+    for (int i = 0; i < 3; ++i, f += 5) {
+      f[0] = out.du[i][0];
+      f[1] = out.du[i][1];
+      f[2] = out.dw[i];
+      f[3] = out.G[0][i];
+      f[4] = out.G[1][i];
+    }
+  }
+}
+
 // The fluid's share of the implicit exchange: each cut cell's particles get, for each group
 // there, Q du + dw x (r - rc) at the colloid's dX/2; and, spread evenly, whatever momentum the
 // colloids' G dX/2 has beyond that (other colloids' ghosts and a wall's virtual particles in
@@ -512,8 +572,32 @@ void NoSlipCoupling::shift_cut_cells(const mpcd::CellGrid &grid,
   slot_rc_.assign(slots, {0.0, 0.0, 0.0});
   // Summed over the groups of a cell in fixed point (their order depends on the colloid rows').
   slot_sums_.assign(slots, {});
-  const std::size_t per = static_cast<std::size_t>(dof_) * (6 + dim_);
-  for (std::size_t q = 0; q < grid.groups.size(); ++q) {
+  const std::size_t per = static_cast<std::size_t>(dof_) * (dim_ == 2 ? 5 : 6 + dim_);
+  for (std::size_t q = 0; q < grid.groups.size() && dim_ == 2; ++q) {
+    // The plane's five entries a dof (planar_responses); the sums that stay zero are left out.
+    const auto slot = static_cast<std::size_t>(cell_slot_[grid.groups[q].cell]);
+    const double *g = &group_fluid_[q * per];
+    const double *h = &half_[group_row_[q] * 3];
+    auto &sum = slot_sums_[slot];
+    double dux = 0.0, duy = 0.0, dw = 0.0, px = 0.0, py = 0.0;
+    for (int i = 0; i < 3; ++i)
+      dux += g[5 * i] * h[i];
+    for (int i = 0; i < 3; ++i)
+      px += g[5 * i + 3] * h[i];
+    for (int i = 0; i < 3; ++i)
+      duy += g[5 * i + 1] * h[i];
+    for (int i = 0; i < 3; ++i)
+      py += g[5 * i + 4] * h[i];
+    for (int i = 0; i < 3; ++i)
+      dw += g[5 * i + 2] * h[i];
+    sum[0] += fixed::from_double(dux);
+    sum[6] += fixed::from_double(px);
+    sum[1] += fixed::from_double(duy);
+    sum[7] += fixed::from_double(py);
+    sum[5] += fixed::from_double(dw);
+    slot_rc_[slot] = collision.group_change[q].rc; // the cell's, from its corner
+  }
+  for (std::size_t q = 0; q < grid.groups.size() && dim_ == 3; ++q) {
     const auto slot = static_cast<std::size_t>(cell_slot_[grid.groups[q].cell]);
     const double *g = &group_fluid_[q * per];
     const double *h = &half_[group_row_[q] * dof_];

@@ -111,41 +111,19 @@ void ghost_response_general(const GhostMoments &g, int dim, GhostResponse &out) 
 //       + dw (tr m2 - m1 . rc),
 // where z . sum r x Q (z x r) = Q_yy m2_xx - (Q_xy + Q_yx) m2_xy + Q_xx m2_yy.
 void ghost_response_2d(const GhostMoments &g, GhostResponse &out) {
-  const double m0 = g.m0, N = g.N, s = g.spin[2][2];
-  const double m1x = g.m1[0], m1y = g.m1[1], rcx = g.rc[0], rcy = g.rc[1];
-  const double Qxx = g.Q[0][0], Qxy = g.Q[0][1], Qyx = g.Q[1][0], Qyy = g.Q[1][1];
-  const double offx = m1x - m0 * rcx, offy = m1y - m0 * rcy;
-  const double trace = g.m2[0][0] + g.m2[1][1], m1rc = m1x * rcx + m1y * rcy;
-  const double spun = Qyy * g.m2[0][0] - (Qxy + Qyx) * g.m2[0][1] + Qxx * g.m2[1][1];
+  const PlanarMoments m{g.m0,       g.N,        g.spin[2][2], g.m1[0],  g.m1[1],
+                        g.m2[0][0], g.m2[0][1], g.m2[1][1],   g.rc[0],  g.rc[1],
+                        g.Q[0][0],  g.Q[0][1],  g.Q[1][0],    g.Q[1][1]};
+  PlanarResponse r;
+  planar_response(m, r);
   for (int i = 0; i < 3; ++i) {
-    double Sx, Sy, dL;
-    if (i < 2) {
-      Sx = i == 0 ? m0 : 0.0;
-      Sy = i == 1 ? m0 : 0.0;
-      dL = i == 0 ? -offy : offx;
-    } else {
-      Sx = -m1y;
-      Sy = m1x;
-      dL = trace - m1rc;
-    }
-    const double dux = N > 0.0 ? Sx / N : 0.0, duy = N > 0.0 ? Sy / N : 0.0;
-    const double Qdux = Qxx * dux + Qxy * duy, Qduy = Qyx * dux + Qyy * duy;
-    const double QSx = Qxx * Sx + Qxy * Sy, QSy = Qyx * Sx + Qyy * Sy;
-    const double dw = s * dL;
-    const double Px = m0 * Qdux - QSx - dw * offy, Py = m0 * Qduy - QSy + dw * offx;
-    double L = m1x * Qduy - m1y * Qdux + dw * (trace - m1rc);
-    if (i < 2) // - m1 x Q e
-      L -= i == 0 ? m1x * Qyx - m1y * Qxx : m1x * Qyy - m1y * Qxy;
-    else
-      L -= spun;
-    out.G[0][i] = -Px;
-    out.G[1][i] = -Py;
-    out.G[2][i] = -L;
-    out.du[i][0] = Qdux;
-    out.du[i][1] = Qduy;
+    for (int k = 0; k < 3; ++k)
+      out.G[k][i] = r.G[k][i];
+    out.du[i][0] = r.du[i][0];
+    out.du[i][1] = r.du[i][1];
     out.du[i][2] = 0.0;
     out.dw[i][0] = out.dw[i][1] = 0.0;
-    out.dw[i][2] = dw;
+    out.dw[i][2] = r.dw[i];
   }
 }
 

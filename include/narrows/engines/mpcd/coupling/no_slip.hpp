@@ -178,6 +178,7 @@ private:
   // response per unit dX (ghost_particles.cpp); after the solve, the cut cells' fluid shifted.
   void ghost_responses(const mpcd::CellGrid &grid, const mpcd::CollisionScratch &collision,
                        const mpcd::Fluid &fluid);
+  void planar_responses(const mpcd::CellGrid &grid, const mpcd::CollisionScratch &collision);
   void shift_cut_cells(const mpcd::CellGrid &grid, const mpcd::CollisionScratch &collision,
                        mpcd::Fluid &fluid);
   // Adds G (dof x dof) to row a's.
