@@ -241,7 +241,7 @@ private:
     std::uint64_t key;            // the pair's key of draws (try 0)
     std::array<double, 3> corner; // the cell's corner from the colloid's centre
   };
-  std::vector<CutCell> cut_;          // this step's cut cells
+  std::vector<CutCell> cut_; // this step's cut cells first (its size: the most so far)
   std::vector<double> group_normals_; // the groups' Gaussian draws
   colloids::HardSphereStats contacts_;
   std::optional<colloids::SpringContacts> springs_;
