@@ -114,23 +114,4 @@ std::size_t ColloidLookup::listed_block(const double *x, const double *y, const 
   return k;
 }
 
-long ColloidLookup::inside_listed(const Colloids &c, const double *p, int cell) const {
-  long best = -1;
-  for (int e = head_[static_cast<std::size_t>(cell)]; e >= 0;) {
-    const Entry &entry = entries_[static_cast<std::size_t>(e)];
-    const Disc &disc = discs_[static_cast<std::size_t>(entry.row)];
-    double r2 = 0.0;
-    for (int k = 0; k < box_.dim; ++k) {
-      double d = p[k] - disc.x[k];
-      if (!(k == 1 && box_.walls_y))
-        d = minimum_image(d, box_.length[k]);
-      r2 += d * d;
-    }
-    if (r2 < disc.r2 && (best < 0 || c.id[entry.row] < c.id[best]))
-      best = entry.row;
-    e = entry.next;
-  }
-  return best;
-}
-
 } // namespace narrows::coupling

@@ -8,6 +8,7 @@
 #pragma once
 
 #include "narrows/colloids/colloids.hpp"
+#include "narrows/colloids/pair_geometry.hpp"
 #include "narrows/engines/mpcd/kernels/fluid.hpp"
 
 #include <algorithm>
@@ -57,7 +58,25 @@ private:
     const int iz = box_.dim == 3 ? std::clamp(static_cast<int>(p[2] * per_unit_), 0, nz_ - 1) : 0;
     return ix + nx_ * (iy + ny_ * iz);
   }
-  long inside_listed(const colloids::Colloids &c, const double *p, int cell) const;
+  // (inline: asked for most fluid particles of a dense suspension every step)
+  long inside_listed(const colloids::Colloids &c, const double *p, int cell) const {
+    long best = -1;
+    for (int e = head_[static_cast<std::size_t>(cell)]; e >= 0;) {
+      const Entry &entry = entries_[static_cast<std::size_t>(e)];
+      const Disc &disc = discs_[static_cast<std::size_t>(entry.row)];
+      double r2 = 0.0;
+      for (int k = 0; k < box_.dim; ++k) {
+        double d = p[k] - disc.x[k];
+        if (!(k == 1 && box_.walls_y))
+          d = colloids::minimum_image(d, box_.length[k]);
+        r2 += d * d;
+      }
+      if (r2 < disc.r2 && (best < 0 || c.id[entry.row] < c.id[best]))
+        best = entry.row;
+      e = entry.next;
+    }
+    return best;
+  }
   struct Entry {
     int row;  // the colloid's row in c
     int next; // the cell's next entry, -1 at the end
