@@ -98,7 +98,7 @@ void NoSlipCoupling::add_ghost_particles(mpcd::CellGrid &grid, const Colloids &c
   group_row_.clear();
   group_corner_.clear();
   group_key_.clear();
-  ghost_count_ = 0;
+  std::size_t ghosts = 0; // (ghost_count_, counted in a register)
   const double n = params_.density;
   const int whole = static_cast<int>(std::floor(n));
   const double fraction = n - whole;
@@ -251,7 +251,8 @@ void NoSlipCoupling::add_ghost_particles(mpcd::CellGrid &grid, const Colloids &c
       // Made in place: a group built on the stack and copied in stalled on its own stores.
       mpcd::ParticleGroup &g = grid.groups.emplace_back();
       g.cell = cut.cell;
-      g.n = static_cast<std::uint32_t>(kept[j]);
+      const auto count = static_cast<std::uint32_t>(kept[j]);
+      g.n = count;
       const int upper[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
       for (int k = 0; k < dim_; ++k) {
         g.r[k] = s1[k][j];
@@ -261,9 +262,10 @@ void NoSlipCoupling::add_ghost_particles(mpcd::CellGrid &grid, const Colloids &c
       group_row_.push_back(cut.row);
       group_corner_.push_back(cut.corner);
       group_key_.push_back(cut.key);
-      ghost_count_ += g.n;
+      ghosts += count;
     }
   }
+  ghost_count_ = ghosts;
   // The groups' Gaussians: (1 + D) D for the thermal velocities eta and as many for the MPC-AT
   // draws xi, four a Philox block, keyed by (colloid id, global cell, block): tries 0-2 for
   // eta, 128-130 for xi; a batch of keys at a time (the last batch padded).
