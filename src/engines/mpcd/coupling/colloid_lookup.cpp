@@ -94,7 +94,8 @@ void ColloidLookup::build(const Colloids &c, const mpcd::Box &box, int first_col
 }
 
 std::size_t ColloidLookup::listed_block(const double *x, const double *y, const double *z,
-                                        std::size_t m, std::uint32_t *found) const {
+                                        std::size_t m, std::uint32_t *found,
+                                        std::int32_t *found_cell) const {
   int cell[block];
   const double S = per_unit_;
   const int lx = lx_, lo = lo_, nx = nx_, ny = ny_, nz = nz_;
@@ -109,6 +110,7 @@ std::size_t ColloidLookup::listed_block(const double *x, const double *y, const 
   std::size_t k = 0;
   for (std::size_t j = 0; j < m; ++j) {
     found[k] = static_cast<std::uint32_t>(j);
+    found_cell[k] = cell[j];
     k += (cell[j] >= 0) & (listed_[static_cast<std::size_t>(cell[j] < 0 ? 0 : cell[j])] != 0);
   }
   return k;

@@ -112,21 +112,25 @@ BounceStats NoSlipCoupling::bounce_back(mpcd::Fluid &fluid, Colloids &c,
   // First the particles in cells that list a colloid, without a branch on each (which of
   // them are is random: a branch would miss often), then which of those are inside one.
   candidates_.resize(n);
+  candidate_cells_.resize(n);
   std::size_t listed = 0;
   std::uint32_t found[ColloidLookup::block];
+  std::int32_t found_cell[ColloidLookup::block];
   for (std::size_t i0 = 0; i0 < n; i0 += ColloidLookup::block) {
     const std::size_t m = std::min(ColloidLookup::block, n - i0);
     const std::size_t k =
         lookup_.listed_block(fluid.x[0].data() + i0, fluid.x[1].data() + i0,
-                             dim_ == 3 ? fluid.x[2].data() + i0 : nullptr, m, found);
-    for (std::size_t j = 0; j < k; ++j)
+                             dim_ == 3 ? fluid.x[2].data() + i0 : nullptr, m, found, found_cell);
+    for (std::size_t j = 0; j < k; ++j) {
       candidates_[listed + j] = i0 + found[j];
+      candidate_cells_[listed + j] = found_cell[j];
+    }
     listed += k;
   }
   for (std::size_t q = 0; q < listed; ++q) {
     const std::size_t i = candidates_[q];
     const double p[3] = {fluid.x[0][i], fluid.x[1][i], dim_ == 3 ? fluid.x[2][i] : 0.0};
-    const long a = lookup_.inside(c, p);
+    const long a = lookup_.inside_listed(c, p, candidate_cells_[q]); // (its cell, found above)
     if (a < 0)
       continue;
     batch_index_.push_back(i);

@@ -33,33 +33,13 @@ public:
   }
 
   // Of the points (x[j], y[j], z[j]) for j < m (z null in 2D), the offsets j of those whose cell
-  // lists a colloid, in order, into `found`; returns how many. (The points elsewhere are inside
-  // none.) The cells first, in a loop the compiler vectorises, then a pass without branches.
+  // lists a colloid, in order, into `found`, and their cells into `found_cell` (for
+  // inside_listed); returns how many. (The points elsewhere are inside none.) The cells first,
+  // in a loop the compiler vectorises, then a pass without branches.
   std::size_t listed_block(const double *x, const double *y, const double *z, std::size_t m,
-                           std::uint32_t *found) const;
-  static constexpr std::size_t block = 512; // the largest m
-
-  // Whether the cell of p lists a colloid (a point elsewhere is inside none); branch-free, for
-  // a first pass over many points.
-  bool listed(const double *p) const {
-    const int cell = cell_of(p);
-    return (cell >= 0) & (listed_[static_cast<std::size_t>(cell < 0 ? 0 : cell)] != 0);
-  }
-
-private:
-  // The cell of p, -1 outside the region. Positions lie in [0, L) along periodic axes and in
-  // [0, L_y] between walls (streamed and wrapped): truncation is the floor, and one addition
-  // wraps the column into the region.
-  int cell_of(const double *p) const {
-    int ix = std::min(static_cast<int>(p[0] * per_unit_), lx_ - 1) - lo_;
-    ix += ix < 0 ? lx_ : 0;
-    if (ix >= nx_)
-      return -1;
-    const int iy = std::clamp(static_cast<int>(p[1] * per_unit_), 0, ny_ - 1); // y = L_y: wall
-    const int iz = box_.dim == 3 ? std::clamp(static_cast<int>(p[2] * per_unit_), 0, nz_ - 1) : 0;
-    return ix + nx_ * (iy + ny_ * iz);
-  }
-  // (inline: asked for most fluid particles of a dense suspension every step)
+                           std::uint32_t *found, std::int32_t *found_cell) const;
+  // inside() for a point whose cell lists a colloid (cell_of, or listed_block's found_cell).
+  // Inline: asked for most fluid particles of a dense suspension every step.
   long inside_listed(const colloids::Colloids &c, const double *p, int cell) const {
     long best = -1;
     if (box_.dim == 2 && box_.walls_y) { // the channel in the plane: the same sums, unrolled
@@ -90,6 +70,28 @@ private:
       e = entry.next;
     }
     return best;
+  }
+  static constexpr std::size_t block = 512; // the largest m
+
+  // Whether the cell of p lists a colloid (a point elsewhere is inside none); branch-free, for
+  // a first pass over many points.
+  bool listed(const double *p) const {
+    const int cell = cell_of(p);
+    return (cell >= 0) & (listed_[static_cast<std::size_t>(cell < 0 ? 0 : cell)] != 0);
+  }
+
+private:
+  // The cell of p, -1 outside the region. Positions lie in [0, L) along periodic axes and in
+  // [0, L_y] between walls (streamed and wrapped): truncation is the floor, and one addition
+  // wraps the column into the region.
+  int cell_of(const double *p) const {
+    int ix = std::min(static_cast<int>(p[0] * per_unit_), lx_ - 1) - lo_;
+    ix += ix < 0 ? lx_ : 0;
+    if (ix >= nx_)
+      return -1;
+    const int iy = std::clamp(static_cast<int>(p[1] * per_unit_), 0, ny_ - 1); // y = L_y: wall
+    const int iz = box_.dim == 3 ? std::clamp(static_cast<int>(p[2] * per_unit_), 0, nz_ - 1) : 0;
+    return ix + nx_ * (iy + ny_ * iz);
   }
   struct Entry {
     int row;  // the colloid's row in c

@@ -229,6 +229,7 @@ private:
   // Bounce-back scratch: the particles being bounced, their fluid rows and colloid rows.
   mpcd::Fluid batch_;
   std::vector<std::size_t> batch_index_, candidates_;
+  std::vector<std::int32_t> candidate_cells_; // the lookup cell of each candidate
   std::vector<long> batch_hit_;
   // Ghost particles of this step, one group per (colloid, cut cell) pair (grid.groups): the
   // colloid row, the cell's corner from the colloid's centre, the pair's key of draws.
@@ -241,7 +242,7 @@ private:
     std::uint64_t key;            // the pair's key of draws (try 0)
     std::array<double, 3> corner; // the cell's corner from the colloid's centre
   };
-  std::vector<CutCell> cut_; // this step's cut cells first (its size: the most so far)
+  std::vector<CutCell> cut_;          // this step's cut cells first (its size: the most so far)
   std::vector<double> group_normals_; // the groups' Gaussian draws
   colloids::HardSphereStats contacts_;
   std::optional<colloids::SpringContacts> springs_;
