@@ -657,15 +657,28 @@ void NoSlipCoupling::shift_cut_cells(const mpcd::CellGrid &grid,
   const std::size_t n = fluid.size();
   const double sx = grid.shift[0], sy = grid.shift[1], sz = grid.shift[2];
   if (dim_ == 2) {
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::int32_t slot = cell_slot_[fluid.cell[i]];
-      if (slot < 0)
-        continue;
-      const double *m = slot_motion_[static_cast<std::size_t>(slot)].data();
-      const double rx = mpcd::in_cell_offset(fluid.x[0][i], sx);
-      const double ry = mpcd::in_cell_offset(fluid.x[1][i], sy);
-      fluid.v[0][i] += m[0] - m[5] * ry;
-      fluid.v[1][i] += m[1] + m[5] * rx;
+    // A block at a time: first which particles lie in a cut cell, without a branch (about half
+    // of them, at random: a branch missed often), then those particles.
+    constexpr std::size_t block = 512;
+    std::uint32_t at[block];
+    std::int32_t slot_of[block];
+    for (std::size_t i0 = 0; i0 < n; i0 += block) {
+      const std::size_t m = std::min(block, n - i0);
+      std::size_t k = 0;
+      for (std::size_t j = 0; j < m; ++j) {
+        const std::int32_t slot = cell_slot_[fluid.cell[i0 + j]];
+        at[k] = static_cast<std::uint32_t>(j);
+        slot_of[k] = slot;
+        k += slot >= 0;
+      }
+      for (std::size_t q = 0; q < k; ++q) {
+        const std::size_t i = i0 + at[q];
+        const double *m = slot_motion_[static_cast<std::size_t>(slot_of[q])].data();
+        const double rx = mpcd::in_cell_offset(fluid.x[0][i], sx);
+        const double ry = mpcd::in_cell_offset(fluid.x[1][i], sy);
+        fluid.v[0][i] += m[0] - m[5] * ry;
+        fluid.v[1][i] += m[1] + m[5] * rx;
+      }
     }
   } else {
     for (std::size_t i = 0; i < n; ++i) {
