@@ -519,14 +519,15 @@ void NoSlipCoupling::ghost_responses(const mpcd::CellGrid &grid,
 void NoSlipCoupling::planar_responses(const mpcd::CellGrid &grid,
                                       const mpcd::CollisionScratch &collision) {
   const std::size_t groups = grid.groups.size();
+  constexpr std::size_t per = 15; // 3 dof x 5
   for (std::size_t q = 0; q < groups; ++q) {
     const mpcd::ParticleGroup &g = grid.groups[q];
     const mpcd::GroupChange &d = collision.group_change[q];
     const double *corner = group_corner_[q].data();
     const auto slot = static_cast<std::size_t>(cell_slot_[g.cell]);
-    double *f = &group_fluid_[q * 15];
+    double *f = &group_fluid_[q * per];
     if (g.n == 0) {
-      std::fill_n(f, 15, 0.0);
+      std::fill_n(f, per, 0.0);
       continue;
     }
     // (as GhostMoments is filled in ghost_responses: the same expressions)
@@ -588,21 +589,18 @@ void NoSlipCoupling::shift_cut_cells(const mpcd::CellGrid &grid,
     const double *h = &half_[group_row_[q] * 3];
     auto &sum = slot_sums_[slot];
     double dux = 0.0, duy = 0.0, dw = 0.0, px = 0.0, py = 0.0;
-    for (int i = 0; i < 3; ++i)
-      dux += g[5 * i] * h[i];
-    for (int i = 0; i < 3; ++i)
-      px += g[5 * i + 3] * h[i];
-    for (int i = 0; i < 3; ++i)
-      duy += g[5 * i + 1] * h[i];
-    for (int i = 0; i < 3; ++i)
-      py += g[5 * i + 4] * h[i];
-    for (int i = 0; i < 3; ++i)
-      dw += g[5 * i + 2] * h[i];
+    for (int i = 0; i < 3; ++i, g += 5) {
+      dux += g[0] * h[i];
+      duy += g[1] * h[i];
+      dw += g[2] * h[i];
+      px += g[3] * h[i];
+      py += g[4] * h[i];
+    }
     sum[0] += fixed::from_double(dux);
-    sum[6] += fixed::from_double(px);
     sum[1] += fixed::from_double(duy);
-    sum[7] += fixed::from_double(py);
     sum[5] += fixed::from_double(dw);
+    sum[6] += fixed::from_double(px);
+    sum[7] += fixed::from_double(py);
     slot_rc_[slot] = collision.group_change[q].rc; // the cell's, from its corner
   }
   for (std::size_t q = 0; q < grid.groups.size() && dim_ == 3; ++q) {
