@@ -49,6 +49,39 @@ constexpr std::uint32_t stray_cell = 0xffffffffu;
 // Two passes: the cell of every particle, then the sums, fetching the records of later
 // particles ahead; the sums pass is bound by their latency (at 1e6 particles, one core,
 // 3D 9.2 -> 6.0 ns per particle, 2D 3.8 -> 3.5 ns).
+//
+// The cells are found a block at a time in a loop without branches, which vectorises: a
+// coordinate no cell can hold only raises a flag, and a particle beyond the slab is marked.
+// Then, in order, the marked particles of a block are listed as strays (bin_one), or every
+// particle of a flagged block is done again one by one, so that a broken invariant is
+// reported exactly as a plain loop would.
+template <int D, bool Walls>
+void bin_one(Fluid &f, const CellGrid &g, std::size_t i, Strays *strays) {
+  const int NX = g.global_columns, nx = g.cells[0], ny = g.cells[1], nz = g.cells[2];
+  const int column = cell_coordinate(f.x[0][i], g.shift[0], NX, 0, "fluid particle", f.id[i]);
+  const int ix = column - g.first_column;
+  if (static_cast<unsigned>(ix) >= static_cast<unsigned>(nx)) {
+    if (strays) {
+      strays->index.push_back(i);
+      strays->column.push_back(column);
+      f.cell[i] = stray_cell;
+      return;
+    }
+    throw invariant_error(
+        "particle id " + std::to_string(f.id[i]) + " at x = " + std::to_string(f.x[0][i]) +
+        " is outside this rank's slab (columns " + std::to_string(g.first_column) + " to " +
+        std::to_string(g.first_column + nx - 1) + ")");
+  }
+  const double y = f.x[1][i], sy = g.shift[1];
+  const int row = Walls ? wall_row(y, sy, ny, "fluid particle", f.id[i])
+                        : cell_coordinate(y, sy, ny, 1, "fluid particle", f.id[i]);
+  std::size_t c = ix + static_cast<std::size_t>(nx) * row;
+  if constexpr (D == 3)
+    c += static_cast<std::size_t>(nx) * ny *
+         cell_coordinate(f.x[2][i], g.shift[2], nz, 2, "fluid particle", f.id[i]);
+  f.cell[i] = static_cast<std::uint32_t>(c);
+}
+
 template <int D, bool Walls>
 void bin_kernel(Fluid &f, CellGrid &g, std::size_t first, Strays *strays) {
   const int NX = g.global_columns, nx = g.cells[0], ny = g.cells[1], nz = g.cells[2];
@@ -67,27 +100,56 @@ void bin_kernel(Fluid &f, CellGrid &g, std::size_t first, Strays *strays) {
     if constexpr (D == 3)
       s.p[2] += fixed::from_double(vz[i]);
   };
-  for (std::size_t i = first; i < n; ++i) {
-    const int column = cell_coordinate(x[i], sx, NX, 0, "fluid particle", f.id[i]);
-    const int ix = column - x0;
-    if (static_cast<unsigned>(ix) >= static_cast<unsigned>(nx)) {
-      if (strays) {
-        strays->index.push_back(i);
-        strays->column.push_back(column);
-        cell[i] = stray_cell;
-        continue;
+  // The same floor and bounds as cell_coordinate and wall_row (a value that fails them is
+  // replaced by 0 before it is converted, and flagged).
+  const double NXd = NX, nyd = ny, nzd = nz;
+  const auto wnx = static_cast<std::uint32_t>(nx), wnxy = wnx * static_cast<std::uint32_t>(ny);
+  constexpr std::size_t block = 256;
+  for (std::size_t i0 = first; i0 < n; i0 += block) {
+    const std::size_t end = std::min(n, i0 + block);
+    int bad = 0, left = 0;
+    for (std::size_t i = i0; i < end; ++i) {
+      const double fx = std::floor(x[i] - sx), fy = std::floor(y[i] - sy);
+      int ok =
+          (fx >= -NXd) & (fx < 2.0 * NXd) & (fy >= -nyd) & (fy < 2.0 * nyd); // (int: vectorises)
+      double fz = 0.0;
+      if constexpr (D == 3) {
+        fz = std::floor(z[i] - sz);
+        ok = ok & (fz >= -nzd) & (fz < 2.0 * nzd);
       }
-      throw invariant_error("particle id " + std::to_string(f.id[i]) + " at x = " +
-                            std::to_string(x[i]) + " is outside this rank's slab (columns " +
-                            std::to_string(x0) + " to " + std::to_string(x0 + nx - 1) + ")");
+      int column = static_cast<int>(ok ? fx : 0.0);
+      column += (column < 0) ? NX : 0;
+      column -= (column >= NX) ? NX : 0;
+      const int ix = column - x0;
+      const int out = static_cast<unsigned>(ix) >= static_cast<unsigned>(nx);
+      int row = static_cast<int>(ok ? fy : 0.0);
+      if constexpr (Walls) {
+        row += 1;
+        row = row < 0 ? 0 : row;
+        row = row < ny ? row : ny - 1;
+      } else {
+        row += (row < 0) ? ny : 0;
+        row -= (row >= ny) ? ny : 0;
+      }
+      std::uint32_t c = static_cast<std::uint32_t>(ix) + wnx * static_cast<std::uint32_t>(row);
+      if constexpr (D == 3) {
+        int layer = static_cast<int>(ok ? fz : 0.0);
+        layer += (layer < 0) ? nz : 0;
+        layer -= (layer >= nz) ? nz : 0;
+        c += wnxy * static_cast<std::uint32_t>(layer);
+      }
+      cell[i] = out ? stray_cell : c;
+      bad |= 1 - ok;
+      left |= out;
     }
-    const int row = Walls ? wall_row(y[i], sy, ny, "fluid particle", f.id[i])
-                          : cell_coordinate(y[i], sy, ny, 1, "fluid particle", f.id[i]);
-    std::size_t c = ix + static_cast<std::size_t>(nx) * row;
-    if constexpr (D == 3)
-      c += static_cast<std::size_t>(nx) * ny *
-           cell_coordinate(z[i], sz, nz, 2, "fluid particle", f.id[i]);
-    cell[i] = static_cast<std::uint32_t>(c);
+    if (bad) [[unlikely]] { // every particle of the block again, in order
+      for (std::size_t i = i0; i < end; ++i)
+        bin_one<D, Walls>(f, g, i, strays);
+    } else if (left) { // (blocks at the slab's edges) its strays, in order
+      for (std::size_t i = i0; i < end; ++i)
+        if (cell[i] == stray_cell)
+          bin_one<D, Walls>(f, g, i, strays);
+    }
   }
   {
     constexpr std::size_t ahead = 64; // ~0.4 us ahead at ~6 ns a particle: the memory latency
