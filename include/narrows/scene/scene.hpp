@@ -63,8 +63,9 @@ enum class VirtualFlow { rest, mirror };
 
 // Planar walls at y = 0 and y = L_y (2D channel; 3D slit with periodic z).
 struct Walls {
-  bool slip = false;             // specular reflection instead of no-slip bounce-back
-  bool virtual_particles = true; // fill cells cut by a wall to the mean density (000 eq 3.14)
+  bool slip = false; // specular reflection instead of no-slip bounce-back
+  // Fill cells cut by a wall to the mean density (Tabatabaei (2008) eq 3.14).
+  bool virtual_particles = true;
   VirtualFlow virtual_flow = VirtualFlow::rest;
 };
 
@@ -72,9 +73,10 @@ struct Walls {
 // radius_sd > 0 each drawn from a Gaussian of that mean and standard deviation truncated at
 // +-3 sd (engines/mpcd/colloid_placement.hpp). Potentials, with each colloid's own radius r_a:
 // colloid-fluid WCA (sigma_cf = r_a), colloid-colloid 48-24 (sigma_cc = r_a + r_b, 2 r_c for
-// equal radii), integrated LJ wall (with [walls]); gravity is the gravitational field g_c of seed
-// 000 (an acceleration: the force on a colloid is its mass times g, eq 4.4 without buoyancy, as the
-// fluid feels no gravity).
+// equal radii), integrated LJ wall (with [walls]); gravity is the gravitational field g_c of
+// Tabatabaei (2008) (an acceleration: the force on a colloid is its mass times g, eq 4.4 without
+// buoyancy, as the fluid feels no gravity).
+//
 // packing: grown from points with frictionless springs and no fluid to colloids.packing_fraction
 // (Kanehl (thesis) §6.1, colloids/packing.hpp); the counts follow from that fraction.
 enum class ColloidPlacement { lattice, list, random, packing };
