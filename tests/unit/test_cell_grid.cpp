@@ -307,3 +307,68 @@ TEST(CellList, ClampedCellGuardsNonFiniteAndFarCoordinates) {
   for (const double bad : {std::nan(""), HUGE_VAL, -1e300, 16.0, -8.0})
     EXPECT_THROW(clamped_cell(bad, 0.5, 4, "colloid", 7, 1), Error) << bad;
 }
+
+// A slab's grid (columns 5 to 12 of 20): particles whose shifted column lies outside it are
+// listed as strays in the order of the particles, with their global column, and left out of
+// every cell sum; the others get their cell in the slab. Without a strays list the first of
+// them (in particle order, here beyond the first block of 256 the binning works in) is named.
+// Particles in blocks are binned branch-free and a block with a stray is gone through again, so
+// strays at the start, inside and at the end of blocks, and a block of only strays, are mixed.
+TEST(GridBin, SlabListsStraysInOrder) {
+  for (const int dim : {2, 3}) {
+    const Box box = make_box(dim, {20, 6, 4});
+    const int first = 5, columns = 8;
+    CellGrid g(box, first, columns);
+    g.shift = {0.3, -0.2, 0.1};
+    Fluid f = random_fluid(box, 1500, 7 + dim);
+    for (std::size_t i = 512; i < 768; ++i) // a whole block of strays
+      f.x[0][i] = 1.5;
+    std::vector<std::size_t> want;
+    std::vector<int> want_column;
+    std::uint64_t inside = 0;
+    for (std::size_t i = 0; i < f.size(); ++i) {
+      const int column = static_cast<int>(
+          ((static_cast<long long>(std::floor(f.x[0][i] - g.shift[0])) % 20) + 20) % 20);
+      if (column < first || column >= first + columns) {
+        want.push_back(i);
+        want_column.push_back(column);
+      } else {
+        ++inside;
+      }
+    }
+    ASSERT_GT(want.size(), 300u);
+    ASSERT_GT(inside, 300u);
+    Strays strays;
+    bin_particles(f, g, &strays);
+    EXPECT_EQ(strays.index, want);
+    EXPECT_EQ(strays.column, want_column);
+    std::uint64_t binned = 0;
+    for (const auto &s : g.sums)
+      binned += s.n;
+    EXPECT_EQ(binned, inside);
+    for (std::size_t i = 0; i < f.size(); ++i) {
+      if (std::find(want.begin(), want.end(), i) != want.end())
+        continue;
+      Fluid one = f; // the reference cell in the slab: the column less the slab's first
+      one.x[0][i] = f.x[0][i] - first;
+      CellGrid local(make_box(dim, {columns, 6, 4}));
+      local.shift = g.shift;
+      ASSERT_EQ(f.cell[i], ref_cell(one, local, i)) << "dim " << dim << " particle " << i;
+    }
+    // Without a list: the first stray beyond the first block is named (the earlier ones moved in).
+    for (std::size_t k = 0; k < want.size() && want[k] < 300; ++k)
+      f.x[0][want[k]] = first + 3.5;
+    const std::size_t named =
+        *std::find_if(want.begin(), want.end(), [](std::size_t i) { return i >= 300; });
+    try {
+      bin_particles(f, g);
+      ADD_FAILURE() << "no error for a particle beyond the slab";
+    } catch (const Error &e) {
+      EXPECT_EQ(e.code(), ExitCode::invariant);
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find("particle id " + std::to_string(f.id[named]) + " at x"), std::string::npos)
+          << msg;
+      EXPECT_NE(msg.find("outside this rank's slab (columns 5 to 12)"), std::string::npos) << msg;
+    }
+  }
+}
