@@ -42,19 +42,19 @@ template <int D> struct Flight {
   }
 };
 
-// True when the flight over dt under acceleration gy stays within [0, L] (the parabola's
-// extremum is checked when it falls inside the step).
-inline bool stays_inside(double y, double vy, double gy, double dt, double L) {
+// 1 when the flight over dt under acceleration gy stays within [0, L] (the parabola's
+// extremum is checked when it falls inside the step; Pulled: gy != 0). Without branches, so
+// that fly_block's loop vectorises; the plain path uses it too.
+template <bool Pulled>
+inline int stays_inside(double y, double vy, double gy, double dt, double L) {
   const double end = y + (vy + 0.5 * gy * dt) * dt;
-  if (!(end >= 0.0 && end <= L))
-    return false;
-  if (gy == 0.0)
-    return true;
-  const double t_ext = -vy / gy;
-  if (t_ext <= 0.0 || t_ext >= dt)
-    return true;
-  const double ext = y + 0.5 * vy * t_ext;
-  return ext >= 0.0 && ext <= L;
+  int ok = (end >= 0.0) & (end <= L);
+  if constexpr (Pulled) {
+    const double t_ext = -vy / gy;
+    const double ext = y + 0.5 * vy * t_ext;
+    ok &= (t_ext <= 0.0) | (t_ext >= dt) | ((ext >= 0.0) & (ext <= L));
+  }
+  return ok;
 }
 
 // One particle's whole step, hits and all (the plain path).
@@ -67,7 +67,8 @@ void channel_one(double *const *X, double *const *V, std::size_t i, const mpcd::
     p.x[k] = X[k][i];
     p.v[k] = V[k][i];
   }
-  if (stays_inside(p.x[1], p.v[1], g[1], dt, L)) {
+  if (g[1] != 0.0 ? stays_inside<true>(p.x[1], p.v[1], g[1], dt, L)
+                  : stays_inside<false>(p.x[1], p.v[1], g[1], dt, L)) {
     p.fly(dt, g);
   } else {
     double left = dt;
@@ -125,14 +126,8 @@ int fly_block(double *__restrict x, double *__restrict y, double *__restrict z,
   const double gx = g[0], gy = g[1], gz = g[2];
   int any = 0;
   for (std::size_t i = 0; i < m; ++i) {
-    // stays_inside, without its branches
-    const double end = y[i] + (vy[i] + 0.5 * gy * dt) * dt;
-    int ok = (end >= 0.0) & (end <= L);
-    if constexpr (Pulled) { // (gy != 0)
-      const double t_ext = -vy[i] / gy;
-      const double ext = y[i] + 0.5 * vy[i] * t_ext;
-      ok &= (t_ext <= 0.0) | (t_ext >= dt) | ((ext >= 0.0) & (ext <= L));
-    }
+    const int ok = stays_inside<Pulled>(y[i], vy[i], gy, dt, L);
+    const double end = y[i] + (vy[i] + 0.5 * gy * dt) * dt; // (as Flight::fly's y)
     // Flight::fly(dt, g)
     int rare = 0;
     const double nx = wrap_near(x[i] + (vx[i] + 0.5 * gx * dt) * dt, Lx, rare);
