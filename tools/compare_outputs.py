@@ -51,6 +51,9 @@ TIMING_RULES = [
     # the no-slip coupling's share of the loop time (and of its messages): only timings
     (re.compile(r"^no-slip coupling( messages)?: \S+ s of the loop"), None),
     (re.compile(r"^no-slip coupling stages \(s"), None),
+    # every rank's seconds in messages, and the busy time's max/mean per balance check
+    (re.compile(r"^messages and waiting: \S+ s of the loop"), None),
+    (re.compile(r"^busy time (every|max/mean per check)"), None),
     # (bytes sent depend on the ghost regions, which may be wider than a step needs: not a result)
     (re.compile(r"^colloid messages: \S+ bytes per step"), r"colloid messages: <n> bytes per step"),
     # the axial fields' cost per sample: "axial_fields: 2.56 ms per sample on the busiest rank"

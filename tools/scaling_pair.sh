@@ -4,7 +4,10 @@
 # rates bound what two ranks can reach (they share the memory bandwidth and caches alike, and
 # have no messages to wait for).
 #
-# Usage: bash tools/scaling_pair.sh [NARROWS] [REPEATS] [STEPS]   (defaults: build/narrows, 3, 200)
+# Usage: bash tools/scaling_pair.sh [NARROWS] [REPEATS] [STEPS] [BALANCE]
+#   (defaults: build/narrows, 3, 200, none). BALANCE is the two-rank runs' domain.balance, checked
+#   every 20 steps: "none", "work" or "time" (the cores of a VM need not run alike, and a slab of
+#   equal work on the slower core keeps the other waiting).
 # Prints per repeat, then the ranges, in fluid particle-steps/s: one rank alone on core 0 and on
 # core 1 (the cores of a VM need not be alike: the mean of the two is the one-rank rate), two
 # ranks (l = 600 b and l = 1200 b), and two one-rank runs side by side (l = 600 b each);
@@ -17,12 +20,20 @@ here=$(cd "$(dirname "$0")/.." && pwd)
 narrows=${1:-$here/build/narrows}
 repeats=${2:-3}
 steps=${3:-200}
+balance=${4:-none}
+case $balance in none | work | time) ;; *)
+  echo "scaling_pair: BALANCE = '$balance'; allowed: none, work, time" >&2
+  exit 2
+  ;;
+esac
 scene=$here/run/pulses_table6_1.toml
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 mpi=(mpirun --oversubscribe)
 [ "$(id -u)" -eq 0 ] && mpi+=(--allow-run-as-root)
 common=(--set run.steps="$steps" --set output.every=100000 --set output.checkpoint_every=0 --overwrite)
+two=(--set "domain.balance=\"$balance\"" --set domain.balance_every=20)
+echo "two-rank runs: domain.balance = \"$balance\", checked every 20 steps"
 rate() { sed -n 's/^Loop time .*(\([0-9.e+]*\) particle-steps\/s)$/\1/p' "$1"; }
 run() { # LOG COMMAND...: the run must succeed and print its rate
   local log=$1
@@ -41,8 +52,9 @@ for r in $(seq "$repeats"); do
   first=$!
   run "$dir/b.log" taskset -c 1 "$narrows" run "$scene" "${common[@]}" --out "$dir/b"
   wait "$first" || { echo "scaling_pair: the first side-by-side run failed ($dir/a.log)" >&2; exit 1; }
-  run "$dir/strong.log" "${mpi[@]}" -n 2 "$narrows" run "$scene" "${common[@]}" --out "$dir/strong"
-  run "$dir/weak.log" "${mpi[@]}" -n 2 "$narrows" run "$scene" "${common[@]}" \
+  run "$dir/strong.log" "${mpi[@]}" -n 2 "$narrows" run "$scene" "${common[@]}" "${two[@]}" \
+    --out "$dir/strong"
+  run "$dir/weak.log" "${mpi[@]}" -n 2 "$narrows" run "$scene" "${common[@]}" "${two[@]}" \
     --set "domain.size=[1200.0, 50.0]" --out "$dir/weak"
   line="$(rate "$dir/one0.log") $(rate "$dir/one1.log") $(rate "$dir/strong.log") $(rate "$dir/weak.log") $(rate "$dir/a.log") $(rate "$dir/b.log")"
   results+=("$line")

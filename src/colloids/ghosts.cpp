@@ -4,6 +4,7 @@
 #include "narrows/colloids/ownership.hpp"
 #include "narrows/colloids/potentials.hpp"
 #include "narrows/core/error.hpp"
+#include "narrows/parallel/message_clock.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -88,7 +89,10 @@ void ColloidGhosts::add_for_step(Colloids &c, std::vector<double> &margin, doubl
   double own[2] = {0.0, fluid_reach}, all[2] = {0.0, 0.0};
   for (std::size_t a = 0; a < c.size(); ++a)
     own[0] = std::max(own[0], margin[a]);
-  MPI_Allreduce(own, all, 2, MPI_DOUBLE, MPI_MAX, slabs_.comm());
+  {
+    const parallel::MessageTimer timed;
+    MPI_Allreduce(own, all, 2, MPI_DOUBLE, MPI_MAX, slabs_.comm());
+  }
   add_for_step_agreed(c, margin, all[0], all[1], more);
 }
 

@@ -4,6 +4,7 @@
 #include "narrows/parallel/exchange.hpp"
 
 #include "narrows/core/error.hpp"
+#include "narrows/parallel/message_clock.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -114,6 +115,7 @@ void Exchange::check_destinations() const {
 // Words (not rows) per rank and their offsets in send_words_, recv_words_, send_displs_,
 // recv_displs_ (no allocation per exchange once warm).
 void Exchange::exchange_rows(std::size_t row, bool counts_known, Reach reach) {
+  const MessageTimer timed;
   const bool to_neighbours = neighbours_set_ && reach == Reach::neighbours;
   if (!counts_known) {
     recv_counts_.assign(ranks_, 0);

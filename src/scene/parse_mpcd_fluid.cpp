@@ -50,18 +50,18 @@ void parse_domain(const Checker &c, const value *domain, int dims, Domain &out) 
     out.size[d] = x;
   }
   if (const value *b = find(domain, "balance")) {
-    const std::vector<std::string> kinds{"none", "work"};
+    const std::vector<std::string> kinds{"none", "work", "time"};
     const std::size_t i = c.choice(*b, "domain.balance", "how the slabs are chosen", kinds);
-    out.balance = i == 0 ? Balance::none : Balance::work;
+    out.balance = i == 0 ? Balance::none : i == 1 ? Balance::work : Balance::time;
   }
   if (const value *v = find(domain, "balance_every"))
     out.balance_every = c.integer(*v, "domain.balance_every",
                                   "an integer from 0 (balance at the start only) to 2^31 - 1",
                                   [](std::int64_t n) { return n >= 0 && n < (1LL << 31); });
   if (const value *v = find(domain, "balance_threshold"))
-    out.balance_threshold =
-        c.number(*v, "domain.balance_threshold", "a number >= 1 (max/mean of the counted work)",
-                 [](double x) { return x >= 1.0 && x < 1e6; });
+    out.balance_threshold = c.number(*v, "domain.balance_threshold",
+                                     "a number >= 1 (max/mean of the counted work or busy time)",
+                                     [](double x) { return x >= 1.0 && x < 1e6; });
 }
 
 void parse_fluid(const Checker &c, const value *fluid, const Domain &domain, int dims, Fluid &out) {

@@ -19,20 +19,25 @@ const EngineSchema &mpcd_schema() {
         {{"size", "array of `run.dimensions` numbers", "required",
           "whole numbers from 2 to 1048576 each", "cells",
           "box along x (flow axis, periodic, split into MPI slabs), y [, z]"},
-         {"balance", "string", R"(`"none"`)", R"(`"none"`, `"work"`)", "",
+         {"balance", "string", R"(`"none"`)", R"(`"none"`, `"work"`, `"time"`)", "",
           "slabs of equal numbers of cell columns, or boundaries moved so that the counted work "
-          "of the ranks is even (fluid particles, colloids, contacts, bounce-back events and "
-          "ghost particles, weighted by their measured cost): at the start, on a restart and "
-          "every `balance_every` steps; the results are bitwise the same, the log's `counted "
-          "work` line gives the imbalance; a restart may change it"},
+          "of the ranks is even (`\"work\"`: fluid particles, colloids, contacts, bounce-back "
+          "events and ghost particles, weighted by their measured cost) or their measured busy "
+          "time (`\"time\"`: the step's time less its messages and waiting; each rank gets a "
+          "share of the counted work in proportion to the work it did per busy second, for "
+          "cores of unequal speed and work the counts miss): at the start and on a restart by "
+          "the counted work, then every `balance_every` steps; the results are bitwise the "
+          "same, the log's `counted work` and `busy time` lines give the imbalance; a restart "
+          "may change it"},
          {"balance_every", "integer", "0", "0 to 2147483647", "steps",
-          "count the work's max/mean over the ranks every this many steps (one small "
-          "collective; the log lists each) and, with `\"work\"`, move the slabs when it "
-          "exceeds `balance_threshold`; 0: no checks (`\"work\"` balances at the start and on a "
-          "restart only)"},
+          "measure the counted work's and the busy time's max/mean over the ranks every this "
+          "many steps (one small collective; the log lists each) and, with `\"work\"` or "
+          "`\"time\"`, move the slabs when the one balanced exceeds `balance_threshold`; 0: no "
+          "checks (the slabs are balanced at the start and on a restart only)"},
          {"balance_threshold", "number", "1.05", ">= 1", "",
-          "with `\"work\"` and `balance_every` > 0: the max/mean of the counted work over the "
-          "last `balance_every` steps above which the slabs move"}}},
+          "with `\"work\"` or `\"time\"` and `balance_every` > 0: the max/mean of the counted "
+          "work or of the busy time over the last `balance_every` steps above which the slabs "
+          "move"}}},
        {"fluid",
         {{"collision", "string", "required",
           R"(`"srd"`, `"at"`, `"at+a"`, `"random-permute"`, `"random-maxwell"`)", "",

@@ -3,8 +3,10 @@
 # sit in the first half of the box, on 3 ranks with equal slabs and with the slabs moved
 # every 10 steps (threshold 1: they move at nearly every check, fluid, colloids and contacts
 # migrating to the new owners), ends in bitwise the same state (fluid, colloids, contact
-# history) and the same observables (those summed in fixed point); a restart from equal slabs on 3 ranks, balanced on 4 ranks,
-# continues bitwise; the log gives the counted work's max/mean.
+# history) and the same observables (those summed in fixed point); so do the slabs balanced by
+# measured busy time (moved by each rank's work per busy second, so where they go depends on the
+# machine; the state must not); a restart from equal slabs on 3 ranks, balanced on 4 ranks,
+# continues bitwise; the log gives the counted work's and the busy time's max/mean.
 set -u
 source "$(dirname "$0")/common.bash"
 py=/usr/bin/python3
@@ -80,6 +82,16 @@ check "3 ranks: balanced bitwise equal to equal slabs (fluid, colloids, contacts
   '$py "$same" "$tmp/none/$end" "$tmp/work/$end" $state && $py "$tmp/touching.py" "$tmp/none/$end"'
 check "3 ranks: balanced, the same observables (momentum, colloid positions)" \
   '$py "$tmp/same_observables.py" "$tmp/none/observables.h5" "$tmp/work/observables.h5"'
+
+runs "3 ranks, slabs balanced by busy time every 10 steps" "${mpi[@]}" -n 3 "$narrows" run \
+  "$tmp/s.toml" --set domain.balance=time --set domain.balance_every=10 \
+  --set domain.balance_threshold=1.0 --out "$tmp/time" > /dev/null 2>&1
+check "by time: the slabs moved mid-run, and the log gives the busy time per check" \
+  'grep -q "^busy time every 10 steps: .*slabs moved [1-9][0-9]* times" "$tmp/time/log.txt" && grep -q "^busy time max/mean per check (step: value, \* slabs moved): 10: " "$tmp/time/log.txt"'
+check "3 ranks: balanced by time bitwise equal to equal slabs (fluid, colloids, contacts)" \
+  '$py "$same" "$tmp/none/$end" "$tmp/time/$end" $state'
+check "3 ranks: balanced by time, the same observables" \
+  '$py "$tmp/same_observables.py" "$tmp/none/observables.h5" "$tmp/time/observables.h5"'
 
 runs "first half on 3 ranks, equal slabs" "${mpi[@]}" -n 3 "$narrows" run "$tmp/s.toml" \
   --set run.steps=60 --out "$tmp/half" > /dev/null 2>&1

@@ -24,8 +24,11 @@ struct Run {
 
 // How the MPCD box's slabs along x are chosen: equal numbers of cell columns, or boundaries that
 // even the counted work of the ranks (at the start, on a restart, and every balance_every steps
-// when the work's max/mean over the ranks exceeds balance_threshold). Results are the same.
-enum class Balance { none, work };
+// when the work's max/mean over the ranks exceeds balance_threshold), or (time) that even the
+// ranks' measured busy time: each rank's share of the counted work in proportion to the work it
+// did per busy second over the last balance_every steps (cores of unequal speed, work the
+// counts miss). Results are the same.
+enum class Balance { none, work, time };
 
 struct Domain {
   std::array<double, 3> size{0.0, 0.0, 0.0}; // whole cells along x, y[, z]; z unused in 2D

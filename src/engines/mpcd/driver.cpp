@@ -21,6 +21,7 @@
 #include "narrows/engines/mpcd/trajectory_writer.hpp"
 #include "narrows/io/checkpoint.hpp"
 #include "narrows/io/observables_writer.hpp"
+#include "narrows/parallel/message_clock.hpp"
 #include "narrows/parallel/slabs.hpp"
 #include "narrows/run/collective.hpp"
 #include "narrows/run/engine.hpp"
@@ -282,8 +283,9 @@ public:
                                      scene.colloids->epsilon, scene.fluid.kT, file, comm);
       }
     }
-    // Slabs balanced by work: from the initial state or the checkpoint's colloids and contacts.
-    if (scene.domain.balance == scene::Balance::work)
+    // Slabs balanced by work (by time too, before any is measured): from the initial state or the
+    // checkpoint's colloids and contacts.
+    if (scene.domain.balance != scene::Balance::none)
       sim.balance_work();
     // The colloid statistics, on a restart with the sums of the run chain so far.
     ColloidStatistics &colloid_stats = colloid_stats_.emplace(sim);
@@ -301,8 +303,12 @@ public:
       log.warn(w);
     if (shell.restarting())
       log.line("restarted from " + shell.restart_file() + " at step " + std::to_string(sim.step()));
-    if (scene.domain.balance == scene::Balance::work && sim.slabs().ranks() > 1)
-      log.line("slabs balanced by counted work: first columns " + slab_text(sim.slabs()));
+    if (scene.domain.balance != scene::Balance::none && sim.slabs().ranks() > 1)
+      log.line("slabs balanced by counted work: first columns " + slab_text(sim.slabs()) +
+               (scene.domain.balance == scene::Balance::time
+                    ? " (then by measured busy time every " +
+                          std::to_string(scene.domain.balance_every) + " steps)"
+                    : ""));
     if (const auto &p = sim.packing()) {
       char line[256];
       std::snprintf(line, sizeof line,
@@ -343,6 +349,7 @@ public:
     }
     invariants_.emplace(sim);
     n_particles_ = analysis::total_momentum(sim.fluid(), comm).count;
+    talked_before_loop_ = parallel::message_seconds();
   }
 
   std::int64_t step() const override { return sim_->step(); }
@@ -430,8 +437,17 @@ public:
                     busiest(static_cast<double>(bytes)) / static_cast<double>(steps), which);
       log.line(text);
     };
-    if (sim.slabs().ranks() > 1 && steps > 0)
+    if (sim.slabs().ranks() > 1 && steps > 0 && seconds > 0.0) {
       messages("fluid", sim.fluid_bytes_sent(), "particles migrating to the slab of their cell");
+      // Every exchange and collective of the steps, on the busiest and on the least busy rank.
+      const double mine = parallel::message_seconds() - talked_before_loop_;
+      const double most = busiest(mine), least = -busiest(-mine);
+      std::snprintf(text, sizeof text,
+                    "messages and waiting: %.4g-%.4g s of the loop (%.1f-%.1f %%) over the ranks "
+                    "(every exchange of fluid and colloids and the steps' collectives)",
+                    least, most, 100.0 * least / seconds, 100.0 * most / seconds);
+      log.line(text);
+    }
     if (scene_.colloids && steps > 0) { // the cost of colloids owned by slabs
       messages("colloid", sim.colloid_bytes_sent(), "ghosts, their forces, migration");
       if (const auto *ns = sim.no_slip(); ns && seconds > 0.0) { // the coupling's share
@@ -534,8 +550,9 @@ private:
                   "steps x %g, contact updates x %g, bounce-backs x %g, ghost particles x %g; "
                   "%s)",
                   imbalance(work), W::colloid, W::contact, W::bounce, W::ghost,
-                  sim.scene().domain.balance == scene::Balance::work ? "slabs balanced by work"
-                                                                     : "equal slabs");
+                  sim.scene().domain.balance == scene::Balance::work   ? "slabs balanced by work"
+                  : sim.scene().domain.balance == scene::Balance::time ? "slabs balanced by time"
+                                                                       : "equal slabs");
     std::string line = text;
     line += "; per rank:";
     for (int r = 0; r < ranks; ++r) {
@@ -551,33 +568,42 @@ private:
     const auto &checks = sim.balance_checks();
     if (checks.empty())
       return;
-    double most = 0.0, mean = 0.0;
     int moved = 0;
-    for (const auto &c : checks) {
-      most = std::max(most, c.imbalance);
-      mean += c.imbalance / static_cast<double>(checks.size());
+    for (const auto &c : checks)
       moved += c.moved ? 1 : 0;
+    // Of the counted work, then of the busy time (the steps less their messages and waiting).
+    for (const bool busy : {false, true}) {
+      const auto value = [busy](const MpcdSimulation::BalanceCheck &c) {
+        return busy ? c.busy_imbalance : c.imbalance;
+      };
+      const char *what = busy ? "busy time" : "counted work";
+      double most = 0.0, mean = 0.0;
+      for (const auto &c : checks) {
+        most = std::max(most, value(c));
+        mean += value(c) / static_cast<double>(checks.size());
+      }
+      std::snprintf(text, sizeof text,
+                    "%s every %lld steps: max/mean first %.4f, mean %.4f, largest %.4f, last "
+                    "%.4f; slabs moved %d times; now first columns %s",
+                    what, static_cast<long long>(sim.scene().domain.balance_every),
+                    value(checks.front()), mean, most, value(checks.back()), moved,
+                    slab_text(sim.slabs()).c_str());
+      log.line(text);
+      line = std::string(what) + " max/mean per check (step: value, * slabs moved):";
+      const std::size_t from = checks.size() > 40 ? checks.size() - 40 : 0;
+      for (std::size_t i = from; i < checks.size(); ++i) {
+        std::snprintf(text, sizeof text, " %lld: %.3f%s", static_cast<long long>(checks[i].step),
+                      value(checks[i]), checks[i].moved ? "*" : "");
+        line += text;
+      }
+      log.line(line);
     }
-    std::snprintf(text, sizeof text,
-                  "counted work every %lld steps: max/mean first %.4f, mean %.4f, largest %.4f, "
-                  "last %.4f; slabs moved %d times; now first columns %s",
-                  static_cast<long long>(sim.scene().domain.balance_every),
-                  checks.front().imbalance, mean, most, checks.back().imbalance, moved,
-                  slab_text(sim.slabs()).c_str());
-    log.line(text);
-    line = "counted work max/mean per check (step: value, * slabs moved):";
-    const std::size_t from = checks.size() > 40 ? checks.size() - 40 : 0;
-    for (std::size_t i = from; i < checks.size(); ++i) {
-      std::snprintf(text, sizeof text, " %lld: %.3f%s", static_cast<long long>(checks[i].step),
-                    checks[i].imbalance, checks[i].moved ? "*" : "");
-      line += text;
-    }
-    log.line(line);
   }
 
   const scene::Scene &scene_;
   MPI_Comm comm_;
   std::optional<MpcdSimulation> sim_;
+  double talked_before_loop_ = 0.0; // parallel::message_seconds() when the loop began
   std::optional<ColloidStatistics> colloid_stats_; // until open() hands it to the observer
   std::optional<Observer> observer_;
   std::optional<TrajectoryWriter> trajectory_;

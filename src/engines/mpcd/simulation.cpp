@@ -2,6 +2,7 @@
 #include "narrows/engines/mpcd/simulation.hpp"
 
 #include "narrows/core/error.hpp"
+#include "narrows/core/timer.hpp"
 
 #include "narrows/colloids/ownership.hpp"
 #include "narrows/colloids/placement.hpp"
@@ -12,6 +13,7 @@
 #include "narrows/engines/mpcd/kernels/thermostat.hpp"
 #include "narrows/engines/mpcd/walls/bounce_back.hpp"
 #include "narrows/engines/mpcd/walls/virtual_particles.hpp"
+#include "narrows/parallel/message_clock.hpp"
 #include "narrows/run/collective.hpp"
 #include "narrows/run/stop_signals.hpp"
 
@@ -230,6 +232,8 @@ void MpcdSimulation::migrate_strays_and_bin_arrivals() {
 }
 
 void MpcdSimulation::advance() {
+  const double talked = parallel::message_seconds();
+  const Stopwatch watch;
   try {
     step_stages();
   } catch (const Error &e) { // a kernel named the particle; the step and rank are added here
@@ -245,6 +249,7 @@ void MpcdSimulation::advance() {
       run::abort_with_line(comm_, what, static_cast<int>(ExitCode::invariant));
     throw invariant_error(what);
   }
+  window_busy_ += watch.seconds() - (parallel::message_seconds() - talked);
   ++step_;
   count_work();
 }
@@ -267,19 +272,30 @@ void MpcdSimulation::count_work() {
   const std::int64_t every = scene_.domain.balance_every;
   if (every <= 0 || step_ % every != 0 || slabs_.ranks() == 1)
     return;
-  // One small collective every `every` steps: the window's work of every rank.
-  const double mine = window_.work();
-  std::vector<double> all(static_cast<std::size_t>(slabs_.ranks()));
-  MPI_Allgather(&mine, 1, MPI_DOUBLE, all.data(), 1, MPI_DOUBLE, comm_);
+  // One small collective every `every` steps: the window's work and busy time of every rank.
+  const double mine[2] = {window_.work(), window_busy_};
+  const auto ranks = static_cast<std::size_t>(slabs_.ranks());
+  std::vector<double> both(2 * ranks), all(ranks), busy(ranks);
+  MPI_Allgather(mine, 2, MPI_DOUBLE, both.data(), 2, MPI_DOUBLE, comm_);
+  for (std::size_t r = 0; r < ranks; ++r) {
+    all[r] = both[2 * r];
+    busy[r] = both[2 * r + 1];
+  }
   window_ = WorkCounts{};
-  const double ratio = imbalance(all); // the same arithmetic on the same numbers: every rank
+  window_busy_ = 0.0;
+  // The same arithmetic on the same numbers: every rank decides alike.
+  const double ratio = imbalance(all), busy_ratio = imbalance(busy);
+  const double threshold = scene_.domain.balance_threshold;
   bool moved = false;
-  if (scene_.domain.balance == scene::Balance::work && ratio > scene_.domain.balance_threshold)
+  if (scene_.domain.balance == scene::Balance::work && ratio > threshold)
     moved = balance_work(&all, static_cast<double>(every));
-  balance_checks_.push_back({step_, ratio, moved});
+  else if (scene_.domain.balance == scene::Balance::time && busy_ratio > threshold)
+    moved = balance_work(&all, static_cast<double>(every), speed_shares(all, busy));
+  balance_checks_.push_back({step_, ratio, busy_ratio, moved});
 }
 
-bool MpcdSimulation::balance_work(const std::vector<double> *window_work, double window_steps) {
+bool MpcdSimulation::balance_work(const std::vector<double> *window_work, double window_steps,
+                                  const std::vector<double> &shares) {
   if (slabs_.ranks() == 1)
     return false;
   using W = WorkWeights;
@@ -363,7 +379,7 @@ bool MpcdSimulation::balance_work(const std::vector<double> *window_work, double
           for (int c = lo; c < hi; ++c)
             work[static_cast<std::size_t>(c)] *= counted / estimate;
       }
-    first = balanced_first_columns(work, slabs_.ranks());
+    first = balanced_first_columns(work, slabs_.ranks(), 1, shares);
   }
   MPI_Bcast(first.data(), static_cast<int>(first.size()), MPI_INT, 0, comm_);
   if (first == slabs_.first_columns())

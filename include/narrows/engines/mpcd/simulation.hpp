@@ -100,15 +100,19 @@ public:
   // fluid, the colloids and their contacts to their new owners (collective, between steps; the
   // results stay bitwise the same). Returns whether they moved. With `window_work` (every
   // rank's counted work over the last `window_steps` steps, the same on every rank) the
-  // estimate of each slab's columns is scaled to what its rank counted.
-  bool balance_work(const std::vector<double> *window_work = nullptr, double window_steps = 0.0);
+  // estimate of each slab's columns is scaled to what its rank counted; with `shares` (one per
+  // rank, the same on every rank) rank r gets that share of the work (balanced_first_columns).
+  bool balance_work(const std::vector<double> *window_work = nullptr, double window_steps = 0.0,
+                    const std::vector<double> &shares = {});
   // The slabs given by their first columns (collective, the same on every rank; between steps).
   void set_slabs(const std::vector<int> &first_columns);
-  // With domain.balance_every > 0, each check of the counted work over the last
-  // balance_every steps: its max/mean over the ranks, and whether the slabs moved then.
+  // With domain.balance_every > 0, each check of the last balance_every steps: the max/mean
+  // over the ranks of the counted work and of the busy time (the steps' wall time less their
+  // messages and waiting), and whether the slabs moved then.
   struct BalanceCheck {
     std::int64_t step;
     double imbalance;
+    double busy_imbalance;
     bool moved;
   };
   const std::vector<BalanceCheck> &balance_checks() const { return balance_checks_; }
@@ -144,6 +148,7 @@ private:
   std::int64_t step_ = 0;
   bool restored_ = false;    // the fluid is a checkpoint's blocks, not yet on its slabs
   WorkCounts work_, window_; // since the start, since the last balance check
+  double window_busy_ = 0.0; // seconds of the steps since the last check, less their messages
   std::uint64_t bounced_ = 0, contact_updates_ = 0; // the coupling's totals at the last step
   std::vector<BalanceCheck> balance_checks_;
 };

@@ -53,8 +53,16 @@ double imbalance(const std::vector<double> &per_rank);
 
 // The first column of each of `ranks` slabs over work.size() columns, each slab at least
 // `min_columns` wide, with the boundaries where the running sum of `work` (>= 0 per column)
-// comes closest to r/ranks of the total.
+// comes closest to r/ranks of the total; with `shares` (one per rank, >= 0, not all zero) to
+// the sum of the shares of ranks before r over the sum of all (a rank twice as fast takes twice
+// the work).
 std::vector<int> balanced_first_columns(const std::vector<double> &work, int ranks,
-                                        int min_columns = 1);
+                                        int min_columns = 1,
+                                        const std::vector<double> &shares = {});
+
+// The shares of balanced_first_columns that even the ranks' busy time: each rank's counted work
+// per busy second over the same steps. Equal shares (empty) if any rank has no work or time
+// measured.
+std::vector<double> speed_shares(const std::vector<double> &work, const std::vector<double> &busy);
 
 } // namespace narrows::mpcd

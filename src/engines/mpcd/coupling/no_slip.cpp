@@ -10,6 +10,7 @@
 #include "narrows/core/timer.hpp"
 #include "narrows/engines/mpcd/coupling/near_fluid.hpp"
 #include "narrows/engines/mpcd/kernels/streaming.hpp"
+#include "narrows/parallel/message_clock.hpp"
 
 #include <Eigen/Dense>
 
@@ -139,6 +140,7 @@ void NoSlipCoupling::move_colloids(const mpcd::Fluid &fluid, Colloids &c, double
   double all[3] = {own[0], own[1], own[2]};
   if (ghosts_.active()) {
     const ScopedSeconds talk(message_seconds_);
+    const parallel::MessageTimer timed;
     MPI_Allreduce(own, all, 3, MPI_DOUBLE, MPI_MAX, slabs_.comm());
     if (stop_signal_.agreed)
       stop_signal_.agreed(static_cast<int>(all[2]));
