@@ -20,6 +20,9 @@ using namespace narrows::colloids;
 
 namespace {
 
+// How many groups ahead their cell sums are fetched.
+constexpr std::size_t prefetch_ahead = 8;
+
 // The key of a ghost particle's draws: colloid id, global cell, try (255: the fractional try).
 std::uint64_t ghost_key(std::uint64_t colloid, std::uint64_t cell, std::uint64_t t) {
   return (colloid << 40) | (cell << 8) | t;
@@ -296,6 +299,10 @@ void NoSlipCoupling::add_ghost_particles(mpcd::CellGrid &grid, const Colloids &c
   }
   const double sigma = std::sqrt(params_.kT);
   for (std::size_t q = 0; q < groups; ++q) {
+    // The cell sums a few groups on (a cache line each, scattered over the grid: a miss the
+    // long body of a group could not hide).
+    if (q + prefetch_ahead < groups)
+      __builtin_prefetch(&grid.sums[grid.groups[q + prefetch_ahead].cell], 1);
     mpcd::ParticleGroup &g = grid.groups[q];
     const std::size_t a = group_row_[q];
     const double *corner = group_corner_[q].data();
@@ -344,6 +351,8 @@ void NoSlipCoupling::take_back_ghost_particles(mpcd::CellGrid &grid,
   }
   Stopwatch solve_watch;
   for (std::size_t q = 0; q < groups; ++q) {
+    if (q + prefetch_ahead < groups) // (as in add_ghost_particles)
+      __builtin_prefetch(&grid.sums[grid.groups[q + prefetch_ahead].cell], 1);
     const mpcd::ParticleGroup &g = grid.groups[q];
     const mpcd::GroupChange &d = collision.group_change[q];
     const double *r = group_corner_[q].data();
