@@ -22,22 +22,24 @@ using fixed::to_double;
 // between sorts jumps around the cell array: fetching the record of the particle `ahead`
 // places later hides the memory latency that otherwise bounds the loops.
 constexpr std::size_t ahead = 64;
-template <int D, class T>
+template <int D, std::size_t stride, class T>
 inline void prefetch_record(const std::vector<T> &records, const std::uint32_t *cell, std::size_t i,
-                            std::size_t n, std::size_t stride) {
-  // In the plane not again for the particle after one of the same cell: its lines are on their
-  // way, and each prefetch takes an instruction slot and, missed, waits for a fill buffer (MPC-AT+a
-  // 2D 16-19 % faster in and beyond the cache). In space the same test made the kernel 35-45 %
-  // slower (measured, cause not found: the shifted grid spreads a sorted cell over eight, so the
-  // test is a branch taken at random?): there every particle fetches.
-  if (i + ahead < n && (D == 3 || cell[i + ahead] != cell[i + ahead - 1])) {
-    // Every cache line the record touches: a record of 72 or 120 bytes at any offset can span
-    // three lines (its start plus multiples of 64 bytes missed the third).
-    const auto begin = reinterpret_cast<std::uintptr_t>(&records[cell[i + ahead] * stride]);
-    const std::uintptr_t end = begin + stride * sizeof(T);
-    for (std::uintptr_t line = begin & ~std::uintptr_t(63); line < end; line += 64)
-      __builtin_prefetch(reinterpret_cast<const void *>(line), 1);
-  }
+                            std::size_t n) {
+  if (i + ahead >= n)
+    return;
+  // Every cache line the record can touch, a fixed number (a loop over those it does touch
+  // missed its branch at random: MPC-AT+a 3D 10-18 % faster in the cache without it): a record
+  // of 72 or 120 bytes at any offset can span three lines. In the plane only for the first
+  // particle of a run in one cell (16-19 % faster in and beyond the cache); in space the same
+  // test halved the speed (measured, cause not found), so there every particle fetches.
+  constexpr std::size_t lines = (stride * sizeof(T) + 62) / 64 + 1;
+  if constexpr (D == 2)
+    if (cell[i + ahead] == cell[i + ahead - 1])
+      return;
+  const auto begin =
+      reinterpret_cast<std::uintptr_t>(&records[cell[i + ahead] * stride]) & ~std::uintptr_t(63);
+  for (std::size_t l = 0; l < lines; ++l)
+    __builtin_prefetch(reinterpret_cast<const void *>(begin + 64 * l), 1);
 }
 
 // Gaussian velocities xi_i at kT for every particle (keyed by particle id), drawn a batch of
@@ -158,7 +160,7 @@ void at_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, std:
   s.cell_fixed.assign(nc * D, 0);
   const std::size_t n = f.size();
   draw_noise<D>(f, s, kT, seed, step, [&](std::size_t i) {
-    prefetch_record<D>(s.cell_fixed, f.cell.data(), i, n, D);
+    prefetch_record<D, D>(s.cell_fixed, f.cell.data(), i, n);
     std::int64_t *sum = &s.cell_fixed[static_cast<std::size_t>(f.cell[i]) * D];
     for (int k = 0; k < D; ++k)
       sum[k] += from_double(s.noise[k][i]);
@@ -177,7 +179,7 @@ void at_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, std:
   for (std::size_t j = 0; j < g.groups.size(); ++j)
     group_change<D>(g.groups[j], &s.cell[g.groups[j].cell * D], none, none, s.group_change[j]);
   for (std::size_t i = 0; i < n; ++i) {
-    prefetch_record<D>(s.cell, f.cell.data(), i, n, D);
+    prefetch_record<D, D>(s.cell, f.cell.data(), i, n);
     const double *delta = &s.cell[static_cast<std::size_t>(f.cell[i]) * D];
     for (int k = 0; k < D; ++k)
       f.v[k][i] = s.noise[k][i] + delta[k];
@@ -227,7 +229,7 @@ void at_a_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, st
   s.cell_fixed.assign(nc * SS, 0);
   // One pass: the noise of a batch, then its particles' sums.
   draw_noise<D>(f, s, kT, seed, step, [&](std::size_t i) {
-    prefetch_record<D>(s.cell_fixed, f.cell.data(), i, n, SS);
+    prefetch_record<D, SS>(s.cell_fixed, f.cell.data(), i, n);
     std::int64_t *sum = &s.cell_fixed[static_cast<std::size_t>(f.cell[i]) * SS];
     double r[3], w[3], l[3];
     for (int k = 0; k < D; ++k) {
@@ -363,7 +365,7 @@ void at_a_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, st
 
   double v2_max = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
-    prefetch_record<D>(s.cell, f.cell.data(), i, n, PS);
+    prefetch_record<D, PS>(s.cell, f.cell.data(), i, n);
     const double *par = &s.cell[static_cast<std::size_t>(f.cell[i]) * PS];
     double r[3];
     for (int k = 0; k < D; ++k)
