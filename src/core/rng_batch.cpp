@@ -2,6 +2,8 @@
 // (CMakeLists.txt) so that std::sqrt is one vector instruction; nothing here reads errno.
 #include "narrows/core/rng_batch.hpp"
 
+#include "narrows/core/trig_kernels.hpp"
+
 #include <bit>
 #include <cmath>
 #ifdef __AVX512F__
@@ -44,26 +46,13 @@ inline double log_open01(double u) {
 // k_cos.c kernels (minimax on [-pi/4, pi/4], error < 2^-58) give sin and cos of 2 pi r, which
 // the quadrant swaps and negates.
 inline void sincos_2pi_open01(std::uint32_t b, double &sine, double &cosine) {
-  constexpr double S1 = -1.66666666666666324348e-01, S2 = 8.33333333332248946124e-03,
-                   S3 = -1.98412698298579493134e-04, S4 = 2.75573137070700676789e-06,
-                   S5 = -2.50507602534068634195e-08, S6 = 1.58969099521155010221e-10;
-  constexpr double C1 = 4.16666666666666019037e-02, C2 = -1.38888888888741095749e-03,
-                   C3 = 2.48015872894767294178e-05, C4 = -2.75573143513906633035e-07,
-                   C5 = 2.08757232129817482790e-09, C6 = -1.13596475577881948265e-11;
   constexpr double two_pi = 6.283185307179586;
   const std::uint32_t q = ((b + 0x20000000u) >> 30) & 3u;  // b + 2^29 wraps: quadrant 4 = 0
   const auto d = static_cast<std::int32_t>(b - (q << 30)); // in [-2^29, 2^29)
   const double x = two_pi * ((static_cast<double>(d) + 0.5) * 0x1p-32);
-  const double z = x * x;
-  const double s = x + x * z * (S1 + z * (S2 + z * (S3 + z * (S4 + z * (S5 + z * S6)))));
-  const double hz = 0.5 * z, w = 1.0 - hz;
-  const double c =
-      w + (((1.0 - w) - hz) + z * z * (C1 + z * (C2 + z * (C3 + z * (C4 + z * (C5 + z * C6))))));
-  // Quadrant q: (sin, cos)(x + q pi/2) = (s, c), (c, -s), (-s, -c), (-c, s).
-  const bool swap = q & 1u;
-  const double s1 = swap ? c : s, c1 = swap ? s : c;
-  sine = s1 * ((q & 2u) ? -1.0 : 1.0);
-  cosine = c1 * (((q + 1u) & 2u) ? -1.0 : 1.0);
+  double s, c;
+  trig::kernel_sincos(x, s, c);
+  trig::to_quadrant(q, s, c, sine, cosine);
 }
 
 // The counter words that do not depend on the id (rng::draw's layout: {id lo, id hi, step lo,

@@ -1,6 +1,8 @@
 // Streaming kernels: exact ballistic motion under the body force, then periodic wrapping.
 #include "narrows/engines/mpcd/kernels/streaming.hpp"
 
+#include "narrows/core/trig_kernels.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -54,33 +56,19 @@ namespace {
 constexpr double reduced_limit = 0x1p19;
 
 // sin and cos of x for |x| <= reduced_limit, without a branch (the loop over the particles
-// vectorises): x = n pi/2 + r with n = round(2x/pi) and r by fdlibm's three-part pi/2
-// (e_rem_pio2.c: 33 bits each, so n times each part is exact for |n| < 2^20), then fdlibm's
+// vectorises): x = n pi/2 + r with n = round(2x/pi) and r by fdlibm's pi/2 in three parts and a
+// tail (e_rem_pio2.c: 33 bits each, so n times each part is exact for |n| < 2^20), then fdlibm's
 // k_sin.c and k_cos.c kernels on [-pi/4, pi/4] (minimax, error < 2^-58): within a few ulp of
 // libm's.
 inline void sincos_reduced(double x, double &sine, double &cosine) {
   constexpr double two_over_pi = 6.36619772367581382433e-01;
   constexpr double pio2_1 = 1.57079632673412561417e+00, pio2_2 = 6.07710050630396597660e-11,
                    pio2_3 = 2.02226624871116645580e-21, pio2_3t = 8.47842766036889956997e-32;
-  constexpr double S1 = -1.66666666666666324348e-01, S2 = 8.33333333332248946124e-03,
-                   S3 = -1.98412698298579493134e-04, S4 = 2.75573137070700676789e-06,
-                   S5 = -2.50507602534068634195e-08, S6 = 1.58969099521155010221e-10;
-  constexpr double C1 = 4.16666666666666019037e-02, C2 = -1.38888888888741095749e-03,
-                   C3 = 2.48015872894767294178e-05, C4 = -2.75573143513906633035e-07,
-                   C5 = 2.08757232129817482790e-09, C6 = -1.13596475577881948265e-11;
   const double n = std::nearbyint(x * two_over_pi);
   const double r = (((x - n * pio2_1) - n * pio2_2) - n * pio2_3) - n * pio2_3t;
-  const double z = r * r;
-  const double s = r + r * z * (S1 + z * (S2 + z * (S3 + z * (S4 + z * (S5 + z * S6)))));
-  const double hz = 0.5 * z, w = 1.0 - hz;
-  const double c =
-      w + (((1.0 - w) - hz) + z * z * (C1 + z * (C2 + z * (C3 + z * (C4 + z * (C5 + z * C6))))));
-  // Quadrant q: (sin, cos)(r + q pi/2) = (s, c), (c, -s), (-s, -c), (-c, s).
-  const auto q = static_cast<std::uint64_t>(static_cast<std::int64_t>(n)) & 3u;
-  const bool swap = q & 1u;
-  const double s1 = swap ? c : s, c1 = swap ? s : c;
-  sine = s1 * ((q & 2u) ? -1.0 : 1.0);
-  cosine = c1 * (((q + 1u) & 2u) ? -1.0 : 1.0);
+  double s, c;
+  trig::kernel_sincos(r, s, c);
+  trig::to_quadrant(static_cast<unsigned>(static_cast<std::int64_t>(n) & 3), s, c, sine, cosine);
 }
 
 // The kick from sin and cos of theta0 and of phi (see sine_kick).
