@@ -48,10 +48,6 @@ void constant_kernel(Fluid &f, const Box &box, double dt, const std::array<doubl
   }
 }
 
-} // namespace
-
-namespace {
-
 // Arguments up to this size are reduced by three exact parts of pi/2 (below).
 constexpr double reduced_limit = 0x1p19;
 
