@@ -28,55 +28,107 @@ std::uint64_t ghost_key(std::uint64_t colloid, std::uint64_t cell, std::uint64_t
   return (colloid << 40) | (cell << 8) | t;
 }
 
-// Cholesky factor L (lower, row-major m x m) of the positive semi-definite moment matrix M of
-// a group, M = sum (1, r)(1, r)^T. A pivot that vanishes to round-off against its diagonal
-// (one ghost, or ghosts on a line) leaves its column zero: for a semi-definite M the column
-// below it vanishes too, so L L^T = M still and L z has covariance M.
-template <int m> void cholesky(const double (&M)[m][m], double (&L)[m][m]) {
+// Groups computed side by side, one per vector lane.
+constexpr int lanes = 8;
+
+// Cholesky factor L (lower, m x m) of the positive semi-definite moment matrix M of a group,
+// M = sum (1, r)(1, r)^T, for `lanes` groups at once ([row][column][lane]). A pivot that
+// vanishes to round-off against its diagonal (one ghost, or ghosts on a line) leaves its column
+// zero: for a semi-definite M the column below it vanishes too, so L L^T = M still and L z has
+// covariance M. (Each lane's operations are those of one group alone, in the same order: the
+// square roots and quotients a group waited on in turn now overlap across the lanes.)
+template <int m> void cholesky(const double (&M)[m][m][lanes], double (&L)[m][m][lanes]) {
   for (int j = 0; j < m; ++j) {
-    double d = M[j][j];
+    double d[lanes], root[lanes];
+    bool pivot[lanes];
+    for (int l = 0; l < lanes; ++l)
+      d[l] = M[j][j][l];
     for (int k = 0; k < j; ++k)
-      d -= L[j][k] * L[j][k];
-    for (int i = 0; i < m; ++i)
-      if (i >= j)
-        L[i][j] = 0.0;
-    if (!(d > 1e-10 * M[j][j]))
-      continue;
-    const double root = std::sqrt(d);
-    L[j][j] = root;
-    for (int i = j + 1; i < m; ++i) {
-      double t = M[i][j];
-      for (int k = 0; k < j; ++k)
-        t -= L[i][k] * L[j][k];
-      L[i][j] = t / root;
+      for (int l = 0; l < lanes; ++l)
+        d[l] -= L[j][k][l] * L[j][k][l];
+    for (int l = 0; l < lanes; ++l) {
+      pivot[l] = d[l] > 1e-10 * M[j][j][l];
+      root[l] = std::sqrt(pivot[l] ? d[l] : 1.0);
+      L[j][j][l] = pivot[l] ? root[l] : 0.0;
     }
+    for (int i = j + 1; i < m; ++i) {
+      double t[lanes];
+      for (int l = 0; l < lanes; ++l)
+        t[l] = M[i][j][l];
+      for (int k = 0; k < j; ++k)
+        for (int l = 0; l < lanes; ++l)
+          t[l] -= L[i][k][l] * L[j][k][l];
+      for (int l = 0; l < lanes; ++l)
+        L[i][j][l] = pivot[l] ? t[l] / root[l] : 0.0;
+    }
+    for (int i = 0; i < j; ++i) // (above the diagonal: zero)
+      for (int l = 0; l < lanes; ++l)
+        L[i][j][l] = 0.0;
   }
 }
 
-// The Gaussian sums of a group's eta and xi at kT = sigma^2: for each component b, sigma L z
-// with z m standard normals from `normals` (eta's m D first, then xi's from the next block).
-template <int m>
-void noise_sums(const mpcd::ParticleGroup &g, double sigma, const double *normals,
-                double (&eta)[3][4], double (&xi)[3][4]) {
-  constexpr int D = m - 1, set = (m * D + 3) / 4 * 4; // normals of one set, block-rounded
-  double M[m][m], L[m][m];
-  M[0][0] = g.n;
+// What a batch of groups needs and gives ([...][lane]): in, their sums and their colloid's
+// motion; out, the ghosts' velocity sums (ParticleGroup's v, rv, xi, rxi).
+struct GroupBatch {
+  alignas(64) double n[lanes], r[3][lanes], rr[9][lanes], corner[3][lanes];
+  alignas(64) double U[3][lanes], W[3][lanes];
+  alignas(64) double z[2][12][lanes]; // eta's (1 + D) D standard normals, then xi's
+  alignas(64) double v[3][lanes], rv[9][lanes], xi[3][lanes], rxi[9][lanes];
+};
+
+// The Gaussian sums of the groups' eta and xi at kT = sigma^2: for each component b, sigma L z
+// with z m standard normals; then v = sum (U + W x r' + eta) and sum r (U + W x r' + eta)^T with
+// r' = c' + r, c' the cell corner from the colloid's centre.
+template <int m> [[gnu::noinline]] void group_velocities(GroupBatch &g, double sigma) {
+  constexpr int D = m - 1;
+  double M[m][m][lanes], L[m][m][lanes];
+  for (int l = 0; l < lanes; ++l)
+    M[0][0][l] = g.n[l];
   for (int i = 0; i < D; ++i) {
-    M[0][1 + i] = M[1 + i][0] = g.r[i];
+    for (int l = 0; l < lanes; ++l)
+      M[0][1 + i][l] = M[1 + i][0][l] = g.r[i][l];
     for (int j = 0; j < D; ++j)
-      M[1 + i][1 + j] = g.rr[3 * i + j];
+      for (int l = 0; l < lanes; ++l)
+        M[1 + i][1 + j][l] = g.rr[3 * i + j][l];
   }
   cholesky<m>(M, L);
+  double eta[3][4][lanes], xi[3][4][lanes]; // [b][0]: sum, [b][1 + a]: sum r_a, of component b
   for (int b = 0; b < D; ++b)
     for (int i = 0; i < m; ++i) {
-      double e = 0.0, x = 0.0;
-      for (int k = 0; k <= i; ++k) {
-        e += L[i][k] * normals[b * m + k];
-        x += L[i][k] * normals[set + b * m + k];
+      double e[lanes], x[lanes];
+      for (int l = 0; l < lanes; ++l)
+        e[l] = x[l] = 0.0;
+      for (int k = 0; k <= i; ++k)
+        for (int l = 0; l < lanes; ++l) {
+          e[l] += L[i][k][l] * g.z[0][b * m + k][l];
+          x[l] += L[i][k][l] * g.z[1][b * m + k][l];
+        }
+      for (int l = 0; l < lanes; ++l) {
+        eta[b][i][l] = sigma * e[l];
+        xi[b][i][l] = sigma * x[l];
       }
-      eta[b][i] = sigma * e;
-      xi[b][i] = sigma * x;
     }
+  // sum r' = N c' + sum r; v = U + W x r' + eta.
+  double first[3][lanes];
+  for (int k = 0; k < 3; ++k)
+    for (int l = 0; l < lanes; ++l)
+      first[k][l] = g.n[l] * g.corner[k][l] + g.r[k][l];
+  for (int b = 0; b < D; ++b) {
+    const int b1 = (b + 1) % 3, b2 = (b + 2) % 3; // (W x y)_b = W_b1 y_b2 - W_b2 y_b1
+    for (int l = 0; l < lanes; ++l) {
+      g.v[b][l] =
+          g.n[l] * g.U[b][l] + g.W[b1][l] * first[b2][l] - g.W[b2][l] * first[b1][l] + eta[b][0][l];
+      g.xi[b][l] = xi[b][0][l];
+    }
+    for (int k = 0; k < D; ++k)
+      for (int l = 0; l < lanes; ++l) {
+        const double spin_corner = g.W[b1][l] * g.corner[b2][l] - g.W[b2][l] * g.corner[b1][l];
+        g.rv[3 * k + b][l] = g.r[k][l] * (g.U[b][l] + spin_corner) +
+                             g.W[b1][l] * g.rr[3 * k + b2][l] - g.W[b2][l] * g.rr[3 * k + b1][l] +
+                             eta[b][1 + k][l];
+        g.rxi[3 * k + b][l] = xi[b][1 + k][l];
+      }
+  }
 }
 
 } // namespace
@@ -298,43 +350,54 @@ void NoSlipCoupling::add_ghost_particles(mpcd::CellGrid &grid, const Colloids &c
         group_normals_[(b0 + j) * 4 + k] = z[k][j];
   }
   const double sigma = std::sqrt(params_.kT);
-  for (std::size_t q = 0; q < groups; ++q) {
-    // The cell sums a few groups on (a cache line each, scattered over the grid: a miss the
-    // long body of a group could not hide).
-    if (q + prefetch_ahead < groups)
-      __builtin_prefetch(&grid.sums[grid.groups[q + prefetch_ahead].cell], 1);
-    mpcd::ParticleGroup &g = grid.groups[q];
-    const std::size_t a = group_row_[q];
-    const double *corner = group_corner_[q].data();
-    const double *normals = &group_normals_[q * per_group * 4];
-    double eta[3][4] = {}, xi[3][4] = {}; // [b][0]: sum, [b][1 + a]: sum r_a, of component b
-    if (dim_ == 2)
-      noise_sums<3>(g, sigma, normals, eta, xi);
-    else
-      noise_sums<4>(g, sigma, normals, eta, xi);
-    const double U[3] = {c.v[0][a], c.v[1][a], dim_ == 3 ? c.v[2][a] : 0.0};
-    const double W[3] = {c.omega[0][a], c.omega[1][a], c.omega[2][a]};
-    // sum r' = N c' + sum r with c' the corner from the centre; v = U + W x r' + eta.
-    double first[3];
-    for (int k = 0; k < 3; ++k)
-      first[k] = g.n * corner[k] + g.r[k];
-    for (int b = 0; b < dim_; ++b) {
-      const int b1 = (b + 1) % 3, b2 = (b + 2) % 3; // (W x y)_b = W_b1 y_b2 - W_b2 y_b1
-      g.v[b] = g.n * U[b] + W[b1] * first[b2] - W[b2] * first[b1] + eta[b][0];
-      g.xi[b] = xi[b][0];
-      const double spin_corner = W[b1] * corner[b2] - W[b2] * corner[b1];
-      for (int k = 0; k < dim_; ++k) {
-        g.rv[3 * k + b] = g.r[k] * (U[b] + spin_corner) + W[b1] * g.rr[3 * k + b2] -
-                          W[b2] * g.rr[3 * k + b1] + eta[b][1 + k];
-        g.rxi[3 * k + b] = xi[b][1 + k];
+  const int m = dim_ + 1, set = (m * dim_ + 3) / 4 * 4; // normals of one set, block-rounded
+  GroupBatch batch;
+  for (std::size_t q0 = 0; q0 < groups; q0 += lanes) {
+    const std::size_t used = std::min<std::size_t>(lanes, groups - q0);
+    for (std::size_t l = 0; l < lanes; ++l) {
+      const std::size_t q = q0 + std::min(l, used - 1); // (padded lanes: the last group again)
+      const mpcd::ParticleGroup &g = grid.groups[q];
+      const std::size_t a = group_row_[q];
+      const double *normals = &group_normals_[q * per_group * 4];
+      batch.n[l] = g.n;
+      for (int k = 0; k < 3; ++k) {
+        batch.r[k][l] = g.r[k];
+        batch.corner[k][l] = group_corner_[q][k];
+        batch.U[k][l] = k < dim_ ? c.v[k][a] : 0.0;
+        batch.W[k][l] = c.omega[k][a];
+      }
+      for (int k = 0; k < 9; ++k)
+        batch.rr[k][l] = g.rr[k];
+      for (int k = 0; k < m * dim_; ++k) {
+        batch.z[0][k][l] = normals[k];
+        batch.z[1][k][l] = normals[set + k];
       }
     }
-    // Into the cell's sums as binning would put the ghosts (taken out again after the
-    // collision by the same fixed-point values).
-    mpcd::CellSums &sum = grid.sums[g.cell];
-    sum.n += g.n;
-    for (int k = 0; k < dim_; ++k)
-      sum.p[k] += fixed::from_double(g.v[k]);
+    if (dim_ == 2)
+      group_velocities<3>(batch, sigma);
+    else
+      group_velocities<4>(batch, sigma);
+    for (std::size_t l = 0; l < used; ++l) {
+      const std::size_t q = q0 + l;
+      // The cell sums a few groups on (a cache line each, scattered over the grid).
+      if (q + prefetch_ahead < groups)
+        __builtin_prefetch(&grid.sums[grid.groups[q + prefetch_ahead].cell], 1);
+      mpcd::ParticleGroup &g = grid.groups[q];
+      for (int b = 0; b < dim_; ++b) {
+        g.v[b] = batch.v[b][l];
+        g.xi[b] = batch.xi[b][l];
+        for (int k = 0; k < dim_; ++k) {
+          g.rv[3 * k + b] = batch.rv[3 * k + b][l];
+          g.rxi[3 * k + b] = batch.rxi[3 * k + b][l];
+        }
+      }
+      // Into the cell's sums as binning would put the ghosts (taken out again after the
+      // collision by the same fixed-point values).
+      mpcd::CellSums &sum = grid.sums[g.cell];
+      sum.n += g.n;
+      for (int k = 0; k < dim_; ++k)
+        sum.p[k] += fixed::from_double(g.v[k]);
+    }
   }
 }
 
