@@ -126,8 +126,10 @@ struct Event {
 
 class EventQueue {
 public:
-  EventQueue(Colloids &c, const mpcd::Box &box, double dt, std::vector<std::uint8_t> *trusted)
-      : c_(c), box_(box), dt_(dt), t_(c.size(), 0.0), stamp_(c.size(), 0), trusted_(trusted) {}
+  EventQueue(Colloids &c, const mpcd::Box &box, double dt, std::vector<std::uint8_t> *trusted,
+             bool every_pair)
+      : c_(c), box_(box), dt_(dt), t_(c.size(), 0.0), stamp_(c.size(), 0), trusted_(trusted),
+        every_pair_(every_pair) {}
 
   // The position of colloid a at time t (not wrapped).
   double x_at(std::size_t a, int k, double t) const {
@@ -152,13 +154,14 @@ public:
     return r2;
   }
 
-  // Partners of a pair event within the step lie within reach_ of each other along x at the
-  // start (their distance then less the sum of radii, covered at the relative speed, which is
-  // below twice the fastest speed of the step so far): bins of the start positions along x, at
-  // least reach_ wide, so that only the colloids of a's bin and its two neighbours need a
-  // prediction. The events found are those of all pairs (the others would come after the
+  // Partners of a pair event within the step lie within reach_ of each other along every axis
+  // at the start (their distance then less the sum of radii, covered at the relative speed,
+  // which is below twice the fastest speed of the step so far): cells of the start positions,
+  // at least reach_ wide along each axis, so that only the colloids of a's cell and its
+  // neighbours need a prediction (along x alone, a 200-disk channel predicted three times as
+  // many pairs). The events found are those of all pairs (the others would come after the
   // step, which push() drops), so the results are bitwise the same.
-  void bin_along_x() {
+  void bin_start_positions() {
     const std::size_t n = c_.size();
     r_max_ = 0.0;
     v_max_ = 0.0;
@@ -166,28 +169,49 @@ public:
       r_max_ = std::max(r_max_, c_.radius[a]);
       v_max_ = std::max(v_max_, speed(a));
     }
-    // Room for the fastest speed to double before the bins are too narrow.
+    // Room for the fastest speed to double before the cells are too narrow.
     const double L = box_.length[0];
     margin_ = 1e-6 * (1.0 + L); // far above the rounding of positions and times
     reach_ = 2.0 * r_max_ + 4.0 * v_max_ * dt_ + margin_;
-    bins_ = static_cast<int>(std::floor(L / reach_));
-    if (bins_ < 3) {
-      bins_ = 0; // every pair
+    // Cells per axis: a periodic axis needs three (a cell and two distinct neighbours) or is
+    // one cell; the walls' axis needs one.
+    binned_ = false;
+    if (every_pair_)
       return;
+    std::size_t cells = 1;
+    for (int k = 0; k < 3; ++k) {
+      cells_[k] = 1;
+      if (k >= c_.dim)
+        continue;
+      const bool wall = k == 1 && box_.walls_y;
+      const int fit = static_cast<int>(std::floor(box_.length[k] / reach_));
+      if (fit >= 3 || (wall && fit >= 2))
+        cells_[k] = fit;
+      binned_ = binned_ || cells_[k] > 1;
+      cells *= static_cast<std::size_t>(cells_[k]);
     }
+    if (!binned_)
+      return; // every pair
     bin_of_.resize(n);
-    first_.assign(static_cast<std::size_t>(bins_) + 1, 0);
+    first_.assign(cells + 1, 0);
     for (std::size_t a = 0; a < n; ++a) {
-      const double x = mpcd::wrap_periodic(c_.x[0][a], L);
-      bin_of_[a] = std::min(static_cast<int>(x / L * bins_), bins_ - 1);
-      ++first_[static_cast<std::size_t>(bin_of_[a]) + 1];
+      std::size_t cell = 0;
+      for (int k = c_.dim - 1; k >= 0; --k) {
+        const double Lk = box_.length[k];
+        const double x = k == 1 && box_.walls_y ? std::clamp(c_.x[k][a], 0.0, Lk)
+                                                : mpcd::wrap_periodic(c_.x[k][a], Lk);
+        const int i = std::min(static_cast<int>(x / Lk * cells_[k]), cells_[k] - 1);
+        cell = cell * static_cast<std::size_t>(cells_[k]) + static_cast<std::size_t>(i);
+      }
+      bin_of_[a] = cell;
+      ++first_[cell + 1];
     }
-    for (int b = 0; b < bins_; ++b)
-      first_[static_cast<std::size_t>(b) + 1] += first_[static_cast<std::size_t>(b)];
+    for (std::size_t b = 0; b < cells; ++b)
+      first_[b + 1] += first_[b];
     members_.resize(n);
     std::vector<std::size_t> fill(first_.begin(), first_.end() - 1);
     for (std::size_t a = 0; a < n; ++a)
-      members_[fill[static_cast<std::size_t>(bin_of_[a])]++] = a;
+      members_[fill[bin_of_[a]]++] = a;
   }
   double speed(std::size_t a) const {
     double v2 = 0.0;
@@ -198,22 +222,39 @@ public:
   // After a collision: the fastest speed so far; bins too narrow for it are given up.
   void sped(std::size_t a) {
     v_max_ = std::max(v_max_, speed(a));
-    if (bins_ > 0 && 2.0 * r_max_ + 2.0 * v_max_ * dt_ + margin_ > reach_)
-      bins_ = 0;
+    if (binned_ && 2.0 * r_max_ + 2.0 * v_max_ * dt_ + margin_ > reach_)
+      binned_ = false;
   }
 
   // Every event of colloid a from time t on (eq 4.23-4.25; walls: the time to touch).
   void predict(std::size_t a, double t) {
-    if (bins_ == 0) {
+    if (!binned_) {
       for (std::size_t b = 0; b < c_.size(); ++b)
         predict_pair(a, b, t);
     } else {
-      const int home = bin_of_[a];
-      for (int step = -1; step <= 1; ++step) {
-        const auto bin = static_cast<std::size_t>((home + step + bins_) % bins_);
-        for (std::size_t j = first_[bin]; j < first_[bin + 1]; ++j)
-          predict_pair(a, members_[j], t);
+      // a's cell and its neighbours: along a periodic axis of 3 or more cells wrapped, along
+      // the walls' axis those that exist, along an axis of one cell that one.
+      int home[3];
+      std::size_t rest = bin_of_[a];
+      for (int k = 0; k < 3; ++k) {
+        home[k] = static_cast<int>(rest % static_cast<std::size_t>(cells_[k]));
+        rest /= static_cast<std::size_t>(cells_[k]);
       }
+      int lo[3], hi[3];
+      for (int k = 0; k < 3; ++k) {
+        const bool wall = k == 1 && box_.walls_y;
+        lo[k] = cells_[k] == 1 ? 0 : wall ? std::max(home[k] - 1, 0) : home[k] - 1;
+        hi[k] = cells_[k] == 1 ? 0 : wall ? std::min(home[k] + 1, cells_[k] - 1) : home[k] + 1;
+      }
+      for (int iz = lo[2]; iz <= hi[2]; ++iz)
+        for (int iy = lo[1]; iy <= hi[1]; ++iy)
+          for (int ix = lo[0]; ix <= hi[0]; ++ix) {
+            const int wx = (ix + cells_[0]) % cells_[0], wy = (iy + cells_[1]) % cells_[1],
+                      wz = (iz + cells_[2]) % cells_[2];
+            const auto cell = static_cast<std::size_t>(wx + cells_[0] * (wy + cells_[1] * wz));
+            for (std::size_t j = first_[cell]; j < first_[cell + 1]; ++j)
+              predict_pair(a, members_[j], t);
+          }
     }
     predict_walls(a, t);
   }
@@ -252,7 +293,7 @@ public:
 
   HardSphereStats run() {
     HardSphereStats stats;
-    bin_along_x();
+    bin_start_positions();
     for (std::size_t a = 0; a < c_.size(); ++a)
       predict(a, 0.0);
     // A bound on the events of one step, stale ones included: a physical step has a few
@@ -332,19 +373,21 @@ private:
   std::vector<double> t_;            // per colloid: the time its position refers to
   std::vector<std::uint64_t> stamp_; // per colloid: collisions so far (stale events differ)
   std::vector<std::uint8_t> *trusted_;
+  bool every_pair_;
   std::priority_queue<Event, std::vector<Event>, std::greater<Event>> queue_;
-  // Bins along x of the start positions (bin_along_x); bins_ = 0: every pair is predicted.
-  int bins_ = 0;
+  // Cells of the start positions (bin_start_positions); not binned_: every pair is predicted.
+  bool binned_ = false;
+  int cells_[3] = {1, 1, 1};
   double reach_ = 0.0, r_max_ = 0.0, v_max_ = 0.0, margin_ = 0.0;
-  std::vector<int> bin_of_;
+  std::vector<std::size_t> bin_of_;
   std::vector<std::size_t> first_, members_;
 };
 
 } // namespace
 
 HardSphereStats advance_hard_spheres(Colloids &c, const mpcd::Box &box, double dt,
-                                     std::vector<std::uint8_t> *trusted) {
-  EventQueue q(c, box, dt, trusted);
+                                     std::vector<std::uint8_t> *trusted, bool every_pair) {
+  EventQueue q(c, box, dt, trusted, every_pair);
   return q.run();
 }
 

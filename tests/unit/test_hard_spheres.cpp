@@ -206,3 +206,50 @@ TEST(HardSpheres, ManyCollisionsKeepEnergyMomentumAndNoOverlap) {
           static_cast<unsigned long long>(total.wall_collisions), kinetic_energy(c) / e0 - 1.0);
     }
 }
+
+// The events of a step are predicted only for pairs in neighbouring cells of the start
+// positions (cells at least as wide as a pair can close in a step); that finds every event of
+// the step, so a long run ends bitwise where predicting every pair does. 2D: 7 x 7 cells, 3D:
+// 3 x 3 x 3 (periodic, and with walls along y).
+TEST(HardSpheres, NeighbourCellsPredictTheEventsOfEveryPair) {
+  for (int dim : {2, 3})
+    for (bool walls : {false, true}) {
+      const int side = dim == 2 ? 30 : 14;
+      mpcd::Box box = mpcd::make_periodic_box(dim, {side, side, dim == 3 ? side : 1});
+      box.walls_y = walls;
+      const std::size_t n = dim == 2 ? 60 : 80;
+      Colloids c = make(dim, n);
+      std::mt19937_64 rng(17 + dim + 10 * walls);
+      std::normal_distribution<double> g(0.0, 1.0);
+      const int per_row = dim == 2 ? 8 : 5;
+      const double spacing = static_cast<double>(side) / per_row;
+      for (std::size_t a = 0; a < n; ++a) {
+        c.radius[a] = a % 2 ? 1.4 : 1.0;
+        c.mass[a] = 3.0 * c.radius[a] * c.radius[a];
+        std::size_t q = a;
+        for (int k = 0; k < dim; ++k) {
+          c.x[k][a] = (static_cast<double>(q % per_row) + 0.5) * spacing;
+          q /= per_row;
+          c.v[k][a] = g(rng);
+        }
+        for (int k = dim == 2 ? 2 : 0; k < 3; ++k)
+          c.omega[k][a] = g(rng);
+      }
+      Colloids every = c;
+      std::uint64_t collisions = 0;
+      for (int step = 0; step < 500; ++step) {
+        collisions += advance_hard_spheres(c, box, 0.1).pair_collisions;
+        advance_hard_spheres(every, box, 0.1, nullptr, true);
+      }
+      SCOPED_TRACE("dim " + std::to_string(dim) + (walls ? " walls" : " periodic"));
+      EXPECT_GT(collisions, 1000u);
+      for (std::size_t a = 0; a < n; ++a)
+        for (int k = 0; k < 3; ++k) {
+          if (k < dim) {
+            EXPECT_EQ(c.x[k][a], every.x[k][a]) << "colloid " << a << " x " << k;
+            EXPECT_EQ(c.v[k][a], every.v[k][a]) << "colloid " << a << " v " << k;
+          }
+          EXPECT_EQ(c.omega[k][a], every.omega[k][a]) << "colloid " << a << " omega " << k;
+        }
+    }
+}

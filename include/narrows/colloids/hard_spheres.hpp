@@ -42,8 +42,11 @@ struct HardSphereStats {
 // other colloids are present, as long as those it meets (directly or through others) are.
 // `trusted` (optional, one flag per row): a collision between a trusted and an untrusted row
 // makes both untrusted (a ghost near the edge of a rank's region may have missed a partner).
+// Only the pairs in neighbouring cells of the start positions are predicted; `every_pair`
+// predicts all (the same events: for the tests).
 HardSphereStats advance_hard_spheres(Colloids &c, const mpcd::Box &box, double dt,
-                                     std::vector<std::uint8_t> *trusted = nullptr);
+                                     std::vector<std::uint8_t> *trusted = nullptr,
+                                     bool every_pair = false);
 
 // Kinetic energy of translation and rotation of all colloids of c.
 double kinetic_energy(const Colloids &c);
