@@ -556,7 +556,7 @@ void NoSlipCoupling::ghost_responses(const mpcd::CellGrid &grid,
         m.spin[a][b] = d.spin[3 * a + b];
       }
     }
-    ghost_response_general(m, dim_, out); // (3D: the plane went to planar_responses)
+    ghost_response_3d(m, out); // (the plane went to planar_responses)
     // A cell without fluid: the ghosts still mix among themselves (the colloid's spin relative
     // to its ghosts' mean is damped, and thermal noise enters: the angular rows stay), but
     // momentum has no fluid to go to: of one colloid's ghosts alone it is conserved anyway; of

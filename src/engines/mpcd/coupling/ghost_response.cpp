@@ -104,6 +104,94 @@ void ghost_response_general(const GhostMoments &g, int dim, GhostResponse &out) 
   }
 }
 
+// The same in space with the unit dX's zeros left out (the general algebra multiplies them
+// through: ~300 operations a dof). With off = m1 - n rc and tr = tr m2, and
+// sum r x (w x r) = tr w - m2 w for any w:
+//   translation e_i: S = n e_i, QdU = Q e_i, dL = off x e_i;
+//     P = Q du n - n Q e_i + dw x off; L = m1 x Q du - m1 x Q e_i + (tr dw - m2 dw) - m1 x (dw x
+//     rc);
+//   rotation e_j: S = e_j x m1, dL = tr e_j - m2 e_j - rc x S;
+//     P = Q du n - Q S + dw x off; L = m1 x Q du - sum r x Q (e_j x r) + (tr dw - m2 dw)
+//     - m1 x (dw x rc), where sum r x Q (e_j x r) is the cross moment of Q [e_j]x.
+void ghost_response_3d(const GhostMoments &g, GhostResponse &out) {
+  const double m0 = g.m0, N = g.N;
+  const double *m1 = g.m1, *rc = g.rc;
+  const auto &m2 = g.m2;
+  const auto &Q = g.Q;
+  const double tr = m2[0][0] + m2[1][1] + m2[2][2];
+  double off[3];
+  for (int a = 0; a < 3; ++a)
+    off[a] = m1[a] - m0 * rc[a];
+  for (int i = 0; i < 6; ++i) {
+    const int e = i % 3;
+    double S[3] = {0.0, 0.0, 0.0}, dL[3], QS[3];
+    if (i < 3) {
+      S[e] = m0;
+      double unit[3] = {0.0, 0.0, 0.0};
+      unit[e] = 1.0;
+      cross(off, unit, dL);
+      for (int a = 0; a < 3; ++a)
+        QS[a] = Q[a][e] * m0;
+    } else {
+      double unit[3] = {0.0, 0.0, 0.0}, t[3];
+      unit[e] = 1.0;
+      cross(unit, m1, S);
+      cross(rc, S, t);
+      for (int a = 0; a < 3; ++a) {
+        dL[a] = (a == e ? tr : 0.0) - m2[a][e] - t[a];
+        QS[a] = Q[a][0] * S[0] + Q[a][1] * S[1] + Q[a][2] * S[2];
+      }
+    }
+    double du[3], Qdu[3], dw[3];
+    for (int a = 0; a < 3; ++a)
+      du[a] = N > 0.0 ? S[a] / N : 0.0;
+    for (int a = 0; a < 3; ++a) {
+      Qdu[a] = Q[a][0] * du[0] + Q[a][1] * du[1] + Q[a][2] * du[2];
+      dw[a] = g.spin[a][0] * dL[0] + g.spin[a][1] * dL[1] + g.spin[a][2] * dL[2];
+    }
+    double a1[3], a2[3], wr[3], a6[3];
+    cross(dw, off, a1);
+    cross(m1, Qdu, a2);
+    cross(dw, rc, wr);
+    cross(m1, wr, a6);
+    double L[3];
+    for (int a = 0; a < 3; ++a) {
+      const double m2dw = m2[a][0] * dw[0] + m2[a][1] * dw[1] + m2[a][2] * dw[2];
+      L[a] = a2[a] + (tr * dw[a] - m2dw) - a6[a];
+      out.G[a][i] = -(Qdu[a] * m0 - QS[a] + a1[a]);
+    }
+    if (i < 3) { // - m1 x Q e_i
+      const double Qe[3] = {Q[0][e], Q[1][e], Q[2][e]};
+      double a3[3];
+      cross(m1, Qe, a3);
+      for (int a = 0; a < 3; ++a)
+        L[a] -= a3[a];
+    } else { // - sum r x Q (e_j x r): T = Q [e_j]x m2, ([e_j]x m2) row c = (e_j x column of m2)
+      double X[3][3];
+      for (int b = 0; b < 3; ++b) {
+        const double col[3] = {m2[0][b], m2[1][b], m2[2][b]};
+        double unit[3] = {0.0, 0.0, 0.0}, ex[3];
+        unit[e] = 1.0;
+        cross(unit, col, ex);
+        for (int c = 0; c < 3; ++c)
+          X[c][b] = ex[c];
+      }
+      double T[3][3];
+      for (int c = 0; c < 3; ++c)
+        for (int b = 0; b < 3; ++b)
+          T[c][b] = Q[c][0] * X[0][b] + Q[c][1] * X[1][b] + Q[c][2] * X[2][b];
+      L[0] -= T[2][1] - T[1][2];
+      L[1] -= T[0][2] - T[2][0];
+      L[2] -= T[1][0] - T[0][1];
+    }
+    for (int k = 0; k < 3; ++k) {
+      out.G[3 + k][i] = -L[k];
+      out.du[i][k] = Qdu[k];
+      out.dw[i][k] = dw[k];
+    }
+  }
+}
+
 // The same in the plane. With e the unit dX: S = n e (translation) or z x m1 (rotation);
 // du = S / N; dL_z = (m1 - n rc) x e or tr m2 - rc . m1; dw = spin_zz dL_z;
 // P = (n / N - 1) Q S + dw z x (m1 - n rc);

@@ -39,6 +39,9 @@ void ghost_response_general(const GhostMoments &g, int dim, GhostResponse &out);
 // 2D in closed form (every vector in the plane, every rotation about z): the same response,
 // to round-off, at a tenth of the cost.
 void ghost_response_2d(const GhostMoments &g, GhostResponse &out);
+// 3D with the unit dX's zeros left out: the same response, to round-off, at a fraction of the
+// cost.
+void ghost_response_3d(const GhostMoments &g, GhostResponse &out);
 
 // The planar case's inputs and outputs alone (what ghost_response_2d reads of GhostMoments and
 // writes of GhostResponse; the rest is zero in the plane), for the per-group loop of 2D runs.
