@@ -53,6 +53,37 @@ std::array<double, 6> momenta(const Colloids &c) {
   return p;
 }
 
+// The box of the many-collision tests: 30 x 30 (2D) or 14^3 (3D), periodic or with walls along y.
+mpcd::Box lattice_box(int dim, bool walls) {
+  const int side = dim == 2 ? 30 : 14;
+  mpcd::Box box = mpcd::make_periodic_box(dim, {side, side, dim == 3 ? side : 1});
+  box.walls_y = walls;
+  return box;
+}
+
+// n colloids on a lattice in the box (no overlap), radii 1 and 1.4 alternating, random
+// velocities and spins.
+Colloids lattice_start(int dim, std::size_t n, const mpcd::Box &box, std::uint64_t seed) {
+  Colloids c = make(dim, n);
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> g(0.0, 1.0);
+  const int per_row = dim == 2 ? 8 : 5;
+  const double spacing = box.length[0] / per_row;
+  for (std::size_t a = 0; a < n; ++a) {
+    c.radius[a] = a % 2 ? 1.4 : 1.0;
+    c.mass[a] = 3.0 * c.radius[a] * c.radius[a];
+    std::size_t q = a;
+    for (int k = 0; k < dim; ++k) {
+      c.x[k][a] = (static_cast<double>(q % per_row) + 0.5) * spacing;
+      q /= per_row;
+      c.v[k][a] = g(rng);
+    }
+    for (int k = dim == 2 ? 2 : 0; k < 3; ++k)
+      c.omega[k][a] = g(rng);
+  }
+  return c;
+}
+
 } // namespace
 
 TEST(HardSpheres, HeadOnEqualDisksExchangeVelocitiesAtTheContactTime) {
@@ -142,29 +173,9 @@ TEST(HardSpheres, RoughWallReversesTheContactVelocityAndKeepsTheEnergy) {
 TEST(HardSpheres, ManyCollisionsKeepEnergyMomentumAndNoOverlap) {
   for (int dim : {2, 3})
     for (bool walls : {false, true}) {
-      const int side = dim == 2 ? 30 : 14;
-      mpcd::Box box = mpcd::make_periodic_box(dim, {side, side, dim == 3 ? side : 1});
-      box.walls_y = walls;
+      mpcd::Box box = lattice_box(dim, walls);
       const std::size_t n = dim == 2 ? 60 : 80;
-      Colloids c = make(dim, n);
-      std::mt19937_64 rng(7 + dim + 10 * walls);
-      std::uniform_real_distribution<double> u01(0.0, 1.0);
-      std::normal_distribution<double> g(0.0, 1.0);
-      // Lattice start (no overlap), radii 1 and 1.4 alternating, random velocities and spins.
-      const int per_row = dim == 2 ? 8 : 5;
-      const double spacing = static_cast<double>(side) / per_row;
-      for (std::size_t a = 0; a < n; ++a) {
-        c.radius[a] = a % 2 ? 1.4 : 1.0;
-        c.mass[a] = 3.0 * c.radius[a] * c.radius[a];
-        std::size_t q = a;
-        for (int k = 0; k < dim; ++k) {
-          c.x[k][a] = (static_cast<double>(q % per_row) + 0.5) * spacing;
-          q /= per_row;
-          c.v[k][a] = g(rng);
-        }
-        for (int k = dim == 2 ? 2 : 0; k < 3; ++k)
-          c.omega[k][a] = g(rng);
-      }
+      Colloids c = lattice_start(dim, n, box, 7 + dim + 10 * walls);
       const double e0 = kinetic_energy(c);
       const auto p0 = momenta(c);
       HardSphereStats total;
@@ -214,27 +225,9 @@ TEST(HardSpheres, ManyCollisionsKeepEnergyMomentumAndNoOverlap) {
 TEST(HardSpheres, NeighbourCellsPredictTheEventsOfEveryPair) {
   for (int dim : {2, 3})
     for (bool walls : {false, true}) {
-      const int side = dim == 2 ? 30 : 14;
-      mpcd::Box box = mpcd::make_periodic_box(dim, {side, side, dim == 3 ? side : 1});
-      box.walls_y = walls;
+      mpcd::Box box = lattice_box(dim, walls);
       const std::size_t n = dim == 2 ? 60 : 80;
-      Colloids c = make(dim, n);
-      std::mt19937_64 rng(17 + dim + 10 * walls);
-      std::normal_distribution<double> g(0.0, 1.0);
-      const int per_row = dim == 2 ? 8 : 5;
-      const double spacing = static_cast<double>(side) / per_row;
-      for (std::size_t a = 0; a < n; ++a) {
-        c.radius[a] = a % 2 ? 1.4 : 1.0;
-        c.mass[a] = 3.0 * c.radius[a] * c.radius[a];
-        std::size_t q = a;
-        for (int k = 0; k < dim; ++k) {
-          c.x[k][a] = (static_cast<double>(q % per_row) + 0.5) * spacing;
-          q /= per_row;
-          c.v[k][a] = g(rng);
-        }
-        for (int k = dim == 2 ? 2 : 0; k < 3; ++k)
-          c.omega[k][a] = g(rng);
-      }
+      Colloids c = lattice_start(dim, n, box, 17 + dim + 10 * walls);
       Colloids every = c;
       std::uint64_t collisions = 0;
       for (int step = 0; step < 500; ++step) {
