@@ -190,6 +190,18 @@ public:
       binned_ = binned_ || cells_[k] > 1;
       cells *= static_cast<std::size_t>(cells_[k]);
     }
+    // A few colloids in a large box: coarser cells (still at least reach_ wide), at most ~8 a
+    // colloid, not one per reach_ of an empty box.
+    while (binned_ && cells > 8 * n + 64) {
+      const int k = static_cast<int>(std::max_element(cells_, cells_ + 3) - cells_);
+      const bool wall = k == 1 && box_.walls_y;
+      cells /= static_cast<std::size_t>(cells_[k]);
+      cells_[k] /= 2;
+      if (cells_[k] < (wall ? 2 : 3))
+        cells_[k] = 1;
+      cells *= static_cast<std::size_t>(cells_[k]);
+      binned_ = cells_[0] > 1 || cells_[1] > 1 || cells_[2] > 1;
+    }
     if (!binned_)
       return; // every pair
     bin_of_.resize(n);

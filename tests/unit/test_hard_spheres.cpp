@@ -246,3 +246,30 @@ TEST(HardSpheres, NeighbourCellsPredictTheEventsOfEveryPair) {
         }
     }
 }
+
+// A few colloids in a huge box: the cells stay few (about 8 a colloid, each still at least as
+// wide as a pair can close in a step), not one per such width of the box (1e11 here), and the
+// events are still those of every pair.
+TEST(HardSpheres, FewColloidsInAHugeBoxNeedFewCells) {
+  const mpcd::Box box = mpcd::make_periodic_box(3, {10000, 10000, 10000});
+  Colloids c = make(3, 4);
+  for (std::size_t a = 0; a < 4; ++a) {
+    c.radius[a] = 1.0;
+    c.mass[a] = 1.0;
+    c.x[0][a] = 5000.0 + 3.0 * static_cast<double>(a); // in a row, 1 apart
+    c.x[1][a] = c.x[2][a] = 5000.0;
+    c.v[0][a] = a % 2 ? -1.0 : 1.0; // approaching in pairs
+  }
+  Colloids every = c;
+  std::uint64_t collisions = 0;
+  for (int step = 0; step < 10; ++step) {
+    collisions += advance_hard_spheres(c, box, 0.2).pair_collisions;
+    advance_hard_spheres(every, box, 0.2, nullptr, true);
+  }
+  EXPECT_GT(collisions, 0u);
+  for (std::size_t a = 0; a < 4; ++a)
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(c.x[k][a], every.x[k][a]);
+      EXPECT_EQ(c.v[k][a], every.v[k][a]);
+    }
+}
