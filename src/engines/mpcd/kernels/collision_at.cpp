@@ -220,6 +220,28 @@ Eigen::Matrix3d pseudo_inverse(const Eigen::Matrix3d &I) {
   return eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose();
 }
 
+// The adjugate and determinant of a cell's moment of inertia I (symmetric: its upper entries),
+// and whether I is well conditioned enough to be inverted through them: det >= 1e-4 (tr/3)^3,
+// tr = 2 t with t = tr S, bounds its condition number by 27e4.
+struct Adjugate {
+  double A00, A01, A02, A11, A12, A22, det;
+  bool usable;
+};
+inline Adjugate adjugate(double I00, double I01, double I02, double I11, double I12, double I22,
+                         double t) {
+  Adjugate a;
+  a.A00 = I11 * I22 - I12 * I12;
+  a.A01 = I02 * I12 - I01 * I22;
+  a.A02 = I01 * I12 - I02 * I11;
+  a.A11 = I00 * I22 - I02 * I02;
+  a.A12 = I01 * I02 - I00 * I12;
+  a.A22 = I00 * I11 - I01 * I01;
+  a.det = I00 * a.A00 + I01 * a.A01 + I02 * a.A02;
+  const double tr3 = 2.0 * t / 3.0;
+  a.usable = tr3 > 1e-6 && a.det > 1e-4 * tr3 * tr3 * tr3;
+  return a;
+}
+
 template <int D>
 void at_a_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, std::uint64_t seed,
                  std::uint64_t step) {
@@ -300,12 +322,10 @@ void at_a_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, st
       // well-conditioned I: det >= 1e-4 (tr/3)^3 bounds its condition number by 27e4, and
       // the inverse from the adjugate, refined once against the residual, solves I w = dL to
       // round-off (the eigen-decomposition below costs ~1 us a cell, most of a 3D step).
-      const double A00 = I11 * I22 - I12 * I12, A01 = I02 * I12 - I01 * I22,
-                   A02 = I01 * I12 - I02 * I11, A11 = I00 * I22 - I02 * I02,
-                   A12 = I01 * I02 - I00 * I12, A22 = I00 * I11 - I01 * I01;
-      const double det = I00 * A00 + I01 * A01 + I02 * A02, tr3 = 2.0 * t / 3.0;
+      const auto [A00, A01, A02, A11, A12, A22, det, usable] =
+          adjugate(I00, I01, I02, I11, I12, I22, t);
       Eigen::Vector3d w;
-      if (tr3 > 1e-6 && det > 1e-4 * tr3 * tr3 * tr3) {
+      if (usable) {
         const double inv = 1.0 / det;
         const auto solve = [&](const double *b, double *x) {
           x[0] = (A00 * b[0] + A01 * b[1] + A02 * b[2]) * inv;
@@ -358,17 +378,13 @@ void at_a_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, st
       // A well-conditioned I (the test of the cell loop above) is inverted from its adjugate
       // and refined once, X + X (1 - I X); the others by the eigen-decomposition. (A 3D channel
       // of 752 spheres has ~5e4 groups a step: the decomposition of each was 11 % of its loop.)
-      const Eigen::Matrix3d A{
-          {I(1, 1) * I(2, 2) - I(1, 2) * I(1, 2), I(0, 2) * I(1, 2) - I(0, 1) * I(2, 2),
-           I(0, 1) * I(1, 2) - I(0, 2) * I(1, 1)},
-          {I(0, 2) * I(1, 2) - I(0, 1) * I(2, 2), I(0, 0) * I(2, 2) - I(0, 2) * I(0, 2),
-           I(0, 1) * I(0, 2) - I(0, 0) * I(1, 2)},
-          {I(0, 1) * I(1, 2) - I(0, 2) * I(1, 1), I(0, 1) * I(0, 2) - I(0, 0) * I(1, 2),
-           I(0, 0) * I(1, 1) - I(0, 1) * I(0, 1)}};
-      const double det = I(0, 0) * A(0, 0) + I(0, 1) * A(0, 1) + I(0, 2) * A(0, 2);
-      const double tr3 = 2.0 * S.trace() / 3.0;
+      const Adjugate adj =
+          adjugate(I(0, 0), I(0, 1), I(0, 2), I(1, 1), I(1, 2), I(2, 2), S.trace());
       Eigen::Matrix3d P;
-      if (tr3 > 1e-6 && det > 1e-4 * tr3 * tr3 * tr3) {
+      if (adj.usable) {
+        const Eigen::Matrix3d A{
+            {adj.A00, adj.A01, adj.A02}, {adj.A01, adj.A11, adj.A12}, {adj.A02, adj.A12, adj.A22}};
+        const double det = adj.det;
         const Eigen::Matrix3d X = A / det;
         P = X + X * (Eigen::Matrix3d::Identity() - I * X);
         P = 0.5 * (P + P.transpose()).eval(); // (symmetric, as I)
