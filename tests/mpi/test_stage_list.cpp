@@ -113,8 +113,10 @@ std::vector<std::string> expected_prefixes(Coupled colloids, bool slabs) {
   if (colloids != Coupled::none)
     p.push_back("virtual particles in cells cut by the walls (at rest)");
   p.push_back(colloids == Coupled::no_slip ? "collide MPC-AT+a (kT 1" : "collide SRD (angle 120");
-  if (colloids == Coupled::no_slip) // after_collide
+  if (colloids == Coupled::no_slip) { // within_collide, then MPC-AT+a's particle pass
     p.push_back("ghost particles' momentum and angular momentum change to the colloids");
+    p.push_back("collide MPC-AT+a: the particles' new velocities");
+  }
   if (colloids == Coupled::none)
     p.push_back("thermostat: rescale velocities");
   p.push_back("sort by cell (every 3 steps)");

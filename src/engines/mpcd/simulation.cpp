@@ -422,7 +422,7 @@ coupling::FluidStream MpcdSimulation::stream_kernel() const {
 }
 
 // The step as a list of stages, in the order they run, each with its line of the pipeline. Only
-// what the scene has becomes a stage; the coupling adds its own at its four hooks.
+// what the scene has becomes a stage; the coupling adds its own at its five hooks.
 void MpcdSimulation::build_stages() {
   const MpcdPlan &p = plan_;
   const coupling::StageContext at{fluid_,
@@ -448,7 +448,8 @@ void MpcdSimulation::build_stages() {
                   }});
   const std::string ranks = std::to_string(p.ranks);
   if (p.collision == scene::Collision::random_maxwell) { // random solvent (b): no cells
-    if (!coupling_->after_bin(at).empty() || !coupling_->after_collide(at).empty())
+    if (!coupling_->after_bin(at).empty() || !coupling_->within_collide(at).empty() ||
+        !coupling_->after_collide(at).empty())
       throw std::logic_error("MpcdSimulation: a coupling with cell stages and no cells");
     if (p.slabs)
       list.push_back({"migrate to slab owners (" + ranks + " ranks)",
@@ -496,13 +497,20 @@ void MpcdSimulation::build_stages() {
                                        step);
                     }});
     break;
-  case scene::Collision::at_a:
-    list.push_back(
-        {"collide MPC-AT+a (kT " + kT + ", angular momentum)", [this](std::uint64_t step) {
-           collision_scratch_.v2_max = -1.0;
-           mpcd::collide_at_a(fluid_, grid_, collision_scratch_, plan_.kT, plan_.seed, step);
-         }});
+  case scene::Collision::at_a: { // in two passes: the coupling's change to the cells between
+    coupling::Stages within = coupling_->within_collide(at);
+    list.push_back({"collide MPC-AT+a (kT " + kT + ", angular momentum): the cells",
+                    [this, room = !within.empty()](std::uint64_t step) {
+                      collision_scratch_.v2_max = -1.0;
+                      mpcd::collide_at_a_cells(fluid_, grid_, collision_scratch_, plan_.kT,
+                                               plan_.seed, step, room);
+                    }});
+    add(std::move(within));
+    list.push_back({"collide MPC-AT+a: the particles' new velocities", [this](std::uint64_t) {
+                      mpcd::collide_at_a_particles(fluid_, grid_, collision_scratch_);
+                    }});
     break;
+  }
   case scene::Collision::random_maxwell: // no cells: above
     break;
   }
@@ -510,6 +518,8 @@ void MpcdSimulation::build_stages() {
     list.push_back({"permute all velocities (random solvent)", [this](std::uint64_t step) {
                       mpcd::permute_velocities(fluid_, collision_scratch_, plan_.seed, step);
                     }});
+  if (p.collision != scene::Collision::at_a)
+    add(coupling_->within_collide(at));
   add(coupling_->after_collide(at));
   // The thermostats change the velocities after the collision, so its v2_max no longer holds.
   if (p.thermostat == MpcdPlan::Thermostat::layers)

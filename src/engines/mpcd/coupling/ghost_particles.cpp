@@ -402,7 +402,7 @@ void NoSlipCoupling::add_ghost_particles(mpcd::CellGrid &grid, const Colloids &c
 }
 
 void NoSlipCoupling::take_back_ghost_particles(mpcd::CellGrid &grid,
-                                               const mpcd::CollisionScratch &collision,
+                                               mpcd::CollisionScratch &collision,
                                                mpcd::Fluid &fluid, Colloids &c) {
   const ScopedSeconds timed(seconds_);
   const std::size_t groups = grid.groups.size();
@@ -642,8 +642,8 @@ void NoSlipCoupling::planar_responses(const mpcd::CellGrid &grid,
 // colloids' G dX/2 has beyond that (other colloids' ghosts and a wall's virtual particles in
 // the cell take a share of the response that is not followed), so that momentum is conserved
 // exactly.
-void NoSlipCoupling::shift_cut_cells(const mpcd::CellGrid &grid,
-                                     const mpcd::CollisionScratch &collision, mpcd::Fluid &fluid) {
+void NoSlipCoupling::shift_cut_cells(const mpcd::CellGrid &grid, mpcd::CollisionScratch &collision,
+                                     mpcd::Fluid &fluid) {
   const std::size_t slots = slot_cells_.size();
   slot_rc_.assign(slots, {0.0, 0.0, 0.0});
   // Summed over the groups of a cell in fixed point (their order depends on the colloid rows').
@@ -719,6 +719,34 @@ void NoSlipCoupling::shift_cut_cells(const mpcd::CellGrid &grid,
       m[3 + a] = w[a];
     }
   }
+  if (collision.shift_stride > 0) {
+    // MPC-AT+a has collided the cells, not yet the particles: each cut cell's change goes into
+    // its record, and the particle pass adds it to the new velocities as shift_cut_cells_fluid
+    // would, with the same operations (one pass over the fluid, not two).
+    const auto stride = static_cast<std::size_t>(collision.shift_stride);
+    const auto offset = static_cast<std::size_t>(collision.shift_offset);
+    for (std::size_t k = 0; k < slots; ++k) {
+      double *par = &collision.cell[slot_cells_[k] * stride + offset];
+      const auto &m = slot_motion_[k];
+      if (dim_ == 2) {
+        par[0] = m[0];
+        par[1] = m[1];
+        par[2] = m[5];
+      } else {
+        for (int a = 0; a < 6; ++a)
+          par[a] = m[a];
+      }
+    }
+    collision.cells_shifted = true;
+  } else {
+    shift_cut_cells_fluid(grid, fluid);
+  }
+  for (const std::uint32_t cell : slot_cells_)
+    cell_slot_[cell] = -1;
+}
+
+// The pass over the fluid: each particle of a cut cell gets its slot's c + w x r.
+void NoSlipCoupling::shift_cut_cells_fluid(const mpcd::CellGrid &grid, mpcd::Fluid &fluid) {
   const std::size_t n = fluid.size();
   const double sx = grid.shift[0], sy = grid.shift[1], sz = grid.shift[2];
   if (dim_ == 2) {
@@ -760,8 +788,6 @@ void NoSlipCoupling::shift_cut_cells(const mpcd::CellGrid &grid,
         fluid.v[a][i] += m[a] + wr[a];
     }
   }
-  for (const std::uint32_t cell : slot_cells_)
-    cell_slot_[cell] = -1;
 }
 
 } // namespace narrows::coupling

@@ -87,7 +87,7 @@ Stages NoSlipCoupling::after_bin(const StageContext &at) {
            }}};
 }
 
-Stages NoSlipCoupling::after_collide(const StageContext &at) {
+Stages NoSlipCoupling::within_collide(const StageContext &at) {
   return {{"ghost particles' momentum and angular momentum change to the colloids",
            [this, &grid = at.grid, &fluid = at.fluid, &colloids = at.colloids,
             &collision = at.collision](std::uint64_t) {

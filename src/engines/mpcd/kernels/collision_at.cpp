@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 
 namespace narrows::mpcd {
 
@@ -193,7 +194,11 @@ inline double in_cell(double x, double shift) { return in_cell_offset(x, shift);
 //   3D: xi(3) r(3) r r^T(xx, xy, xz, yy, yz, zz) r x (v - xi)(3)           -> 15
 // (2D needs only the trace of r r^T, and the angular momenta of v and xi only as a difference.)
 template <int D> constexpr int sum_stride = D == 2 ? 6 : 15;
-template <int D> constexpr int par_stride = D == 2 ? 5 : 9; // delta(D) r_c(D) omega(1|3)
+// delta(D) r_c(D) omega(1|3); with room, then a velocity change c(D) and spin w(1|3) that a
+// coupling may give the cell between the cell loop and the particles (CollisionScratch::
+// shift_offset; a fluid alone keeps the shorter records).
+template <int D, bool room> constexpr int par_stride = D == 2 ? (room ? 8 : 5) : (room ? 15 : 9);
+template <int D> constexpr int shift_offset = D == 2 ? 5 : 9;
 
 template <int D> inline void cross(const double *a, const double *b, double *out) {
   if constexpr (D == 2) {
@@ -242,10 +247,11 @@ inline Adjugate adjugate(double I00, double I01, double I02, double I11, double 
   return a;
 }
 
-template <int D>
-void at_a_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, std::uint64_t seed,
-                 std::uint64_t step) {
-  constexpr int SS = sum_stride<D>, PS = par_stride<D>, NL = D == 2 ? 1 : 3;
+// MPC-AT+a up to the new velocities: the noise, the cell sums and records, the groups' change.
+template <int D, bool room>
+void at_a_cells(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, std::uint64_t seed,
+                std::uint64_t step) {
+  constexpr int SS = sum_stride<D>, PS = par_stride<D, room>, NL = D == 2 ? 1 : 3;
   constexpr int NM = D == 2 ? 1 : 6; // entries of r r^T summed
   const std::size_t nc = g.size(), n = f.size();
   s.cell_fixed.assign(nc * SS, 0);
@@ -285,6 +291,9 @@ void at_a_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, st
     const std::uint32_t cnt = g.sums[c].n;
     if (cnt == 0)
       continue;
+    if constexpr (room)
+      for (int k = shift_offset<D>; k < PS; ++k) // (no coupling's change yet)
+        par[k] = 0.0;
     const double inv_n = 1.0 / cnt;
     double P[3], X[3], rc[3];
     for (int k = 0; k < D; ++k) {
@@ -397,22 +406,58 @@ void at_a_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, st
     }
   }
 
+  s.position_stride = SS;
+  s.position_offset = D;
+  s.cells_pending = true;
+  s.shift_stride = room ? PS : 0;
+  s.shift_offset = shift_offset<D>;
+  s.cells_shifted = false;
+  // GCC 12 (-march=native, AVX-512) vectorises the 2D cell loop above with ymm registers and
+  // leaves them dirty on return (no vzeroupper, unlike every other kernel). Each later call
+  // into libm's SSE-encoded code (the log of the next step's noise, the sines of a sine
+  // force) then paid a state-transition penalty: log took ~220 ns instead of ~15 ns, half of
+  // an AT+a run's time. Clearing the upper halves changes no value (they are dead here).
+#if defined(__AVX__)
+  __builtin_ia32_vzeroupper();
+#endif
+}
+
+// The new velocities, v' = xi + delta + omega x (r - rc); with `shifted`, plus the velocity
+// change c + w x r' (r' from the cell's corner) that a coupling wrote into the cell's record
+// after the cell loop, exactly as a pass of its own over the new velocities would add it.
+template <int D, bool room, bool shifted>
+void at_a_particles(Fluid &f, const CellGrid &g, CollisionScratch &s) {
+  static_assert(room || !shifted);
+  constexpr int PS = par_stride<D, room>, SO = shift_offset<D>;
+  const std::size_t n = f.size();
   double v2_max = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     prefetch_record<D, PS>(s.cell, f.cell.data(), i, n);
     const double *par = &s.cell[static_cast<std::size_t>(f.cell[i]) * PS];
-    double r[3];
-    for (int k = 0; k < D; ++k)
-      r[k] = in_cell(f.x[k][i], g.shift[k]) - par[D + k];
+    double r[3], corner[3];
+    for (int k = 0; k < D; ++k) {
+      corner[k] = in_cell(f.x[k][i], g.shift[k]);
+      r[k] = corner[k] - par[D + k];
+    }
     double v[3];
     if constexpr (D == 2) {
       v[0] = s.noise[0][i] + par[0] - par[4] * r[1];
       v[1] = s.noise[1][i] + par[1] + par[4] * r[0];
+      if constexpr (shifted) {
+        v[0] += par[SO] - par[SO + 2] * corner[1];
+        v[1] += par[SO + 1] + par[SO + 2] * corner[0];
+      }
     } else {
       double wr[3];
       cross<3>(par + 6, r, wr);
       for (int k = 0; k < 3; ++k)
         v[k] = s.noise[k][i] + par[k] + wr[k];
+      if constexpr (shifted) {
+        double ws[3];
+        cross<3>(par + SO + 3, corner, ws);
+        for (int k = 0; k < 3; ++k)
+          v[k] += par[SO + k] + ws[k];
+      }
     }
     double v2 = 0.0;
     for (int k = 0; k < D; ++k) {
@@ -422,13 +467,10 @@ void at_a_kernel(Fluid &f, const CellGrid &g, CollisionScratch &s, double kT, st
     v2_max = std::max(v2_max, v2);
   }
   s.v2_max = v2_max;
-  s.position_stride = SS;
-  s.position_offset = D;
-  // GCC 12 (-march=native, AVX-512) vectorises the 2D cell loop above with ymm registers and
-  // leaves them dirty on return (no vzeroupper, unlike every other kernel). Each later call
-  // into libm's SSE-encoded code (the log of the next step's noise, the sines of a sine
-  // force) then paid a state-transition penalty: log took ~220 ns instead of ~15 ns, half of
-  // an AT+a run's time. Clearing the upper halves changes no value (they are dead here).
+  s.cells_pending = false;
+  s.shift_stride = 0;
+  s.cells_shifted = false;
+  // (as at_a_cells: no dirty upper halves on return)
 #if defined(__AVX__)
   __builtin_ia32_vzeroupper();
 #endif
@@ -445,12 +487,36 @@ void collide_at(Fluid &fluid, const CellGrid &grid, CollisionScratch &scratch, d
     at_kernel<2>(fluid, grid, scratch, kT, seed, step);
 }
 
+void collide_at_a_cells(Fluid &fluid, const CellGrid &grid, CollisionScratch &scratch, double kT,
+                        std::uint64_t seed, std::uint64_t step, bool room_for_shifts) {
+  if (grid.dim == 3)
+    room_for_shifts ? at_a_cells<3, true>(fluid, grid, scratch, kT, seed, step)
+                    : at_a_cells<3, false>(fluid, grid, scratch, kT, seed, step);
+  else
+    room_for_shifts ? at_a_cells<2, true>(fluid, grid, scratch, kT, seed, step)
+                    : at_a_cells<2, false>(fluid, grid, scratch, kT, seed, step);
+}
+
+void collide_at_a_particles(Fluid &fluid, const CellGrid &grid, CollisionScratch &scratch) {
+  if (!scratch.cells_pending)
+    throw std::logic_error("collide_at_a_particles: the cells of this step were not collided");
+  const bool room = scratch.shift_stride > 0, shifted = scratch.cells_shifted;
+  if (shifted && !room)
+    throw std::logic_error("collide_at_a_particles: cells shifted without room in the records");
+  if (grid.dim == 3)
+    shifted ? at_a_particles<3, true, true>(fluid, grid, scratch)
+    : room  ? at_a_particles<3, true, false>(fluid, grid, scratch)
+            : at_a_particles<3, false, false>(fluid, grid, scratch);
+  else
+    shifted ? at_a_particles<2, true, true>(fluid, grid, scratch)
+    : room  ? at_a_particles<2, true, false>(fluid, grid, scratch)
+            : at_a_particles<2, false, false>(fluid, grid, scratch);
+}
+
 void collide_at_a(Fluid &fluid, const CellGrid &grid, CollisionScratch &scratch, double kT,
                   std::uint64_t seed, std::uint64_t step) {
-  if (grid.dim == 3)
-    at_a_kernel<3>(fluid, grid, scratch, kT, seed, step);
-  else
-    at_a_kernel<2>(fluid, grid, scratch, kT, seed, step);
+  collide_at_a_cells(fluid, grid, scratch, kT, seed, step, false);
+  collide_at_a_particles(fluid, grid, scratch);
 }
 
 } // namespace narrows::mpcd

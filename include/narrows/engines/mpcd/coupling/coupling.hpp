@@ -34,8 +34,9 @@ struct StageContext {
   mpcd::Fluid &fluid;
   colloids::Colloids &colloids;
   mpcd::CellGrid &grid;
-  // The last collision's scratch: its v2_max, and the ghost particles' share of the sums.
-  const mpcd::CollisionScratch &collision;
+  // The last collision's scratch: its v2_max, and the ghost particles' share of the sums
+  // (within_collide: also the cells' records that MPC-AT+a's particle pass reads).
+  mpcd::CollisionScratch &collision;
   FluidStream stream;
   std::string stream_name;   // the streaming stage's line
   std::string colloids_name; // the colloids, their sizes and forces as the scene gives them
@@ -53,6 +54,10 @@ public:
   // After the fluid is binned into the shifted cells (on its slab owners), before the walls'
   // virtual particles and the collision. Not reached by the random solvent that has no cells.
   virtual Stages after_bin(const StageContext &) { return {}; }
+  // Within the collision: MPC-AT+a collided the cells and has not yet written the particles'
+  // new velocities (a stage may add a velocity change to cells through the scratch:
+  // CollisionScratch::shift_offset); the other rules have collided (and permuted) already.
+  virtual Stages within_collide(const StageContext &) { return {}; }
   // Right after the collision, before the thermostat and the sort.
   virtual Stages after_collide(const StageContext &) { return {}; }
   // Between steps (no ghost rows): the slabs move (work balance, simulation.hpp); the colloids

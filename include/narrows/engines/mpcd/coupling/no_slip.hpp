@@ -27,8 +27,8 @@
 //                          Maxwell-Boltzmann draw at kT (eq 4.18); each (colloid, cell) pair's
 //                          ghosts enter the collision as one group of sums (grid.groups, see
 //                          ghost_particles.cpp), exact in distribution
-// (the engine collides)
-// after_collide:
+// (the engine collides; MPC-AT+a its cells, not yet its particles)
+// within_collide:
 //   take_back_ghost_particles  their momentum and angular momentum change to the colloids;
 //                          they leave the cell sums
 // The impulses of bounce-back and of the ghost particles change U and Omega implicitly
@@ -106,14 +106,16 @@ public:
   Stages before_stream(const StageContext &at) override;
   Stages after_stream(const StageContext &at) override;
   Stages after_bin(const StageContext &at) override;
-  Stages after_collide(const StageContext &at) override;
+  Stages within_collide(const StageContext &at) override;
 
   // fluid_v2_max: the largest |v|^2 of the fluid if known (the last collision found it), or
   // negative (a pass over the fluid finds it, on more than one rank).
   void move_colloids(const mpcd::Fluid &fluid, colloids::Colloids &c, double fluid_v2_max = -1.0);
   BounceStats bounce_back(mpcd::Fluid &fluid, colloids::Colloids &c, const FluidStream &stream);
   void add_ghost_particles(mpcd::CellGrid &grid, const colloids::Colloids &c, std::uint64_t step);
-  void take_back_ghost_particles(mpcd::CellGrid &grid, const mpcd::CollisionScratch &collision,
+  // The cut cells' fluid gets its share of the implicit exchange by a pass over the fluid, or,
+  // between MPC-AT+a's two passes (collision.shift_stride > 0), through the cells' records.
+  void take_back_ghost_particles(mpcd::CellGrid &grid, mpcd::CollisionScratch &collision,
                                  mpcd::Fluid &fluid, colloids::Colloids &c);
   void hand_over(colloids::Colloids &c);
   // The colloids and the contact history they own to their owners under `slabs`; the ghost
@@ -179,8 +181,9 @@ private:
   void ghost_responses(const mpcd::CellGrid &grid, const mpcd::CollisionScratch &collision,
                        const mpcd::Fluid &fluid);
   void planar_responses(const mpcd::CellGrid &grid, const mpcd::CollisionScratch &collision);
-  void shift_cut_cells(const mpcd::CellGrid &grid, const mpcd::CollisionScratch &collision,
+  void shift_cut_cells(const mpcd::CellGrid &grid, mpcd::CollisionScratch &collision,
                        mpcd::Fluid &fluid);
+  void shift_cut_cells_fluid(const mpcd::CellGrid &grid, mpcd::Fluid &fluid);
   // Adds G (dof x dof) to row a's.
   void add_G(std::size_t a, const double (&G)[6][6]);
   // The velocity change J dX of a fluid particle at offset s from the centre, per unit of the

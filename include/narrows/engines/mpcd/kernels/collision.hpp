@@ -23,6 +23,14 @@ struct CollisionScratch {
   // position_stride, the cell's summed in-cell offsets (fixed point; fluid and groups), which
   // the no-slip coupling reads instead of summing its cut cells' fluid again. 0: not kept.
   int position_stride = 0, position_offset = 0;
+  // MPC-AT+a between its cells and its particles (collide_at_a_cells, then _particles):
+  // cells_pending. With room for shifts, cell holds records of shift_stride doubles; from entry
+  // shift_offset, a velocity change c (D entries) and spin w (1 | 3) that the particle pass
+  // adds to each new velocity as c + w x r (r from the cell's corner), zero unless a coupling
+  // writes them and sets cells_shifted. shift_stride = 0: no room (or no collision pending).
+  bool cells_pending = false;
+  int shift_stride = 0, shift_offset = 0;
+  bool cells_shifted = false;
 };
 
 // Every rule below (not the random solvents' own steps) also collides the particle groups of
@@ -45,6 +53,12 @@ void collide_at(Fluid &fluid, const CellGrid &grid, CollisionScratch &scratch, d
 // in 3D, collinear) use the pseudo-inverse, which is exact there.
 void collide_at_a(Fluid &fluid, const CellGrid &grid, CollisionScratch &scratch, double kT,
                   std::uint64_t seed, std::uint64_t step);
+// The same in two passes, for a coupling that changes the cells' velocities in between: the
+// cells (their records, the groups' change; with room_for_shifts, room in each record for the
+// coupling's change), then the particles' new velocities.
+void collide_at_a_cells(Fluid &fluid, const CellGrid &grid, CollisionScratch &scratch, double kT,
+                        std::uint64_t seed, std::uint64_t step, bool room_for_shifts);
+void collide_at_a_particles(Fluid &fluid, const CellGrid &grid, CollisionScratch &scratch);
 
 // Random solvent (a): after the collision, a random permutation of all fluid velocities.
 // Conserves total momentum and energy, destroys local momentum conservation.
