@@ -422,7 +422,7 @@ coupling::FluidStream MpcdSimulation::stream_kernel() const {
 }
 
 // The step as a list of stages, in the order they run, each with its line of the pipeline. Only
-// what the scene has becomes a stage; the coupling adds its own at its five hooks.
+// what the scene has becomes a stage; the coupling adds its own at its four hooks.
 void MpcdSimulation::build_stages() {
   const MpcdPlan &p = plan_;
   const coupling::StageContext at{fluid_,
@@ -448,8 +448,7 @@ void MpcdSimulation::build_stages() {
                   }});
   const std::string ranks = std::to_string(p.ranks);
   if (p.collision == scene::Collision::random_maxwell) { // random solvent (b): no cells
-    if (!coupling_->after_bin(at).empty() || !coupling_->within_collide(at).empty() ||
-        !coupling_->after_collide(at).empty())
+    if (!coupling_->after_bin(at).empty() || !coupling_->within_collide(at).empty())
       throw std::logic_error("MpcdSimulation: a coupling with cell stages and no cells");
     if (p.slabs)
       list.push_back({"migrate to slab owners (" + ranks + " ranks)",
@@ -518,9 +517,8 @@ void MpcdSimulation::build_stages() {
     list.push_back({"permute all velocities (random solvent)", [this](std::uint64_t step) {
                       mpcd::permute_velocities(fluid_, collision_scratch_, plan_.seed, step);
                     }});
-  if (p.collision != scene::Collision::at_a)
+  if (p.collision != scene::Collision::at_a) // (after the whole collision)
     add(coupling_->within_collide(at));
-  add(coupling_->after_collide(at));
   // The thermostats change the velocities after the collision, so its v2_max no longer holds.
   if (p.thermostat == MpcdPlan::Thermostat::layers)
     list.push_back({"thermostat: rescale velocities relative to the cell means per layer of "

@@ -54,12 +54,11 @@ public:
   // After the fluid is binned into the shifted cells (on its slab owners), before the walls'
   // virtual particles and the collision. Not reached by the random solvent that has no cells.
   virtual Stages after_bin(const StageContext &) { return {}; }
-  // Within the collision: MPC-AT+a collided the cells and has not yet written the particles'
-  // new velocities (a stage may add a velocity change to cells through the scratch:
-  // CollisionScratch::shift_offset); the other rules have collided (and permuted) already.
+  // Within the collision, before the thermostat and the sort: MPC-AT+a collided the cells and
+  // has not yet written the particles' new velocities (a stage may add a velocity change to
+  // cells through the scratch: CollisionScratch::shift_offset); the other rules have collided
+  // (and permuted) already.
   virtual Stages within_collide(const StageContext &) { return {}; }
-  // Right after the collision, before the thermostat and the sort.
-  virtual Stages after_collide(const StageContext &) { return {}; }
   // Between steps (no ghost rows): the slabs move (work balance, simulation.hpp); the colloids
   // this rank owns, and what travels with them, go to their owners under `slabs` (collective).
   virtual void set_slabs(const parallel::Slabs &, colloids::Colloids &) {}
