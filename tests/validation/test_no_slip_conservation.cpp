@@ -106,19 +106,30 @@ double angular_momentum(const mpcd::Fluid &f, const colloids::Colloids &c, const
   return l;
 }
 
+// Two colloids of radius 3 in a periodic 24 x 18 (x 12) box of MPC-AT+a fluid, no-slip.
+scene::Scene two_colloids_scene(int dim) {
+  scene::Colloids spec;
+  spec.radius = 3.0;
+  spec.count = 2;
+  spec.placement = scene::ColloidPlacement::list;
+  spec.positions = {{7.3, 8.1, dim == 3 ? 5.2 : 0.0}, {15.6, 9.4, dim == 3 ? 6.9 : 0.0}};
+  spec.coupling = scene::ColloidCoupling::no_slip;
+  scene::Scene s = narrows::testing::srd_colloid_scene(24.0, 18.0, false, 5, spec);
+  s.fluid.collision = scene::Collision::at_a;
+  s.run.dimensions = dim;
+  if (dim == 3) {
+    s.domain.size = {24.0, 18.0, 12.0};
+    s.fluid.density = 5.0;
+  }
+  return s;
+}
+
 } // namespace
 
 // The collision step alone: ghost particles of two spinning colloids join the MPC-AT+a
 // collision, and their momentum and angular momentum change goes to the colloids.
 TEST(NoSlipAngularMomentum, AtaCollisionWithGhostsConservesTheTotal) {
-  scene::Colloids spec;
-  spec.radius = 3.0;
-  spec.count = 2;
-  spec.placement = scene::ColloidPlacement::list;
-  spec.positions = {{7.3, 8.1, 0.0}, {15.6, 9.4, 0.0}};
-  spec.coupling = scene::ColloidCoupling::no_slip;
-  scene::Scene s = narrows::testing::srd_colloid_scene(24.0, 18.0, false, 5, spec);
-  s.fluid.collision = scene::Collision::at_a;
+  const scene::Scene s = two_colloids_scene(2);
   mpcd::MpcdSimulation sim(s, MPI_COMM_SELF);
   auto &c = sim.colloids();
   c.v[0] = {0.04, -0.03};
@@ -185,19 +196,7 @@ class NoSlipShiftFolded : public ::testing::TestWithParam<int> {};
 
 TEST_P(NoSlipShiftFolded, IntoTheCollisionIsThePassOverTheFluid) {
   const int dim = GetParam();
-  scene::Colloids spec;
-  spec.radius = 3.0;
-  spec.count = 2;
-  spec.placement = scene::ColloidPlacement::list;
-  spec.positions = {{7.3, 8.1, 5.2}, {15.6, 9.4, 6.9}};
-  spec.coupling = scene::ColloidCoupling::no_slip;
-  scene::Scene s = narrows::testing::srd_colloid_scene(24.0, 18.0, false, 5, spec);
-  s.fluid.collision = scene::Collision::at_a;
-  s.run.dimensions = dim;
-  if (dim == 3) {
-    s.domain.size = {24.0, 18.0, 12.0};
-    s.fluid.density = 5.0;
-  }
+  const scene::Scene s = two_colloids_scene(dim);
   mpcd::MpcdSimulation sim(s, MPI_COMM_SELF);
   coupling::NoSlipParams params;
   params.dt = 1e-9; // the colloids barely move: only the collision is examined
