@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Where the tools and job scripts put their output: lgca_plot.py writes its PNG next to the data
 # like the other plot tools, every SLURM --output lands in a folder that exists before the job
-# starts (SLURM opens it before the script runs), and checkpoint_bench.sh needs no bc.
+# starts (SLURM opens it before the script runs), checkpoint_bench.sh needs no bc, and the MPI
+# interposers (mpi_calls.c, mpi_waits.c) build, run and are read by their scripts.
 source "$(dirname "$0")/common.bash"
 
 mkdir -p "$tmp/run" "$tmp/elsewhere"
@@ -47,4 +48,23 @@ messages=$(sed -n 's/^measured per step .*, \([0-9.]*\) messages of rows sent.*/
 check "rows sent as messages every step (got '$messages')" \
   '/usr/bin/python3 -c "import sys; sys.exit(not float(sys.argv[1]) >= 1)" "${messages:-0}"'
 check "one table row per rank count" '[ "$(grep -c "^| [0-9]" "$tmp/model.txt")" -eq 2 ]'
+
+# Where a run waits (tools/mpi_waits.c, mpi_waits.py): the same 2-rank run of 15 steps; each
+# rank names its fluid migration (an Exchange's MPI_Waitall) among its call sites.
+mpicc -shared -fPIC -O2 -o "$tmp/mpi_waits.so" "$src/tools/mpi_waits.c"
+code=$?
+check "mpi_waits.c builds (got $code)" '[ "$code" -eq 0 ]'
+MPI_WAITS_OUT=$tmp/waits "${mpi[@]}" -n 2 -x LD_PRELOAD="$tmp/mpi_waits.so" -x MPI_WAITS_OUT \
+  "$narrows" run "$src/run/quickstart.toml" --set run.steps=15 --out "$tmp/waits_run" \
+  > /dev/null 2>&1
+code=$?
+check "the run with mpi_waits.so exits 0 (got $code)" '[ "$code" -eq 0 ]'
+/usr/bin/python3 "$src/tools/mpi_waits.py" "$tmp/waits.0" "$tmp/waits.1" --steps 15 --top 40 \
+  > "$tmp/waits.txt" 2>&1
+code=$?
+check "mpi_waits.py exits 0 (got $code)" '[ "$code" -eq 0 ] || { cat "$tmp/waits.txt"; false; }'
+check "both ranks' call sites, the fluid migration among them" \
+  '[ "$(grep -c "in blocking MPI calls" "$tmp/waits.txt")" -eq 2 ] &&
+   [ "$(grep -c "waitall .*Exchange::exchange_rows < parallel::Exchange::migrate" "$tmp/waits.txt")" -ge 2 ] ||
+   { cat "$tmp/waits.txt"; false; }'
 finish tool_outputs
