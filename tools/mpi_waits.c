@@ -2,7 +2,8 @@
  * exchanges' MPI_Waitall and MPI_Mprobe, collectives), per call site (the call chain, up to 6
  * callers deep). PMPI interposition, LD_PRELOAD; tools/mpi_waits.py names the callers. At
  * MPI_Finalize each rank writes MPI_WAITS_OUT.<rank>: one line per site, "seconds calls call"
- * then its callers as "module+0xoffset". Seconds include the message time itself; at a
+ * then its callers as "module+0xoffset" (calls beyond 512 sites: one line without callers,
+ * "beyond_the_site_table"). Seconds include the message time itself; at a
  * synchronising call most of it is waiting for a slower rank.
  * Build: mpicc -shared -fPIC -O2 -o mpi_waits.so tools/mpi_waits.c */
 #define _GNU_SOURCE
@@ -24,6 +25,7 @@ typedef struct {
 } Site;
 static Site sites[SITES];
 static int used;
+static Site beyond = {"beyond_the_site_table", 0, {0}, 0.0, 0}; /* (written only if used) */
 
 static double now(void) {
   struct timespec t;
@@ -51,6 +53,9 @@ static void record(const char *call, double dt) {
     memcpy(s->caller, f + 2, (size_t)n * sizeof(void *));
     s->seconds = dt;
     s->calls = 1;
+  } else {
+    beyond.seconds += dt;
+    beyond.calls++;
   }
 }
 
@@ -106,6 +111,8 @@ int MPI_Finalize(void) {
         }
         fprintf(f, "\n");
       }
+      if (beyond.calls)
+        fprintf(f, "%.6f %llu %s\n", beyond.seconds, beyond.calls, beyond.call);
       fclose(f);
     }
   }

@@ -13,18 +13,26 @@ import argparse
 import re
 import subprocess
 import sys
-from functools import lru_cache
 
 
-@lru_cache(maxsize=None)
-def names(module, offsets):
-    """Function names of offsets in module, via addr2line (one call per module)."""
-    try:
-        out = subprocess.run(["addr2line", "-f", "-C", "-e", module, *offsets],
-                             capture_output=True, text=True, check=True).stdout.splitlines()
-    except (OSError, subprocess.CalledProcessError) as e:
-        sys.exit(f"mpi_waits.py: addr2line on {module} failed: {e}")
-    return out[0::2]
+def function_names(frames):
+    """{"module+0xoffset": function name} for the frames, one addr2line call per module."""
+    offsets = {}
+    for frame in frames:
+        module, _, off = frame.rpartition("+")
+        if module:
+            offsets.setdefault(module, set()).add(off)
+    found = {}
+    for module, offs in offsets.items():
+        offs = sorted(offs)
+        try:
+            out = subprocess.run(["addr2line", "-f", "-C", "-e", module, *offs],
+                                 capture_output=True, text=True, check=True).stdout.splitlines()
+        except (OSError, subprocess.CalledProcessError) as e:
+            sys.exit(f"mpi_waits.py: addr2line on {module} failed: {e}")
+        for off, name in zip(offs, out[0::2]):
+            found[f"{module}+{off}"] = name
+    return found
 
 
 def short(name):
@@ -57,9 +65,12 @@ def main():
             sys.exit(f"mpi_waits.py: {path}: {e.strerror}")
         for line in lines:
             f = line.split()
-            if len(f) < 3:
-                sys.exit(f"mpi_waits.py: {path}: line '{line}': expected 'seconds calls call callers...'")
-            rows.append((float(f[0]), int(f[1]), f[2], f[3:]))
+            try:
+                rows.append((float(f[0]), int(f[1]), f[2], f[3:]))
+            except (IndexError, ValueError):
+                sys.exit(f"mpi_waits.py: {path}: line '{line}': expected 'seconds calls call "
+                         "callers...'")
+        name = function_names(c for row in rows for c in row[3])
         rows.sort(key=lambda r: -r[0])
         total = sum(r[0] for r in rows)
         per = a.steps if a.steps > 0 else 1.0
@@ -69,10 +80,10 @@ def main():
         for sec, calls, call, callers in rows[:a.top]:
             chain = []
             for c in callers:
-                module, _, off = c.rpartition("+")
+                module = c.rpartition("+")[0]
                 if not module or module.endswith("mpi_waits.so") or "libmpi" in module:
                     continue
-                n = short(names(module, (off,))[0])
+                n = short(name[c])
                 if n and n != "??" and (not chain or chain[-1] != n):
                     chain.append(n)
             print(f"  {sec * scale / per:9.4f} {calls / per:8.3g} {call:10s} {' < '.join(chain[:4])}")
